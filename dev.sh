@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Fastron's one entry point for people and CI. Each command installs the missing Debian
+# packages first (scripts/install-deps.sh), then builds what it needs.
+#
+#   ./dev.sh demo [ARGS]   build Release and run `fastron demo ARGS`
+#   ./dev.sh test          build and run the whole test suite: Release, then address+undefined
+#                          sanitizers, then ThreadSanitizer on the concurrency tests
+#   ./dev.sh build         build Release into build/release
+#   ./dev.sh bench [ARGS]  build Release and run the Google Benchmark micro-benchmarks
+#   ./dev.sh format        reformat every source file with clang-format
+#   ./dev.sh tidy          run clang-tidy over the library sources
+set -euo pipefail
+cd "$(dirname "$0")"
+jobs=$(nproc)
+
+build() {  # build DIR BUILD_TYPE [CMAKE ARGS...]
+  local dir=$1 type=$2
+  shift 2
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" "$@" >/dev/null
+  cmake --build "$dir" -j "$jobs"
+}
+
+command=${1:-}
+[[ $# -gt 0 ]] && shift
+case "$command" in
+  demo)
+    scripts/install-deps.sh
+    build build/release Release
+    build/release/apps/fastron/fastron demo "$@"
+    ;;
+  test)
+    scripts/install-deps.sh
+    build build/release Release
+    ctest --test-dir build/release --output-on-failure -j "$jobs"
+    build build/sanitize RelWithDebInfo -DFASTRON_SANITIZE=ON -DFASTRON_NATIVE=OFF
+    ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
+    build build/tsan RelWithDebInfo -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF
+    ctest --test-dir build/tsan --output-on-failure -j "$jobs" -L concurrency
+    ;;
+  build)
+    scripts/install-deps.sh
+    build build/release Release
+    ;;
+  bench)
+    scripts/install-deps.sh
+    build build/release Release
+    build/release/bench/fastron_bench "$@"
+    ;;
+  format)
+    git ls-files '*.h' '*.cpp' | xargs clang-format -i
+    ;;
+  tidy)
+    scripts/install-deps.sh
+    build build/release Release
+    git ls-files 'src/*.cpp' | xargs clang-tidy -p build/release --quiet
+    ;;
+  *)
+    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    exit 2
+    ;;
+esac

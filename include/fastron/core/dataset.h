@@ -1,0 +1,35 @@
+#pragma once
+// Labelled datasets: CSV (configuration columns, then the label +1 / -1; optional header row)
+// and NumPy .npy (a 2-D array whose last column is the label).
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+struct Dataset {
+  Configurations points;                 ///< one configuration per row
+  Labels labels;                         ///< +1 in collision, -1 free
+  std::vector<std::string> columnNames;  ///< from the CSV header, if any (configuration columns)
+
+  std::size_t size() const { return labels.size(); }
+  std::size_t dim() const { return static_cast<std::size_t>(points.cols()); }
+};
+
+/// Reads a .csv or .npy file (chosen by extension). Throws FileError naming the file, and for
+/// CSV the line and column, of the first problem: unreadable file, no data, ragged row, value
+/// that is not a number, NaN or infinite value, label other than +1 / -1.
+Dataset readDataset(const std::filesystem::path& path);
+Dataset readCsv(const std::filesystem::path& path);
+Dataset readNpy(const std::filesystem::path& path);
+
+/// Writes configuration columns and the label; with column names, a header row first.
+void writeCsv(const Dataset& data, const std::filesystem::path& path);
+/// Writes a float64 C-order array of shape (n, d + 1).
+void writeNpy(const Dataset& data, const std::filesystem::path& path);
+
+}  // namespace fastron

@@ -1,0 +1,27 @@
+#pragma once
+// Classification metrics of the paper: accuracy, true positive rate, true negative rate.
+
+#include <cstddef>
+#include <span>
+
+#include "fastron/core/model.h"
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+/// Confusion counts with the in-collision class (+1) as "positive".
+struct ConfusionCounts {
+  std::size_t truePositives = 0, trueNegatives = 0, falsePositives = 0, falseNegatives = 0;
+
+  void add(bool predictedCollision, bool actualCollision);
+  std::size_t total() const;
+  double accuracy() const;  ///< NaN when empty
+  double tpr() const;       ///< in-collision samples classified as such; NaN with no positives
+  double tnr() const;       ///< free samples classified as such; NaN with no negatives
+};
+
+/// Compares the model's predictions with the labels of `q` (joint values, one per row).
+ConfusionCounts evaluate(const Model& model, const Configurations& q,
+                         std::span<const std::int8_t> labels);
+
+}  // namespace fastron

@@ -1,0 +1,70 @@
+#pragma once
+// The Fastron model: an immutable snapshot of a support set and its weights,
+// f(x) = sum_i alpha_i k(s_i, x), with sign(f) as the proxy collision label (paper, Sec. II-A).
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "fastron/core/joint_limits.h"
+#include "fastron/core/kernel.h"
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+/// Immutable once built, so one instance can be queried from any number of threads; queries do
+/// not allocate. Queries take joint values; the model scales them to [-1, 1]^d itself.
+///
+/// Two evaluation paths are kept: `score` sums over a padded structure-of-arrays `float` copy of
+/// the support set, vectorised (AVX2 / AVX-512 when built with FASTRON_NATIVE); `scoreExact` sums
+/// in `double` over the same points, the precision used in training.
+class Model {
+ public:
+  /// `supportPoints`: one support point per row, in input space [-1, 1]^d; `weights`: one per row.
+  /// Throws InvalidArgument on mismatched sizes, non-finite values or dimension 0 or above
+  /// kMaxDimension.
+  Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints, Eigen::VectorXd weights);
+
+  std::size_t dim() const { return limits_.dim(); }
+  std::size_t supportCount() const { return static_cast<std::size_t>(weights_.size()); }
+  const JointLimits& limits() const { return limits_; }
+  const Kernel& kernel() const { return kernel_; }
+  /// Input-space support points, one per row.
+  const Eigen::MatrixXd& supportPoints() const { return support_; }
+  const Eigen::VectorXd& weights() const { return weights_; }
+
+  /// f(q) on the vectorised float path. q: dim() joint values. Throws InvalidArgument on a
+  /// non-finite value.
+  double score(const double* q) const;
+  double score(std::span<const double> q) const;
+  /// True when f(q) > 0, i.e. the model predicts a collision (label +1).
+  bool inCollision(const double* q) const { return score(q) > 0; }
+  bool inCollision(std::span<const double> q) const { return score(q) > 0; }
+
+  /// f(q) summed in double precision (the reference for the float path).
+  double scoreExact(const double* q) const;
+
+  /// f for n configurations stored row by row in `q` (n * dim() values), written to `out`.
+  void scoreBatch(const double* q, std::size_t n, double* out) const;
+  /// Scores of every row of `q`.
+  Eigen::VectorXd scoreBatch(const Configurations& q) const;
+
+ private:
+  float scoreInputFloat(const float* x) const;
+  void scaleToInput(const double* q, float* x) const;
+
+  JointLimits limits_;
+  Kernel kernel_;
+  Eigen::MatrixXd support_;
+  Eigen::VectorXd weights_;
+
+  // Hot-path copies: support_ transposed to structure-of-arrays float, each dimension padded to
+  // a multiple of the SIMD block with zero-weight points.
+  std::size_t paddedCount_ = 0;
+  std::vector<float> supportSoa_;  // dim() blocks of paddedCount_ values
+  std::vector<float> weightsF_;    // paddedCount_ values
+  std::vector<float> scaleF_, offsetF_;
+};
+
+}  // namespace fastron

@@ -1,0 +1,107 @@
+#pragma once
+// Algorithm 1 of the paper: Fastron model updating.
+
+#include <Eigen/Core>
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "fastron/core/joint_limits.h"
+#include "fastron/core/kernel.h"
+#include "fastron/core/model.h"
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+struct TrainParams {
+  Kernel kernel{};                      ///< kernel and gamma used for the Gram matrix
+  double beta = 1;                      ///< conditional bias, >= 1 (paper, Sec. II-D)
+  std::size_t maxIterations = 5000;     ///< iter_max of Algorithm 1, per update
+  std::size_t maxSupportPoints = 3000;  ///< S_max, the support-point cap
+};
+
+/// Throws InvalidArgument naming the field that is out of range.
+void validate(const TrainParams& params);
+
+enum class StopReason {
+  Converged,       ///< every training point has positive margin and no support point is redundant
+  SupportCap,      ///< a misclassified point needed a new support point, the cap was reached and
+                   ///< no redundant support point could be removed
+  IterationLimit,  ///< iter_max iterations were used
+};
+std::string_view toString(StopReason reason);
+
+/// What one call of Trainer::update did.
+struct UpdateReport {
+  std::size_t iterations = 0;  ///< weight updates plus redundant-point removals
+  StopReason stopReason = StopReason::Converged;
+  std::size_t trainingPoints = 0;       ///< N before non-support points were discarded
+  std::size_t misclassified = 0;        ///< training points with margin <= 0 at the end
+  std::size_t supportCount = 0;         ///< |S| after the update
+  std::size_t gramColumnsComputed = 0;  ///< Gram columns evaluated by this update (lazy Gram)
+  bool reverted = false;                ///< the revert safeguard restored the earlier solution
+  std::size_t misclassifiedBeforeRevert = 0;  ///< count that made the safeguard revert
+  std::chrono::nanoseconds elapsed{0};
+};
+
+/// Owns the training set X (input space), labels y, weights alpha, hypothesis F = K alpha and
+/// the lazily evaluated Gram matrix. Between updates only support points are kept, so memory is
+/// O(N |S|) during an update and O(|S|^2) after it; a dense N x N matrix is never allocated.
+class Trainer {
+ public:
+  Trainer(JointLimits limits, TrainParams params);
+
+  /// Appends configurations (joint values, one per row) with labels +1 / -1. Their weights start
+  /// at 0 and their F is computed from the current weights: cached Gram columns are first
+  /// extended to the new rows (paper, "Dynamic Data Structures").
+  void addPoints(const Configurations& q, std::span<const std::int8_t> labels);
+
+  /// Replaces the labels of the current points (same order as `points()`), e.g. after the
+  /// obstacles moved. A support point whose weight sign disagrees with its new label gets weight
+  /// 0, and F is corrected.
+  void relabel(std::span<const std::int8_t> labels);
+
+  /// Algorithm 1: greedy most-negative-margin updates with conditional bias, support-point cap,
+  /// redundant support point removal once all margins are positive, the revert safeguard, and
+  /// finally removal of the non-support points. Never prints.
+  UpdateReport update();
+
+  /// Snapshot of the current support set (points with nonzero weight).
+  std::shared_ptr<const Model> model() const;
+
+  std::size_t dim() const { return limits_.dim(); }
+  std::size_t size() const { return static_cast<std::size_t>(y_.size()); }
+  std::size_t supportCount() const { return supportCount_; }
+  const JointLimits& limits() const { return limits_; }
+  const TrainParams& params() const { return params_; }
+  /// Training points in input space, one per row.
+  const Eigen::MatrixXd& points() const { return x_; }
+  const Eigen::VectorXd& labels() const { return y_; }
+  const Eigen::VectorXd& weights() const { return alpha_; }
+  /// The hypothesis F = K alpha at every training point, maintained incrementally.
+  const Eigen::VectorXd& hypothesis() const { return f_; }
+  /// Gram columns currently cached.
+  std::size_t cachedGramColumns() const { return columns_.size(); }
+
+ private:
+  const Eigen::VectorXd& gramColumn(Eigen::Index i);
+  Eigen::VectorXd kernelColumn(Eigen::Index i, Eigen::Index fromRow) const;
+  std::size_t countMisclassified(const Eigen::VectorXd& f) const;
+  void removeNonSupportPoints();
+
+  JointLimits limits_;
+  TrainParams params_;
+  Eigen::MatrixXd x_;  // N x d, input space
+  Eigen::VectorXd y_;  // +1 / -1
+  Eigen::VectorXd alpha_;
+  Eigen::VectorXd f_;
+  std::size_t supportCount_ = 0;
+  std::vector<Eigen::VectorXd> columns_;  // cached Gram columns, each of length N
+  std::vector<int> columnOf_;             // per point: index into columns_, or -1
+  std::size_t columnsComputed_ = 0;       // during the current update
+};
+
+}  // namespace fastron

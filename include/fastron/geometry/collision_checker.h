@@ -1,0 +1,58 @@
+#pragma once
+// The interface every exact collision checker implements, and an adapter for any callable.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+/// Labels robot configurations (joint values) as in collision or free. Implementations must be
+/// safe to call from many threads at once (per-thread scratch, const data), so labelling can run
+/// on every core. Counts its calls.
+class CollisionChecker {
+ public:
+  virtual ~CollisionChecker() = default;
+
+  virtual std::string name() const = 0;
+  /// Number of joint values in a configuration.
+  virtual std::size_t dof() const = 0;
+
+  /// True when q is in collision. Throws InvalidArgument on a wrong length or non-finite value.
+  bool inCollision(std::span<const double> q) const;
+  /// One result per row of q (1 = in collision), on the calling thread.
+  std::vector<std::uint8_t> inCollisionBatch(const Configurations& q) const;
+
+  std::uint64_t callCount() const { return calls_.load(std::memory_order_relaxed); }
+  void resetCallCount() { calls_.store(0, std::memory_order_relaxed); }
+
+ protected:
+  /// The check itself, for dof() finite values.
+  virtual bool check(const double* q) const = 0;
+
+ private:
+  mutable std::atomic<std::uint64_t> calls_{0};
+};
+
+/// A CollisionChecker around a callable `bool(const double* q)`, e.g. an analytic oracle.
+/// The callable must itself be safe to call concurrently.
+class FunctionChecker final : public CollisionChecker {
+ public:
+  FunctionChecker(std::string name, std::size_t dof, std::function<bool(const double*)> fn);
+  std::string name() const override { return name_; }
+  std::size_t dof() const override { return dof_; }
+
+ protected:
+  bool check(const double* q) const override { return fn_(q); }
+
+ private:
+  std::string name_;
+  std::size_t dof_;
+  std::function<bool(const double*)> fn_;
+};
+
+}  // namespace fastron

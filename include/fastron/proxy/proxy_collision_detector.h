@@ -1,0 +1,85 @@
+#pragma once
+// The Fastron pipeline of Fig. 2: label -> update -> active learning, over any exact checker,
+// with an optional background thread that keeps the model current while others query it.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/core/joint_limits.h"
+#include "fastron/core/model.h"
+#include "fastron/core/trainer.h"
+#include "fastron/geometry/collision_checker.h"
+
+namespace fastron {
+
+struct ProxyParams {
+  TrainParams train{};
+  ActiveLearningParams activeLearning{};
+  std::uint64_t seed = 1;     ///< every random choice of the pipeline derives from it
+  unsigned labelThreads = 0;  ///< threads labelling with the oracle; 0 = every hardware thread
+};
+
+/// What one initialize() or step() did.
+struct StepReport {
+  UpdateReport update;
+  std::size_t labelled = 0;  ///< oracle calls made (support points relabelled + new points)
+  std::size_t added = 0;     ///< new points from sampling or active learning
+  std::chrono::nanoseconds sampleTime{0}, labelTime{0}, total{0};
+  std::uint64_t modelVersion = 0;  ///< 1 after initialize(), +1 per step()
+};
+
+class ProxyCollisionDetector {
+ public:
+  /// `oracle` labels configurations (it must be safe to call from several threads unless
+  /// params.labelThreads == 1) and its dof() must equal limits.dim().
+  ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle, JointLimits limits,
+                         ProxyParams params = {});
+  ~ProxyCollisionDetector();
+  ProxyCollisionDetector(const ProxyCollisionDetector&) = delete;
+  ProxyCollisionDetector& operator=(const ProxyCollisionDetector&) = delete;
+
+  /// n uniform samples within the joint limits, labelled, then Algorithm 1.
+  StepReport initialize(std::size_t n);
+
+  /// One cycle for a changed environment: Algorithm 2 on the current support set, relabel the
+  /// support set, label the new points, Algorithm 1. Throws Error before initialize().
+  StepReport step();
+
+  /// The latest published model. Lock-free; a model, once returned, never changes, so callers
+  /// keep querying it while newer ones are built. Throws Error before initialize().
+  std::shared_ptr<const Model> model() const;
+
+  /// Runs step() in a loop on a background thread, publishing each new model atomically.
+  /// `onStep` (optional) is called on that thread after each step.
+  void startBackground(std::function<void(const StepReport&)> onStep = {});
+  /// Stops and joins the background thread; rethrows an exception that ended its loop.
+  void stopBackground();
+  bool backgroundRunning() const { return worker_.joinable(); }
+
+  const CollisionChecker& oracle() const { return *oracle_; }
+  const JointLimits& limits() const { return limits_; }
+  const ProxyParams& params() const { return params_; }
+
+ private:
+  StepReport finish(StepReport report, std::chrono::steady_clock::time_point start);
+
+  std::shared_ptr<const CollisionChecker> oracle_;
+  JointLimits limits_;
+  ProxyParams params_;
+  Rng rng_;
+  Trainer trainer_;
+  std::mutex stepMutex_;  // one initialize()/step() at a time
+  std::uint64_t version_ = 0;
+  std::atomic<std::shared_ptr<const Model>> model_;
+  std::jthread worker_;
+  std::exception_ptr workerError_;
+};
+
+}  // namespace fastron

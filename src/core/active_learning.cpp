@@ -1,0 +1,68 @@
+#include "fastron/core/active_learning.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+
+void validate(const ActiveLearningParams& params) {
+  if (!std::isfinite(params.variance) || params.variance < 0) {
+    throw InvalidArgument(
+        "active learning variance must be finite and >= 0 (0 = 1/(2 gamma)), got " +
+        std::to_string(params.variance));
+  }
+}
+
+Configurations activeLearning(const Model& model, const ActiveLearningParams& params, Rng& rng) {
+  validate(params);
+  const auto d = static_cast<Eigen::Index>(model.dim());
+  const auto maxSamples = static_cast<Eigen::Index>(params.maxSamples);
+  const Eigen::MatrixXd& support = model.supportPoints();
+  const double variance =
+      params.variance > 0 ? params.variance : 1.0 / (2.0 * model.kernel().gamma);
+
+  Eigen::MatrixXd samples(maxSamples, d);  // input space
+  Eigen::Index count = 0;
+
+  // Exploitation: up to kappa Gaussian samples around each support point (Alg. 2, line 5).
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(support.rows()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  if (params.samplesPerSupportPoint * order.size() > params.maxSamples) {
+    std::shuffle(order.begin(), order.end(), rng);
+  }
+  std::normal_distribution<double> gauss(0.0, std::sqrt(variance));
+  for (std::size_t k = 0; k < params.samplesPerSupportPoint && count < maxSamples; ++k) {
+    for (const Eigen::Index s : order) {
+      if (count == maxSamples) break;
+      for (Eigen::Index j = 0; j < d; ++j) {
+        samples(count, j) = std::clamp(support(s, j) + gauss(rng), -1.0, 1.0);
+      }
+      ++count;
+    }
+  }
+
+  // Exploration: uniform samples in [-1, 1]^d fill the rest (Alg. 2, line 8).
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (; count < maxSamples; ++count) {
+    for (Eigen::Index j = 0; j < d; ++j) samples(count, j) = uniform(rng);
+  }
+  return model.limits().toJoint(Configurations(samples));
+}
+
+Configurations uniformConfigurations(const JointLimits& limits, std::size_t n, Rng& rng) {
+  const auto d = static_cast<Eigen::Index>(limits.dim());
+  Configurations q(static_cast<Eigen::Index>(n), d);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    for (Eigen::Index j = 0; j < d; ++j) {
+      std::uniform_real_distribution<double> uniform(limits.lower()[j], limits.upper()[j]);
+      q(i, j) = uniform(rng);
+    }
+  }
+  return q;
+}
+
+}  // namespace fastron

@@ -1,0 +1,292 @@
+#include "fastron/core/dataset.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> splitFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+/// The whole field as a number (a leading '+' allowed), or nothing.
+std::optional<double> parseNumber(std::string_view field) {
+  if (field.size() > 1 && field.front() == '+') field.remove_prefix(1);
+  double value = 0;
+  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (error != std::errc() || end != field.data() + field.size() || field.empty()) return {};
+  return value;
+}
+
+std::int8_t toLabel(double value, const std::string& where) {
+  if (value == 1.0) return 1;
+  if (value == -1.0) return -1;
+  throw FileError(where + ": label must be +1 or -1, got " + std::to_string(value));
+}
+
+Dataset fromRows(const std::vector<double>& values, std::size_t columns, Labels labels) {
+  Dataset data;
+  const auto n = static_cast<Eigen::Index>(labels.size());
+  const auto d = static_cast<Eigen::Index>(columns - 1);
+  data.points.resize(n, d);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < d; ++j) {
+      data.points(i, j) =
+          values[static_cast<std::size_t>(i) * (columns - 1) + static_cast<std::size_t>(j)];
+    }
+  }
+  data.labels = std::move(labels);
+  return data;
+}
+
+}  // namespace
+
+Dataset readCsv(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path);
+  if (!in) throw FileError(file + ": cannot open dataset file");
+
+  std::vector<double> values;
+  Labels labels;
+  std::vector<std::string> header;
+  std::size_t columns = 0;
+  std::string line;
+  bool first = true;
+  for (std::size_t lineNo = 1; std::getline(in, line); ++lineNo) {
+    const std::string_view text = trim(line);
+    if (text.empty()) continue;
+    const std::vector<std::string_view> fields = splitFields(text);
+    const std::string where = file + ":" + std::to_string(lineNo);
+    if (first) {
+      first = false;
+      columns = fields.size();
+      if (columns < 2) {
+        throw FileError(where +
+                        ": need at least one configuration column and a label column, found " +
+                        std::to_string(columns) + " column");
+      }
+      // A header row is one without a single number in it.
+      bool isHeader = true;
+      for (const auto field : fields) isHeader = isHeader && !parseNumber(field);
+      if (isHeader) {
+        for (std::size_t c = 0; c + 1 < fields.size(); ++c) header.emplace_back(fields[c]);
+        continue;
+      }
+    }
+    if (fields.size() != columns) {
+      throw FileError(where + ": " + std::to_string(fields.size()) + " columns, expected " +
+                      std::to_string(columns));
+    }
+    for (std::size_t c = 0; c < columns; ++c) {
+      const std::string at = where + ": column " + std::to_string(c + 1);
+      const auto value = parseNumber(fields[c]);
+      if (!value) throw FileError(at + ": '" + std::string(fields[c]) + "' is not a number");
+      if (!std::isfinite(*value))
+        throw FileError(at + ": value is not finite (" + std::string(fields[c]) + ")");
+      if (c + 1 < columns) {
+        values.push_back(*value);
+      } else {
+        labels.push_back(toLabel(*value, at));
+      }
+    }
+  }
+  if (labels.empty()) throw FileError(file + ": no data rows");
+  Dataset data = fromRows(values, columns, std::move(labels));
+  data.columnNames = std::move(header);
+  return data;
+}
+
+Dataset readNpy(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(file + ": cannot open dataset file");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) {
+    throw FileError(file + ": not a .npy file (bad magic bytes)");
+  }
+  const auto major = static_cast<unsigned char>(bytes[6]);
+  std::size_t headerLength = 0, headerStart = 0;
+  if (major == 1) {
+    headerLength = static_cast<unsigned char>(bytes[8]) |
+                   static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
+    headerStart = 10;
+  } else if (major == 2 || major == 3) {
+    if (bytes.size() < 12) throw FileError(file + ": truncated .npy header");
+    for (int b = 3; b >= 0; --b)
+      headerLength = headerLength << 8 | static_cast<unsigned char>(bytes[8 + b]);
+    headerStart = 12;
+  } else {
+    throw FileError(file + ": unsupported .npy version " + std::to_string(major));
+  }
+  if (bytes.size() < headerStart + headerLength) throw FileError(file + ": truncated .npy header");
+  const std::string header = bytes.substr(headerStart, headerLength);
+
+  auto valueOf = [&](const std::string& key) {
+    const std::size_t k = header.find("'" + key + "'");
+    const std::size_t colon = k == std::string::npos ? k : header.find(':', k);
+    if (colon == std::string::npos)
+      throw FileError(file + ": .npy header has no '" + key + "' field");
+    return trim(std::string_view(header).substr(colon + 1));
+  };
+  auto enclosed = [&](std::string_view text, char open, char close, const char* key) {
+    const std::size_t end =
+        text.empty() || text.front() != open ? std::string_view::npos : text.find(close, 1);
+    if (end == std::string_view::npos)
+      throw FileError(file + ": bad .npy header field '" + key + "'");
+    return text.substr(1, end - 1);
+  };
+  const std::string_view descrText = valueOf("descr");
+  const char quote = descrText.starts_with('"') ? '"' : '\'';
+  const std::string_view descr = enclosed(descrText, quote, quote, "descr");
+  const bool fortran = valueOf("fortran_order").starts_with("True");
+  const std::string_view shapeText = enclosed(valueOf("shape"), '(', ')', "shape");
+  std::vector<std::size_t> shape;
+  for (const auto field : splitFields(shapeText)) {
+    if (field.empty()) continue;
+    std::size_t v = 0;
+    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v);
+    if (error != std::errc() || end != field.data() + field.size()) {
+      throw FileError(file + ": bad .npy shape '" + std::string(shapeText) + "'");
+    }
+    shape.push_back(v);
+  }
+  if (shape.size() != 2 || shape[1] < 2 || shape[0] == 0) {
+    throw FileError(file + ": expected a 2-D array with at least 2 columns and 1 row, got shape (" +
+                    std::string(shapeText) + ")");
+  }
+
+  std::size_t itemSize = 0;
+  if (descr == "<f8" || descr == "<i8")
+    itemSize = 8;
+  else if (descr == "<f4" || descr == "<i4")
+    itemSize = 4;
+  else
+    throw FileError(file + ": unsupported .npy dtype '" + std::string(descr) +
+                    "' (use <f8, <f4, <i8 or <i4)");
+
+  const std::size_t rows = shape[0], columns = shape[1];
+  const std::size_t dataStart = headerStart + headerLength;
+  const std::size_t available = (bytes.size() - dataStart) / itemSize;  // whole elements present
+  if (columns > available || rows > available / columns) {
+    throw FileError(file + ": truncated .npy data (" + std::to_string(bytes.size() - dataStart) +
+                    " bytes for shape (" + std::to_string(rows) + ", " + std::to_string(columns) +
+                    "))");
+  }
+  auto element = [&](std::size_t r, std::size_t c) -> double {
+    const std::size_t index = fortran ? c * rows + r : r * columns + c;
+    const char* p = bytes.data() + dataStart + index * itemSize;
+    if (descr == "<f8") {
+      double v;
+      std::memcpy(&v, p, 8);
+      return v;
+    }
+    if (descr == "<f4") {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+    if (descr == "<i8") {
+      std::int64_t v;
+      std::memcpy(&v, p, 8);
+      return static_cast<double>(v);
+    }
+    std::int32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+  };
+
+  std::vector<double> values;
+  values.reserve(rows * (columns - 1));
+  Labels labels;
+  labels.reserve(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns; ++c) {
+      const double v = element(r, c);
+      const std::string where =
+          file + ": row " + std::to_string(r) + ", column " + std::to_string(c);
+      if (!std::isfinite(v)) throw FileError(where + ": value is not finite");
+      if (c + 1 < columns)
+        values.push_back(v);
+      else
+        labels.push_back(toLabel(v, where));
+    }
+  }
+  return fromRows(values, columns, std::move(labels));
+}
+
+Dataset readDataset(const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".npy") return readNpy(path);
+  if (ext == ".csv" || ext == ".txt") return readCsv(path);
+  throw FileError(path.string() + ": unknown dataset format '" + ext + "' (expected .csv or .npy)");
+}
+
+void writeCsv(const Dataset& data, const std::filesystem::path& path) {
+  std::ofstream out(path);
+  if (!data.columnNames.empty()) {
+    for (const auto& name : data.columnNames) out << name << ',';
+    out << "label\n";
+  }
+  out.precision(17);
+  for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
+    for (Eigen::Index j = 0; j < data.points.cols(); ++j) out << data.points(i, j) << ',';
+    out << static_cast<int>(data.labels[static_cast<std::size_t>(i)]) << '\n';
+  }
+  out.close();
+  if (!out) throw FileError(path.string() + ": cannot write dataset file");
+}
+
+void writeNpy(const Dataset& data, const std::filesystem::path& path) {
+  const std::size_t rows = data.size(), columns = data.dim() + 1;
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" +
+                       std::to_string(rows) + ", " + std::to_string(columns) + "), }";
+  // The header, with the 10 preamble bytes, is padded with spaces to a multiple of 64 and ends
+  // with a newline (NumPy format version 1.0).
+  header.append(63 - (10 + header.size()) % 64, ' ');
+  header.push_back('\n');
+  std::string bytes = "\x93NUMPY";
+  bytes.push_back('\x01');
+  bytes.push_back('\x00');
+  bytes.push_back(static_cast<char>(header.size() & 0xff));
+  bytes.push_back(static_cast<char>(header.size() >> 8));
+  bytes += header;
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns; ++c) {
+      const double v = c + 1 < columns
+                           ? data.points(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c))
+                           : data.labels[r];
+      bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+  }
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw FileError(path.string() + ": cannot write dataset file");
+}
+
+}  // namespace fastron

@@ -1,0 +1,141 @@
+#include "fastron/core/model.h"
+
+#include <array>
+#include <string>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+namespace {
+
+// The float kernel sum runs over fixed-size blocks of support points; Eigen maps each block onto
+// SIMD registers (one AVX-512 or two AVX2 registers) and vectorises exp() for the Gaussian.
+constexpr std::size_t kLanes = 16;
+using Lanes = Eigen::Array<float, kLanes, 1>;
+
+template <KernelType type>
+float kernelSum(const float* soa, const float* weights, std::size_t padded, std::size_t dim,
+                const float* x, float gamma) {
+  Lanes sum = Lanes::Zero();
+  for (std::size_t b = 0; b < padded; b += kLanes) {
+    Lanes r2 = Lanes::Zero();
+    for (std::size_t j = 0; j < dim; ++j) {
+      const Lanes diff = Eigen::Map<const Lanes>(soa + j * padded + b) - x[j];
+      r2 += diff.square();
+    }
+    Lanes k;
+    if constexpr (type == KernelType::RationalQuadratic) {
+      const Lanes t = 1.0f + (0.5f * gamma) * r2;
+      k = (t * t).inverse();
+    } else {
+      k = (-gamma * r2).exp();
+    }
+    sum += Eigen::Map<const Lanes>(weights + b) * k;
+  }
+  return sum.sum();
+}
+
+}  // namespace
+
+Model::Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints,
+             Eigen::VectorXd weights)
+    : limits_(std::move(limits)),
+      kernel_(kernel),
+      support_(std::move(supportPoints)),
+      weights_(std::move(weights)) {
+  validate(kernel_);
+  const std::size_t d = limits_.dim();
+  if (d == 0 || d > kMaxDimension) {
+    throw InvalidArgument("model dimension must be between 1 and " + std::to_string(kMaxDimension) +
+                          ", got " + std::to_string(d));
+  }
+  if (static_cast<std::size_t>(support_.cols()) != d) {
+    throw InvalidArgument("support points have " + std::to_string(support_.cols()) +
+                          " columns but the joint limits have dimension " + std::to_string(d));
+  }
+  if (support_.rows() != weights_.size()) {
+    throw InvalidArgument(std::to_string(support_.rows()) + " support points but " +
+                          std::to_string(weights_.size()) + " weights");
+  }
+  if (!support_.allFinite() || !weights_.allFinite()) {
+    throw InvalidArgument("support points and weights must be finite");
+  }
+
+  const std::size_t n = supportCount();
+  paddedCount_ = (n + kLanes - 1) / kLanes * kLanes;
+  supportSoa_.assign(d * paddedCount_, 0.0f);
+  weightsF_.assign(paddedCount_, 0.0f);  // padding points have weight 0: they add nothing
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    for (std::size_t j = 0; j < d; ++j) {
+      supportSoa_[j * paddedCount_ + i] =
+          static_cast<float>(support_(row, static_cast<Eigen::Index>(j)));
+    }
+    weightsF_[i] = static_cast<float>(weights_[row]);
+  }
+  scaleF_.resize(d);
+  offsetF_.resize(d);
+  for (std::size_t j = 0; j < d; ++j) {
+    scaleF_[j] = static_cast<float>(limits_.scale()[static_cast<Eigen::Index>(j)]);
+    offsetF_[j] = static_cast<float>(limits_.offset()[static_cast<Eigen::Index>(j)]);
+  }
+}
+
+void Model::scaleToInput(const double* q, float* x) const {
+  const auto& scale = limits_.scale();
+  const auto& offset = limits_.offset();
+  for (std::size_t j = 0; j < dim(); ++j) {
+    if (!std::isfinite(q[j])) {
+      throw InvalidArgument("configuration value [" + std::to_string(j) + "] is not finite (" +
+                            std::to_string(q[j]) + ")");
+    }
+    const auto jj = static_cast<Eigen::Index>(j);
+    x[j] = static_cast<float>(scale[jj] * q[j] + offset[jj]);
+  }
+}
+
+float Model::scoreInputFloat(const float* x) const {
+  const auto gamma = static_cast<float>(kernel_.gamma);
+  if (kernel_.type == KernelType::RationalQuadratic) {
+    return kernelSum<KernelType::RationalQuadratic>(supportSoa_.data(), weightsF_.data(),
+                                                    paddedCount_, dim(), x, gamma);
+  }
+  return kernelSum<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_, dim(),
+                                         x, gamma);
+}
+
+double Model::score(const double* q) const {
+  std::array<float, kMaxDimension> x;
+  scaleToInput(q, x.data());
+  return scoreInputFloat(x.data());
+}
+
+double Model::score(std::span<const double> q) const {
+  checkConfiguration(q, dim());
+  return score(q.data());
+}
+
+double Model::scoreExact(const double* q) const {
+  const Eigen::VectorXd x = limits_.toInput(std::span<const double>(q, dim()));
+  double f = 0;
+  for (Eigen::Index i = 0; i < support_.rows(); ++i) {
+    f += weights_[i] * kernel_((support_.row(i).transpose() - x).squaredNorm());
+  }
+  return f;
+}
+
+void Model::scoreBatch(const double* q, std::size_t n, double* out) const {
+  for (std::size_t i = 0; i < n; ++i) out[i] = score(q + i * dim());
+}
+
+Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {
+  if (static_cast<std::size_t>(q.cols()) != dim()) {
+    throw InvalidArgument("configurations have " + std::to_string(q.cols()) +
+                          " columns, the model has dimension " + std::to_string(dim()));
+  }
+  Eigen::VectorXd out(q.rows());
+  scoreBatch(q.data(), static_cast<std::size_t>(q.rows()), out.data());
+  return out;
+}
+
+}  // namespace fastron

@@ -1,0 +1,111 @@
+#include "fastron/proxy/proxy_collision_detector.h"
+
+#include <string>
+#include <utility>
+
+#include "fastron/core/error.h"
+#include "fastron/proxy/labelling.h"
+
+namespace fastron {
+
+using Clock = std::chrono::steady_clock;
+
+ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle,
+                                               JointLimits limits, ProxyParams params)
+    : oracle_(std::move(oracle)),
+      limits_(std::move(limits)),
+      params_(params),
+      rng_(params.seed),
+      trainer_(limits_, params.train) {
+  if (!oracle_) throw InvalidArgument("ProxyCollisionDetector: no oracle given");
+  if (oracle_->dof() != limits_.dim()) {
+    throw InvalidArgument("ProxyCollisionDetector: oracle '" + oracle_->name() + "' has " +
+                          std::to_string(oracle_->dof()) + " dof but the joint limits have " +
+                          std::to_string(limits_.dim()));
+  }
+  validate(params_.activeLearning);
+}
+
+ProxyCollisionDetector::~ProxyCollisionDetector() {
+  worker_.request_stop();
+  if (worker_.joinable()) worker_.join();
+}
+
+StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start) {
+  report.update = trainer_.update();
+  model_.store(trainer_.model());
+  report.modelVersion = ++version_;
+  report.total = Clock::now() - start;
+  return report;
+}
+
+StepReport ProxyCollisionDetector::initialize(std::size_t n) {
+  const std::lock_guard lock(stepMutex_);
+  const auto start = Clock::now();
+  StepReport report;
+  const Configurations q = uniformConfigurations(limits_, n, rng_);
+  const auto labelStart = Clock::now();
+  report.sampleTime = labelStart - start;
+  const Labels labels = labelConfigurations(*oracle_, q, params_.labelThreads);
+  report.labelTime = Clock::now() - labelStart;
+  report.labelled = report.added = n;
+  trainer_ = Trainer(limits_, params_.train);
+  trainer_.addPoints(q, labels);
+  return finish(report, start);
+}
+
+StepReport ProxyCollisionDetector::step() {
+  const std::lock_guard lock(stepMutex_);
+  if (version_ == 0) throw Error("ProxyCollisionDetector::step() called before initialize()");
+  const auto start = Clock::now();
+  StepReport report;
+
+  const Configurations fresh = activeLearning(*trainer_.model(), params_.activeLearning, rng_);
+  const auto support = static_cast<Eigen::Index>(trainer_.size());
+  Configurations all(support + fresh.rows(), static_cast<Eigen::Index>(limits_.dim()));
+  all.topRows(support) = limits_.toJoint(Configurations(trainer_.points()));
+  all.bottomRows(fresh.rows()) = fresh;
+  const auto labelStart = Clock::now();
+  report.sampleTime = labelStart - start;
+
+  const Labels labels = labelConfigurations(*oracle_, all, params_.labelThreads);
+  report.labelTime = Clock::now() - labelStart;
+  report.labelled = labels.size();
+  report.added = static_cast<std::size_t>(fresh.rows());
+
+  const auto split = labels.begin() + support;
+  trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
+  trainer_.addPoints(fresh, Labels(split, labels.end()));
+  return finish(report, start);
+}
+
+std::shared_ptr<const Model> ProxyCollisionDetector::model() const {
+  auto current = model_.load();
+  if (!current) throw Error("ProxyCollisionDetector::model() called before initialize()");
+  return current;
+}
+
+void ProxyCollisionDetector::startBackground(std::function<void(const StepReport&)> onStep) {
+  if (worker_.joinable()) throw Error("ProxyCollisionDetector: background updates already running");
+  if (!model_.load()) throw Error("ProxyCollisionDetector: initialize() before startBackground()");
+  workerError_ = nullptr;
+  worker_ = std::jthread([this, onStep = std::move(onStep)](const std::stop_token& stop) {
+    try {
+      while (!stop.stop_requested()) {
+        const StepReport report = step();
+        if (onStep) onStep(report);
+      }
+    } catch (...) {
+      workerError_ = std::current_exception();
+    }
+  });
+}
+
+void ProxyCollisionDetector::stopBackground() {
+  worker_.request_stop();
+  if (worker_.joinable()) worker_.join();
+  worker_ = {};
+  if (auto error = std::exchange(workerError_, nullptr)) std::rethrow_exception(error);
+}
+
+}  // namespace fastron

@@ -1,0 +1,76 @@
+#include "fastron/core/kernel.h"
+
+#include <gtest/gtest.h>
+
+#include "fastron/core/error.h"
+#include "fastron/core/joint_limits.h"
+
+namespace fastron {
+namespace {
+
+TEST(Kernel, RationalQuadraticMatchesItsFormula) {
+  const Kernel k{KernelType::RationalQuadratic, 4};
+  EXPECT_DOUBLE_EQ(k(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(k(0.5), 1.0 / ((1 + 2 * 0.5) * (1 + 2 * 0.5)));
+  EXPECT_FLOAT_EQ(k(0.5f), 0.25f);
+}
+
+TEST(Kernel, GaussianMatchesItsFormula) {
+  const Kernel k{KernelType::Gaussian, 3};
+  EXPECT_DOUBLE_EQ(k(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(k(0.2), std::exp(-0.6));
+}
+
+TEST(Kernel, RationalQuadraticApproachesTheGaussianFromAbove) {
+  // (1 + gamma r2 / p)^-p >= exp(-gamma r2) for p = 2, and both decrease with distance.
+  const Kernel rq{KernelType::RationalQuadratic, 1}, g{KernelType::Gaussian, 1};
+  double previous = 2;
+  for (double r2 = 0.01; r2 < 10; r2 *= 1.5) {
+    EXPECT_GE(rq(r2), g(r2));
+    EXPECT_LT(rq(r2), previous);
+    previous = rq(r2);
+  }
+}
+
+TEST(Kernel, NamesAndValidation) {
+  EXPECT_EQ(parseKernelType("rq"), KernelType::RationalQuadratic);
+  EXPECT_EQ(parseKernelType("gaussian"), KernelType::Gaussian);
+  EXPECT_EQ(toString(KernelType::Gaussian), "gaussian");
+  EXPECT_THROW(parseKernelType("linear"), InvalidArgument);
+  EXPECT_THROW(validate(Kernel{KernelType::RationalQuadratic, 0}), InvalidArgument);
+  EXPECT_THROW(validate(Kernel{KernelType::RationalQuadratic, std::nan("")}), InvalidArgument);
+}
+
+TEST(JointLimits, MapsLimitsToMinusOneAndOne) {
+  const JointLimits limits(Eigen::Vector3d(-3.14, 0, -1), Eigen::Vector3d(3.14, 3.14, 3));
+  const Eigen::VectorXd lo = limits.toInput(std::vector<double>{-3.14, 0, -1});
+  const Eigen::VectorXd hi = limits.toInput(std::vector<double>{3.14, 3.14, 3});
+  const Eigen::VectorXd mid = limits.toInput(std::vector<double>{0, 1.57, 1});
+  EXPECT_TRUE(lo.isApprox(Eigen::Vector3d::Constant(-1)));
+  EXPECT_TRUE(hi.isApprox(Eigen::Vector3d::Constant(1)));
+  EXPECT_NEAR(mid.norm(), 0, 1e-12);
+  const Eigen::VectorXd back = limits.toJoint(std::vector<double>{0.5, -0.5, 0});
+  EXPECT_NEAR(back[0], 1.57, 1e-12);
+  EXPECT_NEAR(back[1], 0.785, 1e-12);
+  EXPECT_NEAR(back[2], 1, 1e-12);
+}
+
+TEST(JointLimits, RejectsBadLimitsAndConfigurations) {
+  EXPECT_THROW(JointLimits(Eigen::Vector2d(0, 1), Eigen::Vector2d(1, 1)), InvalidArgument);
+  EXPECT_THROW(JointLimits(Eigen::Vector2d(0, 2), Eigen::Vector2d(1, 1)), InvalidArgument);
+  EXPECT_THROW(JointLimits(Eigen::Vector2d(0, 0), Eigen::Vector3d(1, 1, 1)), InvalidArgument);
+  EXPECT_THROW(JointLimits(Eigen::Vector2d(0, std::nan("")), Eigen::Vector2d(1, 1)),
+               InvalidArgument);
+  const JointLimits limits = JointLimits::unitBox(2);
+  EXPECT_THROW(limits.toInput(std::vector<double>{0.0}), InvalidArgument);
+  EXPECT_THROW(limits.toInput(std::vector<double>{0.0, INFINITY}), InvalidArgument);
+  try {
+    checkConfiguration(std::vector<double>{0.0, std::nan("")}, 2);
+    FAIL();
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("[1]"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,103 @@
+#include "fastron/core/model_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "fastron/core/error.h"
+#include "fastron/core/trainer.h"
+#include "temp_dir.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+using test::messageOf;
+using ::testing::HasSubstr;
+
+class ModelFile : public test::TempDir {
+ protected:
+  Model sampleModel() const {
+    const Configurations q = test::uniformPoints(600, 3, 1);
+    const JointLimits limits(Eigen::Vector3d(-1, 0, -3), Eigen::Vector3d(2, 1, 3));
+    Trainer trainer(limits, TrainParams{.kernel = {KernelType::Gaussian, 12}, .beta = 3});
+    trainer.addPoints(limits.toJoint(q), test::BallWorld::random(3, 3, 0.5, 2).label(q));
+    trainer.update();
+    return *trainer.model();
+  }
+};
+
+TEST_F(ModelFile, RoundTripKeepsEveryValue) {
+  const Model model = sampleModel();
+  ASSERT_GT(model.supportCount(), 10u);
+  saveModel(model, path("m.fastron"));
+  const Model loaded = loadModel(path("m.fastron"), 3);
+  EXPECT_EQ(loaded.kernel().type, KernelType::Gaussian);
+  EXPECT_EQ(loaded.kernel().gamma, 12);
+  EXPECT_TRUE(loaded.limits() == model.limits());
+  EXPECT_EQ(loaded.supportPoints(), model.supportPoints());
+  EXPECT_EQ(loaded.weights(), model.weights());
+  const std::vector<double> q{0.3, 0.2, 1};
+  EXPECT_EQ(loaded.score(q), model.score(q));
+}
+
+TEST_F(ModelFile, EmptyModelRoundTrips) {
+  const Model empty(JointLimits::unitBox(2), Kernel{}, Eigen::MatrixXd(0, 2), Eigen::VectorXd(0));
+  saveModel(empty, path("e.fastron"));
+  EXPECT_EQ(loadModel(path("e.fastron")).supportCount(), 0u);
+}
+
+TEST_F(ModelFile, MissingFileIsNamed) {
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("absent.fastron")); }),
+              HasSubstr("absent.fastron: cannot open"));
+}
+
+TEST_F(ModelFile, EveryTruncationIsRefused) {
+  saveModel(sampleModel(), path("m.fastron"));
+  const std::string bytes = read(path("m.fastron"));
+  for (std::size_t size = 0; size < bytes.size(); size += (size < 200 ? 1 : 97)) {
+    write("t.fastron", bytes.substr(0, size));
+    const std::string message = messageOf<FileError>([&] { loadModel(path("t.fastron")); });
+    EXPECT_THAT(message, HasSubstr("t.fastron")) << "size " << size;
+  }
+  write("t.fastron", bytes.substr(0, bytes.size() - 1));
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("t.fastron")); }), HasSubstr("truncated"));
+}
+
+TEST_F(ModelFile, CorruptBytesFailTheChecksum) {
+  saveModel(sampleModel(), path("m.fastron"));
+  std::string bytes = read(path("m.fastron"));
+  for (const std::size_t at : {std::size_t{40}, bytes.size() / 2, bytes.size() - 9}) {
+    std::string corrupt = bytes;
+    corrupt[at] = static_cast<char>(corrupt[at] ^ 0x10);
+    write("c.fastron", corrupt);
+    EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("c.fastron")); }), HasSubstr("checksum"))
+        << "byte " << at;
+  }
+  bytes.push_back('x');
+  write("c.fastron", bytes);
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("c.fastron")); }), HasSubstr("trailing"));
+}
+
+TEST_F(ModelFile, WrongMagicVersionAndDimensionAreNamed) {
+  write("text.fastron", "x1,x2,label\n0,0,1\n");
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("text.fastron")); }), HasSubstr("magic"));
+
+  saveModel(sampleModel(), path("m.fastron"));
+  std::string bytes = read(path("m.fastron"));
+  bytes[8] = 7;  // version
+  write("v.fastron", bytes);
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("v.fastron")); }),
+              HasSubstr("unsupported model file version 7"));
+
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("m.fastron"), 7); }),
+              HasSubstr("model has dimension 3 but 7 was expected"));
+}
+
+TEST_F(ModelFile, UnwritablePathIsNamed) {
+  EXPECT_THAT(
+      messageOf<FileError>([&] { saveModel(sampleModel(), path("no/such/dir/m.fastron")); }),
+      HasSubstr("cannot write"));
+}
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,111 @@
+#include "fastron/core/model.h"
+
+#include <gtest/gtest.h>
+
+#include "fastron/core/error.h"
+#include "fastron/core/trainer.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+std::shared_ptr<const Model> trainedModel(std::size_t dim, std::size_t n, KernelType type,
+                                          double gamma, double beta) {
+  const Configurations q = test::uniformPoints(n, dim, 101);
+  TrainParams p;
+  p.kernel = {type, gamma};
+  p.beta = beta;
+  p.maxIterations = 1'000'000;
+  p.maxSupportPoints = n;
+  Trainer trainer(JointLimits::unitBox(dim), p);
+  // Balls fill a good share of low-dimensional spaces; in high dimensions they would fill almost
+  // nothing, so random labels stand in.
+  const double radius = 0.45 * std::sqrt(static_cast<double>(dim) / 2.0);
+  trainer.addPoints(q, dim <= 7 ? test::BallWorld::random(dim, 5, radius, 102).label(q)
+                                : test::randomLabels(n, 102));
+  trainer.update();
+  return trainer.model();
+}
+
+struct AgreementCase {
+  std::size_t dim;
+  KernelType type;
+  double gamma, beta;
+};
+
+class FloatPath : public ::testing::TestWithParam<AgreementCase> {};
+
+// The vectorised float path must give the double path's sign on at least 99.99% of queries.
+TEST_P(FloatPath, AgreesInSignWithTheDoublePath) {
+  const auto c = GetParam();
+  const auto model = trainedModel(c.dim, 3000, c.type, c.gamma, c.beta);
+  ASSERT_GT(model->supportCount(), 50u);
+  const std::size_t queries = 100'000;
+  const Configurations q = test::uniformPoints(queries, c.dim, 103);
+  std::size_t disagreements = 0;
+  double worst = 0;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const double fast = model->score(q.row(i).data());
+    const double exact = model->scoreExact(q.row(i).data());
+    disagreements += (fast > 0) != (exact > 0);
+    worst = std::max(worst, std::abs(fast - exact) / (1 + std::abs(exact)));
+  }
+  RecordProperty("disagreements", static_cast<int>(disagreements));
+  EXPECT_LE(disagreements, queries / 10'000) << disagreements << " sign disagreements";
+  EXPECT_LT(worst, 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, FloatPath,
+                         ::testing::Values(AgreementCase{2, KernelType::RationalQuadratic, 30, 1},
+                                           AgreementCase{4, KernelType::RationalQuadratic, 10, 100},
+                                           AgreementCase{7, KernelType::RationalQuadratic, 5, 500},
+                                           AgreementCase{4, KernelType::Gaussian, 10, 1},
+                                           AgreementCase{19, KernelType::RationalQuadratic, 3, 1}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.dim) + "d_" +
+                                  std::string(toString(info.param.type)) + "_beta" +
+                                  std::to_string(static_cast<int>(info.param.beta));
+                         });
+
+TEST(Model, ScoreIsTheWeightedKernelSumInInputSpace) {
+  const JointLimits limits(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 4));
+  Eigen::MatrixXd s(2, 2);
+  s << 0, 0, 0.5, -0.5;
+  const Model model(limits, {KernelType::RationalQuadratic, 2}, s, Eigen::Vector2d(1.5, -0.25));
+  const std::vector<double> q{1.5, 1.0};  // input space (0.5, -0.5): on the second point
+  const double r2 = 0.5;                  // to the first point
+  const double expected = 1.5 / ((1 + r2) * (1 + r2)) - 0.25;
+  EXPECT_NEAR(model.scoreExact(q.data()), expected, 1e-12);
+  EXPECT_NEAR(model.score(q), expected, 1e-6);
+  EXPECT_EQ(model.inCollision(q), expected > 0);
+}
+
+TEST(Model, BatchScoresEqualSingleScores) {
+  const auto model = trainedModel(3, 1000, KernelType::RationalQuadratic, 10, 1);
+  const Configurations q = test::uniformPoints(257, 3, 104);
+  const Eigen::VectorXd batch = model->scoreBatch(q);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) EXPECT_EQ(batch[i], model->score(q.row(i).data()));
+}
+
+TEST(Model, RejectsBadConstructionAndQueries) {
+  const JointLimits limits = JointLimits::unitBox(2);
+  const Kernel kernel{};
+  EXPECT_THROW(Model(limits, kernel, Eigen::MatrixXd::Zero(3, 3), Eigen::VectorXd::Zero(3)),
+               InvalidArgument);
+  EXPECT_THROW(Model(limits, kernel, Eigen::MatrixXd::Zero(3, 2), Eigen::VectorXd::Zero(2)),
+               InvalidArgument);
+  Eigen::MatrixXd nan = Eigen::MatrixXd::Zero(1, 2);
+  nan(0, 1) = std::nan("");
+  EXPECT_THROW(Model(limits, kernel, nan, Eigen::VectorXd::Ones(1)), InvalidArgument);
+  EXPECT_THROW(Model(JointLimits::unitBox(kMaxDimension + 1), kernel,
+                     Eigen::MatrixXd::Zero(1, kMaxDimension + 1), Eigen::VectorXd::Ones(1)),
+               InvalidArgument);
+
+  const Model model(limits, kernel, Eigen::MatrixXd::Zero(1, 2), Eigen::VectorXd::Ones(1));
+  EXPECT_THROW(model.score(std::vector<double>{0.0}), InvalidArgument);
+  EXPECT_THROW(model.score(std::vector<double>{0.0, std::nan("")}), InvalidArgument);
+  EXPECT_THROW(model.scoreBatch(Configurations::Zero(4, 3)), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace fastron

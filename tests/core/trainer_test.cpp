@@ -1,0 +1,268 @@
+// Algorithm 1: convergence (Claim 1), support cap, revert safeguard, F = K alpha, lazy Gram.
+
+#include "fastron/core/trainer.h"
+
+#include <gtest/gtest.h>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/core/error.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+Eigen::MatrixXd fullGram(const Eigen::MatrixXd& x, const Kernel& kernel) {
+  Eigen::MatrixXd k(x.rows(), x.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    for (Eigen::Index j = 0; j < x.rows(); ++j)
+      k(i, j) = kernel((x.row(i) - x.row(j)).squaredNorm());
+  }
+  return k;
+}
+
+double hypothesisError(const Trainer& trainer) {
+  if (trainer.size() == 0) return 0;
+  const Eigen::VectorXd kAlpha =
+      fullGram(trainer.points(), trainer.params().kernel) * trainer.weights();
+  return (kAlpha - trainer.hypothesis()).cwiseAbs().maxCoeff();
+}
+
+// Claim 1 is about every training point, also those discarded as non-support points: check the
+// margins of the original set with the final model.
+std::size_t nonPositiveMargins(const Model& model, const Configurations& q, const Labels& y) {
+  std::size_t count = 0;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    count += y[static_cast<std::size_t>(i)] * model.scoreExact(q.row(i).data()) <= 0;
+  }
+  return count;
+}
+
+TrainParams uncapped(double gamma, double beta = 1) {
+  TrainParams p;
+  p.kernel.gamma = gamma;
+  p.beta = beta;
+  p.maxIterations = 10'000'000;
+  p.maxSupportPoints = 1'000'000;
+  return p;
+}
+
+struct ConvergenceCase {
+  std::size_t dim, n;
+  double gamma, beta;
+  bool randomLabels;
+};
+
+class Convergence : public ::testing::TestWithParam<ConvergenceCase> {};
+
+TEST_P(Convergence, EveryTrainingPointEndsWithPositiveMargin) {
+  const auto c = GetParam();
+  const Configurations q = test::uniformPoints(c.n, c.dim, 7);
+  const Labels y = c.randomLabels
+                       ? test::randomLabels(c.n, 8)
+                       : test::BallWorld::random(c.dim, 4, 0.3 * std::sqrt(c.dim), 9).label(q);
+  Trainer trainer(JointLimits::unitBox(c.dim), uncapped(c.gamma, c.beta));
+  trainer.addPoints(q, y);
+  const UpdateReport report = trainer.update();
+
+  EXPECT_EQ(report.stopReason, StopReason::Converged);
+  EXPECT_EQ(report.misclassified, 0u);
+  EXPECT_FALSE(report.reverted);
+  EXPECT_GT(report.supportCount, 20u) << "too easy a dataset to say anything";
+  EXPECT_EQ(nonPositiveMargins(*trainer.model(), q, y), 0u);
+  EXPECT_LT(hypothesisError(trainer), 1e-9);
+  // Only support points survive sparsification.
+  EXPECT_EQ(trainer.size(), report.supportCount);
+  EXPECT_EQ(trainer.model()->supportCount(), report.supportCount);
+  EXPECT_TRUE((trainer.weights().array() != 0).all());
+}
+
+INSTANTIATE_TEST_SUITE_P(Claim1, Convergence,
+                         ::testing::Values(ConvergenceCase{2, 400, 60, 1, true},
+                                           ConvergenceCase{4, 400, 20, 1, true},
+                                           ConvergenceCase{2, 2000, 30, 1, false},
+                                           ConvergenceCase{4, 4000, 10, 1, false},
+                                           ConvergenceCase{4, 2000, 10, 50, false},
+                                           ConvergenceCase{7, 1000, 5, 500, true}),
+                         [](const auto& info) {
+                           const auto& c = info.param;
+                           return std::to_string(c.dim) + "d_n" + std::to_string(c.n) + "_beta" +
+                                  std::to_string(static_cast<int>(c.beta)) +
+                                  (c.randomLabels ? "_randomLabels" : "_balls");
+                         });
+
+TEST(Trainer, ConditionalBiasWeighsCollisionPointsMore) {
+  const Configurations q = test::uniformPoints(2000, 2, 3);
+  const Labels y = test::BallWorld::random(2, 4, 0.35, 4).label(q);
+  const Configurations probe = test::uniformPoints(20000, 2, 5);
+  auto positives = [&](double beta) {
+    Trainer trainer(JointLimits::unitBox(2), uncapped(30, beta));
+    trainer.addPoints(q, y);
+    trainer.update();
+    const Eigen::VectorXd s = trainer.model()->scoreBatch(probe);
+    return (s.array() > 0).count();
+  };
+  // A larger beta pads the C-space obstacles: more of the space is predicted in collision.
+  EXPECT_GT(positives(100), positives(1));
+}
+
+TEST(Trainer, SupportCapIsRespected) {
+  const Configurations q = test::uniformPoints(1000, 2, 11);
+  const Labels y = test::randomLabels(1000, 12);
+  TrainParams p = uncapped(60);
+  p.maxSupportPoints = 25;
+  Trainer trainer(JointLimits::unitBox(2), p);
+  trainer.addPoints(q, y);
+  const UpdateReport report = trainer.update();
+  EXPECT_EQ(report.stopReason, StopReason::SupportCap);
+  EXPECT_LE(report.supportCount, 25u);
+  EXPECT_LE(trainer.model()->supportCount(), 25u);
+  EXPECT_GT(report.misclassified, 0u);
+  EXPECT_LT(hypothesisError(trainer), 1e-9);
+}
+
+TEST(Trainer, IterationLimitStopsTraining) {
+  const Configurations q = test::uniformPoints(500, 2, 13);
+  TrainParams p = uncapped(60);
+  p.maxIterations = 10;
+  Trainer trainer(JointLimits::unitBox(2), p);
+  trainer.addPoints(q, test::randomLabels(500, 14));
+  const UpdateReport report = trainer.update();
+  EXPECT_EQ(report.stopReason, StopReason::IterationLimit);
+  EXPECT_EQ(report.iterations, 10u);
+  EXPECT_LE(report.supportCount, 10u);
+}
+
+// The safeguard of Algorithm 1, line 21: when the iteration limit interrupts the repair that
+// follows a redundant-point removal, the solution from before the removal comes back.
+TEST(Trainer, RevertSafeguardRestoresTheBetterSolution) {
+  const Configurations q = test::uniformPoints(300, 2, 21);
+  const Labels y = test::BallWorld::random(2, 3, 0.45, 22).label(q);
+  std::size_t reverts = 0;
+  for (std::size_t limit = 1; limit < 400; ++limit) {
+    TrainParams p = uncapped(20);
+    p.maxIterations = limit;
+    Trainer trainer(JointLimits::unitBox(2), p);
+    trainer.addPoints(q, y);
+    const UpdateReport report = trainer.update();
+    if (!report.reverted) continue;
+    ++reverts;
+    EXPECT_LT(report.misclassified, report.misclassifiedBeforeRevert) << "limit " << limit;
+    EXPECT_EQ(report.stopReason, StopReason::IterationLimit);
+    EXPECT_LT(hypothesisError(trainer), 1e-9);
+    EXPECT_EQ(report.supportCount,
+              static_cast<std::size_t>((trainer.weights().array() != 0).count()));
+  }
+  EXPECT_GT(reverts, 0u) << "no iteration limit triggered the safeguard; the test proves nothing";
+}
+
+TEST(Trainer, HypothesisEqualsGramTimesWeightsThroughAnyHistory) {
+  const std::size_t d = 3;
+  test::BallWorld world = test::BallWorld::random(d, 3, 0.5, 31);
+  TrainParams p = uncapped(10, 20);
+  Trainer trainer(JointLimits::unitBox(d), p);
+  const Configurations q = test::uniformPoints(800, d, 32);
+  trainer.addPoints(q, world.label(q));
+  EXPECT_LT(hypothesisError(trainer), 1e-12);  // all weights zero
+  Rng rng(33);
+  for (int round = 0; round < 6; ++round) {
+    trainer.update();
+    EXPECT_LT(hypothesisError(trainer), 1e-9) << "after update, round " << round;
+    world.move(0.05);
+    trainer.relabel(world.label(Configurations(trainer.points())));
+    EXPECT_LT(hypothesisError(trainer), 1e-9) << "after relabel, round " << round;
+    const Configurations fresh = activeLearning(*trainer.model(), {200, 3, 0}, rng);
+    trainer.addPoints(fresh, world.label(fresh));
+    EXPECT_LT(hypothesisError(trainer), 1e-9) << "after adding points, round " << round;
+  }
+}
+
+TEST(Trainer, RelabelZeroesSupportPointsWhoseLabelFlipped) {
+  const Configurations q = test::uniformPoints(500, 2, 41);
+  Trainer trainer(JointLimits::unitBox(2), uncapped(30));
+  trainer.addPoints(q, test::BallWorld::random(2, 3, 0.4, 42).label(q));
+  trainer.update();
+  Labels flipped(trainer.size());
+  for (std::size_t i = 0; i < flipped.size(); ++i) {
+    flipped[i] = static_cast<std::int8_t>(trainer.labels()[static_cast<Eigen::Index>(i)]);
+  }
+  flipped[0] = static_cast<std::int8_t>(-flipped[0]);
+  const std::size_t before = trainer.supportCount();
+  trainer.relabel(flipped);
+  EXPECT_EQ(trainer.weights()[0], 0.0);
+  EXPECT_EQ(trainer.supportCount(), before - 1);
+  EXPECT_LT(hypothesisError(trainer), 1e-9);
+  const UpdateReport report = trainer.update();
+  EXPECT_EQ(report.stopReason, StopReason::Converged);
+}
+
+TEST(Trainer, GramMatrixIsEvaluatedLazily) {
+  const std::size_t n = 4000;
+  const Configurations q = test::uniformPoints(n, 2, 51);
+  Trainer trainer(JointLimits::unitBox(2), uncapped(30));
+  trainer.addPoints(q, test::BallWorld::random(2, 4, 0.3, 52).label(q));
+  const UpdateReport first = trainer.update();
+  // A column is computed only for points whose weight was touched, each at most once.
+  EXPECT_GE(first.gramColumnsComputed, first.supportCount);
+  EXPECT_LE(first.gramColumnsComputed, first.iterations);
+  EXPECT_LT(first.gramColumnsComputed, n / 10);
+  EXPECT_EQ(trainer.cachedGramColumns(), first.supportCount);  // only support columns are kept
+  // A second update on unchanged data reuses the cache and has nothing to do.
+  const UpdateReport second = trainer.update();
+  EXPECT_EQ(second.gramColumnsComputed, 0u);
+  EXPECT_EQ(second.iterations, 0u);
+  EXPECT_EQ(second.stopReason, StopReason::Converged);
+}
+
+TEST(Trainer, ContradictoryDuplicatesEndAtTheIterationLimit) {
+  Configurations q(2, 2);
+  q << 0.1, 0.2, 0.1, 0.2;
+  TrainParams p = uncapped(10);
+  p.maxIterations = 50;
+  Trainer trainer(JointLimits::unitBox(2), p);
+  trainer.addPoints(q, Labels{1, -1});
+  const UpdateReport report = trainer.update();
+  EXPECT_EQ(report.stopReason, StopReason::IterationLimit);
+  EXPECT_GE(report.misclassified, 1u);
+}
+
+TEST(Trainer, EmptyUpdateConvergesWithNoSupport) {
+  Trainer trainer(JointLimits::unitBox(3), TrainParams{});
+  const UpdateReport report = trainer.update();
+  EXPECT_EQ(report.stopReason, StopReason::Converged);
+  EXPECT_EQ(report.supportCount, 0u);
+  EXPECT_EQ(trainer.model()->supportCount(), 0u);
+  EXPECT_EQ(trainer.model()->score(std::vector<double>{0, 0, 0}), 0.0);
+}
+
+TEST(Trainer, JointLimitsScaleIntoInputSpace) {
+  const JointLimits limits(Eigen::Vector2d(0, -2), Eigen::Vector2d(3.14, 2));
+  Trainer trainer(limits, TrainParams{});
+  Configurations q(2, 2);
+  q << 0, -2, 3.14, 1;
+  trainer.addPoints(q, Labels{1, -1});
+  EXPECT_NEAR(trainer.points()(0, 0), -1, 1e-12);
+  EXPECT_NEAR(trainer.points()(0, 1), -1, 1e-12);
+  EXPECT_NEAR(trainer.points()(1, 0), 1, 1e-12);
+  EXPECT_NEAR(trainer.points()(1, 1), 0.5, 1e-12);
+}
+
+TEST(Trainer, RejectsBadInput) {
+  EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.beta = 0.5}), InvalidArgument);
+  EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.kernel = {KernelType::Gaussian, -1}}),
+               InvalidArgument);
+  EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.maxSupportPoints = 0}),
+               InvalidArgument);
+  Trainer trainer(JointLimits::unitBox(2), TrainParams{});
+  Configurations q(2, 2);
+  q << 0, 0, 0.5, 0.5;
+  EXPECT_THROW(trainer.addPoints(q, Labels{1}), InvalidArgument);
+  EXPECT_THROW(trainer.addPoints(q, Labels{1, 0}), InvalidArgument);
+  EXPECT_THROW(trainer.addPoints(Configurations::Zero(2, 3), Labels{1, -1}), InvalidArgument);
+  q(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(trainer.addPoints(q, Labels{1, -1}), InvalidArgument);
+  EXPECT_EQ(trainer.size(), 0u);  // a refused call changes nothing
+  EXPECT_THROW(trainer.relabel(Labels{1}), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,186 @@
+// The pipeline: initialize / step over an oracle, determinism, background updates with
+// concurrent queries (also run under ThreadSanitizer: ./dev.sh test).
+
+#include "fastron/proxy/proxy_collision_detector.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+#include "fastron/core/error.h"
+#include "fastron/core/metrics.h"
+#include "fastron/proxy/labelling.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+// A ball world whose balls move; reads and moves are synchronised, as a real scene must be.
+class MovingBalls {
+ public:
+  MovingBalls(std::size_t dim, std::uint64_t seed)
+      : world_(test::BallWorld::random(dim, 3, 0.45, seed)) {}
+  bool inCollision(const double* q) const {
+    const std::lock_guard lock(mutex_);
+    return world_.inCollision(q);
+  }
+  void move(double step) {
+    const std::lock_guard lock(mutex_);
+    world_.move(step);
+  }
+  std::shared_ptr<const CollisionChecker> checker(std::size_t dim) {
+    return std::make_shared<FunctionChecker>("balls", dim,
+                                             [this](const double* q) { return inCollision(q); });
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  test::BallWorld world_;
+};
+
+ProxyParams params(double gamma, std::uint64_t seed = 1) {
+  ProxyParams p;
+  p.train.kernel.gamma = gamma;
+  p.train.beta = 5;
+  p.activeLearning = {300, 4, 0};
+  p.seed = seed;
+  return p;
+}
+
+double accuracy(const Model& model, const MovingBalls& world, std::size_t dim) {
+  const Configurations q = test::uniformPoints(4000, dim, 99);
+  Labels y(static_cast<std::size_t>(q.rows()));
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
+    y[static_cast<std::size_t>(i)] = world.inCollision(q.row(i).data()) ? 1 : -1;
+  return evaluate(model, q, y).accuracy();
+}
+
+TEST(Labelling, ParallelLabelsEqualSerialLabels) {
+  MovingBalls world(3, 1);
+  const auto checker = world.checker(3);
+  const Configurations q = test::uniformPoints(1001, 3, 2);
+  const Labels serial = labelConfigurations(*checker, q, 1);
+  EXPECT_EQ(labelConfigurations(*checker, q, 2), serial);
+  EXPECT_EQ(labelConfigurations(*checker, q, 7), serial);
+  EXPECT_EQ(checker->callCount(), 3 * 1001u);
+  EXPECT_TRUE(labelConfigurations(*checker, Configurations(0, 3)).empty());
+}
+
+TEST(Labelling, CheckerErrorsReachTheCaller) {
+  const FunctionChecker failing("failing", 2, [](const double* q) -> bool {
+    if (q[0] > 0.9) throw Error("sensor offline");
+    return false;
+  });
+  EXPECT_THROW(labelConfigurations(failing, test::uniformPoints(500, 2, 3), 2), Error);
+}
+
+TEST(ProxyCollisionDetector, TracksAMovingWorld) {
+  MovingBalls world(2, 4);
+  ProxyCollisionDetector proxy(world.checker(2), JointLimits::unitBox(2), params(30));
+  const StepReport init = proxy.initialize(2000);
+  EXPECT_EQ(init.labelled, 2000u);
+  EXPECT_EQ(init.update.stopReason, StopReason::Converged);
+  EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.95);
+  for (int t = 0; t < 10; ++t) {
+    world.move(0.02);
+    const std::size_t support = proxy.model()->supportCount();
+    const StepReport report = proxy.step();
+    EXPECT_EQ(report.labelled, support + 300);  // |S| + A_max collision checks (Sec. II-F)
+    EXPECT_EQ(report.added, 300u);
+    EXPECT_EQ(report.modelVersion, static_cast<std::uint64_t>(t + 2));
+  }
+  EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.95);
+}
+
+TEST(ProxyCollisionDetector, SameSeedSameModel) {
+  auto run = [](std::uint64_t seed) {
+    MovingBalls world(3, 5);
+    ProxyCollisionDetector proxy(world.checker(3), JointLimits::unitBox(3), params(10, seed));
+    proxy.initialize(1500);
+    for (int t = 0; t < 4; ++t) {
+      world.move(0.03);
+      proxy.step();
+    }
+    return proxy.model();
+  };
+  const auto a = run(42), b = run(42), c = run(43);
+  EXPECT_EQ(a->supportPoints(), b->supportPoints());
+  EXPECT_EQ(a->weights(), b->weights());
+  EXPECT_NE(a->supportPoints(), c->supportPoints());
+}
+
+TEST(ProxyCollisionDetector, RefusesMisuse) {
+  MovingBalls world(2, 6);
+  EXPECT_THROW(ProxyCollisionDetector(world.checker(3), JointLimits::unitBox(2)), InvalidArgument);
+  EXPECT_THROW(ProxyCollisionDetector(nullptr, JointLimits::unitBox(2)), InvalidArgument);
+  ProxyCollisionDetector proxy(world.checker(2), JointLimits::unitBox(2), params(30));
+  EXPECT_THROW(proxy.model(), Error);
+  EXPECT_THROW(proxy.step(), Error);
+  EXPECT_THROW(proxy.startBackground(), Error);
+}
+
+// Readers query snapshots while the background thread publishes new models: a snapshot never
+// changes under its reader and is always complete.
+TEST(ProxyCollisionDetector, ConcurrentQueriesDuringBackgroundUpdates) {
+  MovingBalls world(3, 7);
+  ProxyParams p = params(10);
+  p.labelThreads = 2;
+  ProxyCollisionDetector proxy(world.checker(3), JointLimits::unitBox(3), p);
+  proxy.initialize(1000);
+
+  std::atomic<int> steps{0};
+  proxy.startBackground([&](const StepReport&) { ++steps; });
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> queries{0}, distinctModels{0};
+  auto reader = [&](std::uint64_t seed) {
+    const Configurations q = test::uniformPoints(64, 3, seed);
+    const Model* last = nullptr;
+    while (!done) {
+      const std::shared_ptr<const Model> model = proxy.model();
+      distinctModels += model.get() != last;
+      last = model.get();
+      const Eigen::VectorXd first = model->scoreBatch(q);
+      for (Eigen::Index i = 0; i < q.rows(); ++i) {
+        ASSERT_EQ(model->score(q.row(i).data()), first[i]);  // the snapshot did not change
+      }
+      queries += static_cast<std::size_t>(q.rows());
+    }
+  };
+  {
+    std::jthread r1(reader, 1), r2(reader, 2);
+    while (steps < 8) {
+      world.move(0.01);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    done = true;
+  }
+  proxy.stopBackground();
+  EXPECT_FALSE(proxy.backgroundRunning());
+  EXPECT_GE(proxy.model()->supportCount(), 1u);
+  EXPECT_GT(queries.load(), 0u);
+  EXPECT_GT(distinctModels.load(), 2u);  // the readers saw new models arrive
+  // Synchronous steps work again after stopping.
+  EXPECT_NO_THROW(proxy.step());
+}
+
+TEST(ProxyCollisionDetector, BackgroundErrorsAreRethrownOnStop) {
+  std::atomic<bool> fail{false};
+  auto checker = std::make_shared<FunctionChecker>("flaky", 2, [&](const double* q) {
+    if (fail) throw Error("lost the scene");
+    return q[0] > 0;
+  });
+  ProxyCollisionDetector proxy(checker, JointLimits::unitBox(2), params(10));
+  proxy.initialize(300);
+  fail = true;
+  proxy.startBackground();
+  // Once a background step has called the failing oracle, that step ends with the error and
+  // stopBackground() joins it.
+  while (checker->callCount() <= 300) std::this_thread::yield();
+  EXPECT_THROW(proxy.stopBackground(), Error);
+}
+
+}  // namespace
+}  // namespace fastron
