@@ -1,1 +1,34 @@
-int main() {}
+// fastron: learned proxy collision detection from the command line.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+#include "fastron/core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Fastron: learned proxy collision detection for motion planning", "fastron"};
+  app.set_version_flag("--version", FASTRON_VERSION);
+  app.require_subcommand(1);
+  int exitCode = 0;
+  fastron::cli::addTrainCommand(app, exitCode);
+  fastron::cli::addEvalCommand(app, exitCode);
+  fastron::cli::addDemoCommand(app, exitCode);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "fastron: error: " << e.what() << " (see fastron --help)\n";
+    return 2;
+  } catch (const fastron::Error& e) {
+    std::cerr << "fastron: error: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "fastron: internal error: " << e.what() << '\n';
+    return 3;
+  }
+  return exitCode;
+}
