@@ -33,7 +33,11 @@ ProxyCollisionDetector::~ProxyCollisionDetector() {
 
 StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start) {
   report.update = trainer_.update();
-  model_.store(trainer_.model());
+  std::shared_ptr<const Model> next = trainer_.model();  // built outside the lock
+  {
+    const std::lock_guard lock(modelMutex_);
+    model_.swap(next);
+  }  // the previous model is released here, outside the lock, if no reader holds it
   report.modelVersion = ++version_;
   report.total = Clock::now() - start;
   return report;
@@ -80,14 +84,21 @@ StepReport ProxyCollisionDetector::step() {
 }
 
 std::shared_ptr<const Model> ProxyCollisionDetector::model() const {
-  auto current = model_.load();
+  std::shared_ptr<const Model> current;
+  {
+    const std::lock_guard lock(modelMutex_);
+    current = model_;
+  }
   if (!current) throw Error("ProxyCollisionDetector::model() called before initialize()");
   return current;
 }
 
 void ProxyCollisionDetector::startBackground(std::function<void(const StepReport&)> onStep) {
   if (worker_.joinable()) throw Error("ProxyCollisionDetector: background updates already running");
-  if (!model_.load()) throw Error("ProxyCollisionDetector: initialize() before startBackground()");
+  {
+    const std::lock_guard lock(stepMutex_);
+    if (version_ == 0) throw Error("ProxyCollisionDetector: initialize() before startBackground()");
+  }
   workerError_ = nullptr;
   worker_ = std::jthread([this, onStep = std::move(onStep)](const std::stop_token& stop) {
     try {

@@ -2,7 +2,6 @@
 // The Fastron pipeline of Fig. 2: label -> update -> active learning, over any exact checker,
 // with an optional background thread that keeps the model current while others query it.
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <exception>
@@ -52,8 +51,9 @@ class ProxyCollisionDetector {
   /// support set, label the new points, Algorithm 1. Throws Error before initialize().
   StepReport step();
 
-  /// The latest published model. Lock-free; a model, once returned, never changes, so callers
-  /// keep querying it while newer ones are built. Throws Error before initialize().
+  /// The latest published model. A model, once returned, never changes, so callers keep querying
+  /// it without any lock while newer ones are built. Fetching it holds a mutex only for the copy
+  /// of a shared_ptr. Throws Error before initialize().
   std::shared_ptr<const Model> model() const;
 
   /// Runs step() in a loop on a background thread, publishing each new model atomically.
@@ -77,7 +77,10 @@ class ProxyCollisionDetector {
   Trainer trainer_;
   std::mutex stepMutex_;  // one initialize()/step() at a time
   std::uint64_t version_ = 0;
-  std::atomic<std::shared_ptr<const Model>> model_;
+  // Not std::atomic<std::shared_ptr>: libstdc++ 12 unlocks its load with relaxed order, a data
+  // race that ThreadSanitizer reports. A mutex around the pointer copy is as cheap, and correct.
+  mutable std::mutex modelMutex_;
+  std::shared_ptr<const Model> model_;
   std::jthread worker_;
   std::exception_ptr workerError_;
 };
