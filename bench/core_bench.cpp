@@ -1,0 +1,125 @@
+// Micro-benchmarks of the core: training time against N and d, query time against |S| and d.
+// The vectorised float path is measured against a plain double loop in the same run; compare
+// them as ratios (scripts/bench_table.py does this), never as absolute numbers across machines.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "fastron/core/model.h"
+#include "fastron/core/trainer.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+// The paper's gamma for each dimension: 30 (2-DOF), 10 (4-DOF), 5 (6, 7-DOF).
+double paperGamma(std::size_t d) {
+  return d <= 2 ? 30 : d <= 4 ? 10 : 5;
+}
+
+// Balls filling a sizeable share of [-1, 1]^d, so both classes are present at every d.
+Labels ballLabels(const Configurations& q, std::size_t d) {
+  return test::BallWorld::random(d, 6, 0.35 * std::sqrt(static_cast<double>(d)), 2).label(q);
+}
+
+void BM_Train(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const Configurations q = test::uniformPoints(n, d, 1);
+  const Labels y = ballLabels(q, d);
+  TrainParams params;
+  params.kernel.gamma = paperGamma(d);
+  params.maxIterations = 1'000'000;
+  params.maxSupportPoints = n;
+  UpdateReport report;
+  for (auto _ : state) {
+    Trainer trainer(JointLimits::unitBox(d), params);
+    trainer.addPoints(q, y);
+    report = trainer.update();
+    benchmark::DoNotOptimize(trainer.weights().data());
+  }
+  state.counters["support"] = static_cast<double>(report.supportCount);
+  state.counters["iterations"] = static_cast<double>(report.iterations);
+  state.counters["gram_columns"] = static_cast<double>(report.gramColumnsComputed);
+}
+BENCHMARK(BM_Train)
+    ->ArgsProduct({{1000, 2000, 5000, 10000, 20000}, {2, 4, 7}})
+    ->Args({5000, 3})
+    ->Args({5000, 5})
+    ->Args({5000, 6})
+    ->ArgNames({"N", "d"})
+    ->Unit(benchmark::kMillisecond);
+
+// A model with |S| random support points and weights: query cost depends only on |S| and d.
+Model randomModel(std::size_t support, std::size_t d, KernelType type) {
+  const Eigen::MatrixXd s = Configurations(test::uniformPoints(support, d, 3));
+  const Eigen::VectorXd w = Eigen::VectorXd::Random(static_cast<Eigen::Index>(support));
+  return {JointLimits::unitBox(d), {type, paperGamma(d)}, s, w};
+}
+
+constexpr std::size_t kQueries = 1024;
+
+template <KernelType type>
+void BM_QueryFloat(benchmark::State& state) {
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const Model model = randomModel(support, d, type);
+  const Configurations q = test::uniformPoints(kQueries, d, 4);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(model.score(q.row(static_cast<Eigen::Index>(i)).data()));
+    i = (i + 1) % kQueries;
+  }
+}
+
+// The baseline: the kernel sum as a plain loop over row-major double support points.
+void BM_QueryPlainDouble(benchmark::State& state) {
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const Model model = randomModel(support, d, KernelType::RationalQuadratic);
+  const Configurations s = model.supportPoints();  // row-major copy
+  const double* w = model.weights().data();
+  const double halfGamma = 0.5 * model.kernel().gamma;
+  const Configurations q = test::uniformPoints(kQueries, d, 4);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const double* x = q.row(static_cast<Eigen::Index>(i)).data();
+    double f = 0;
+    for (std::size_t k = 0; k < support; ++k) {
+      double r2 = 0;
+      for (std::size_t j = 0; j < d; ++j) {
+        const double diff = s.data()[k * d + j] - x[j];
+        r2 += diff * diff;
+      }
+      const double t = 1 + halfGamma * r2;
+      f += w[k] / (t * t);
+    }
+    benchmark::DoNotOptimize(f);
+    i = (i + 1) % kQueries;
+  }
+}
+
+void BM_QueryBatch(benchmark::State& state) {
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const Model model = randomModel(support, d, KernelType::RationalQuadratic);
+  const Configurations q = test::uniformPoints(kQueries, d, 4);
+  std::vector<double> out(kQueries);
+  for (auto _ : state) {
+    model.scoreBatch(q.data(), kQueries, out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kQueries));
+}
+
+void queryArgs(benchmark::internal::Benchmark* b) {
+  b->ArgsProduct({{100, 500, 1000, 2000, 5000}, {2, 4, 7}})->ArgNames({"S", "d"});
+}
+BENCHMARK(BM_QueryFloat<KernelType::RationalQuadratic>)->Apply(queryArgs);
+BENCHMARK(BM_QueryFloat<KernelType::Gaussian>)->Apply(queryArgs);
+BENCHMARK(BM_QueryPlainDouble)->Apply(queryArgs);
+BENCHMARK(BM_QueryBatch)->Apply(queryArgs);
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,76 @@
+#!/usr/bin/python3
+"""Markdown tables from a Google Benchmark JSON file written by fastron_bench.
+
+Usage: build/release/bench/fastron_bench --benchmark_out=bench.json --benchmark_out_format=json
+       /usr/bin/python3 scripts/bench_table.py bench.json
+Query speed-ups are ratios of benchmarks measured in the same run.
+"""
+import json
+import re
+import sys
+from collections import defaultdict
+
+
+def load(path):
+    with open(path) as f:
+        data = json.load(f)
+    runs = {}
+    for b in data["benchmarks"]:
+        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "mean":
+            continue
+        name = b["run_name"] if "run_name" in b else b["name"]
+        args = dict(re.findall(r"(\w+):(\d+)", name))
+        family = name.split("/")[0]
+        runs[(family, tuple(sorted((k, int(v)) for k, v in args.items())))] = b
+    return data["context"], runs
+
+
+def ns(b):
+    scale = {"ns": 1, "us": 1e3, "ms": 1e6, "s": 1e9}[b["time_unit"]]
+    return b["real_time"] * scale
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    context, runs = load(sys.argv[1])
+    print(f"Machine: {context.get('num_cpus')} CPUs at {context.get('mhz_per_cpu')} MHz; "
+          f"run {context.get('date')}.\n")
+
+    train = defaultdict(dict)
+    for (family, args), b in runs.items():
+        if family == "BM_Train":
+            a = dict(args)
+            train[a["N"]][a["d"]] = b
+    dims = sorted({d for row in train.values() for d in row})
+    print("Training time (Algorithm 1 from scratch, uniform data, paper's gamma per d), "
+          "with |S| and iterations:\n")
+    print("| N | " + " | ".join(f"d = {d}" for d in dims) + " |")
+    print("|---|" + "---|" * len(dims))
+    for n in sorted(train):
+        cells = []
+        for d in dims:
+            b = train[n].get(d)
+            cells.append("" if b is None else
+                         f"{ns(b) / 1e6:.1f} ms (|S| {b['support']:.0f}, {b['iterations']:.0f} it)")
+        print(f"| {n} | " + " | ".join(cells) + " |")
+
+    print("\nQuery time per configuration (ns) and the speed-up of the float path over the "
+          "plain double loop:\n")
+    print("| |S| | d | float RQ | float Gaussian | plain double RQ | batch RQ (per query) | speed-up |")
+    print("|---|---|---|---|---|---|---|")
+    keys = sorted({args for (family, args) in runs if family == "BM_QueryPlainDouble"},
+                  key=lambda a: (dict(a)["S"], dict(a)["d"]))
+    for args in keys:
+        a = dict(args)
+        rq = runs.get(("BM_QueryFloat<KernelType::RationalQuadratic>", args))
+        g = runs.get(("BM_QueryFloat<KernelType::Gaussian>", args))
+        plain = runs[("BM_QueryPlainDouble", args)]
+        batch = runs.get(("BM_QueryBatch", args))
+        per_query = ns(batch) / 1024 if batch else float("nan")
+        print(f"| {a['S']} | {a['d']} | {ns(rq):.0f} | {ns(g):.0f} | {ns(plain):.0f} | "
+              f"{per_query:.0f} | {ns(plain) / ns(rq):.1f}x |")
+
+
+if __name__ == "__main__":
+    main()
