@@ -57,7 +57,7 @@ case "$command" in
     git ls-files 'src/*.cpp' | xargs clang-tidy -p build/release --quiet
     ;;
   *)
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"
     exit 2
     ;;
 esac

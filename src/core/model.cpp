@@ -105,6 +105,7 @@ float Model::scoreInputFloat(const float* x) const {
 }
 
 double Model::score(const double* q) const {
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): scaleToInput fills it
   std::array<float, kMaxDimension> x;
   scaleToInput(q, x.data());
   return scoreInputFloat(x.data());

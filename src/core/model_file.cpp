@@ -46,7 +46,7 @@ class Reader {
   Reader(const std::vector<char>& bytes, const std::string& file) : bytes_(bytes), file_(file) {}
   template <class T>
   T get() {
-    T value;
+    T value{};
     std::memcpy(&value, bytes_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
     return value;
@@ -114,11 +114,11 @@ Model loadModel(const std::filesystem::path& path, std::optional<std::size_t> ex
     throw FileError(file + ": unsupported model file version " + std::to_string(version) +
                     " (this build reads version " + std::to_string(kModelFileVersion) + ")");
   }
-  const auto dim = r.get<std::uint32_t>();
+  const std::size_t dim = r.get<std::uint32_t>();
   if (dim == 0 || dim > kMaxDimension) {
     throw FileError(file + ": invalid dimension " + std::to_string(dim));
   }
-  const std::size_t countOffset = kHeaderSize + 2 * 8 * dim;
+  const std::size_t countOffset = kHeaderSize + 2 * sizeof(double) * dim;
   if (bytes.size() < countOffset + 8) {
     throw FileError(file + ": truncated model file (" + std::to_string(bytes.size()) + " bytes)");
   }
