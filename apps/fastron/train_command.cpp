@@ -28,8 +28,12 @@ struct TrainOptions {
 JointLimits parseLimits(const std::vector<std::string>& items, const Dataset& data) {
   const auto d = static_cast<Eigen::Index>(data.dim());
   if (items.empty()) {
-    return {data.points.colwise().minCoeff().transpose(),
-            data.points.colwise().maxCoeff().transpose()};
+    try {
+      return {data.points.colwise().minCoeff().transpose(),
+              data.points.colwise().maxCoeff().transpose()};
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument(std::string(e.what()) + " in the data's range; give --limits");
+    }
   }
   if (static_cast<Eigen::Index>(items.size()) != d) {
     throw InvalidArgument("--limits has " + std::to_string(items.size()) +
