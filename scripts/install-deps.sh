@@ -8,6 +8,9 @@ packages=(
   g++ make cmake ninja-build pkg-config clang-format clang-tidy
   # core
   libeigen3-dev zlib1g-dev
+  # geometry: robots, meshes, scenes, exact collision checking
+  liburdfdom-dev libtinyxml-dev libconsole-bridge-dev libassimp-dev libyaml-cpp-dev
+  libfcl-dev libccd-dev liboctomap-dev
   # command line, tests, benchmarks
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # plots (scripts/*.py run with /usr/bin/python3)

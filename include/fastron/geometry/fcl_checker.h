@@ -1,0 +1,67 @@
+#pragma once
+// The exact checker of the paper's changing-environment experiments: forward kinematics, then
+// FCL 0.7 (libccd GJK solver) between the robot's links and the obstacles, with FCL's dynamic
+// AABB tree as broad phase, and optional self-collision.
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "fastron/geometry/collision_checker.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
+#include "fastron/geometry/scratch_pool.h"
+
+namespace fastron {
+
+struct CheckerOptions {
+  bool selfCollision = false;  ///< also check link pairs not allowed to touch
+  double padding = 0;          ///< grow every robot shape by this much (not meshes)
+};
+
+/// What collided: a robot link and an obstacle, or two robot links (self-collision).
+struct Contact {
+  std::string robotLink;
+  std::string other;
+  bool selfCollision = false;
+};
+
+class FclChecker final : public CollisionChecker {
+ public:
+  FclChecker(Robot robot, const Scene& scene, CheckerOptions options = {});
+  ~FclChecker() override;
+
+  std::string name() const override { return "FCL"; }
+  std::size_t dof() const override { return robot_.dof(); }
+  const Robot& robot() const { return robot_; }
+
+  /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
+  /// other threads check: a check uses the obstacles it started with.
+  void setScene(const Scene& scene);
+
+  /// The first contact found, or nothing when q is free.
+  std::optional<Contact> firstContact(std::span<const double> q) const;
+
+  /// Smallest distance between the robot and any obstacle; 0 when in collision.
+  double distance(std::span<const double> q) const;
+
+ protected:
+  bool check(const double* q) const override;
+
+ private:
+  struct Geometry;
+  struct Obstacles;
+  struct Scratch;
+  std::optional<Contact> collide(const double* q, bool wantContact) const;
+  std::shared_ptr<const Obstacles> obstacles() const;
+
+  Robot robot_;
+  CheckerOptions options_;
+  std::shared_ptr<const Geometry> geometry_;  // robot shapes as FCL geometry
+  mutable std::mutex obstaclesMutex_;
+  std::shared_ptr<const Obstacles> obstacles_;
+  mutable ScratchPool<Scratch> scratch_;
+};
+
+}  // namespace fastron

@@ -1,0 +1,61 @@
+#pragma once
+// The paper's cheaper, approximate checker: forward kinematics, then a GJK intersection test
+// (libccd, called directly) between every robot shape and every obstacle, with no broad phase.
+// Robot links are boxes, spheres, cylinders or capsules; a mesh is replaced by its convex hull
+// (the support function of its vertices), as are mesh obstacles.
+
+#include <memory>
+#include <mutex>
+
+#include "fastron/geometry/collision_checker.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
+#include "fastron/geometry/scratch_pool.h"
+
+namespace fastron {
+
+/// A convex shape placed in the world, with the support function GJK needs.
+struct ConvexBody {
+  enum class Kind { Box, Sphere, Cylinder, Capsule, Hull } kind = Kind::Sphere;
+  Eigen::Vector3d halfSize = Eigen::Vector3d::Zero();        ///< box
+  double radius = 0, halfLength = 0;                         ///< sphere, cylinder, capsule
+  std::shared_ptr<const std::vector<Eigen::Vector3d>> hull;  ///< mesh vertices
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+
+  static ConvexBody from(const Shape& shape);
+  /// The point of the body farthest along `direction` (world frame).
+  Eigen::Vector3d support(const Eigen::Vector3d& direction) const;
+};
+
+/// True when the two bodies intersect (libccd's GJK).
+bool gjkIntersect(const ConvexBody& a, const ConvexBody& b);
+
+class GjkChecker final : public CollisionChecker {
+ public:
+  GjkChecker(Robot robot, const Scene& scene, CheckerOptions options = {});
+  ~GjkChecker() override;
+
+  std::string name() const override { return "GJK"; }
+  std::size_t dof() const override { return robot_.dof(); }
+  const Robot& robot() const { return robot_; }
+  /// Safe while other threads check, as FclChecker::setScene.
+  void setScene(const Scene& scene);
+
+ protected:
+  bool check(const double* q) const override;
+
+ private:
+  struct World;
+  struct Scratch;
+  std::shared_ptr<const World> world() const;
+
+  Robot robot_;
+  CheckerOptions options_;
+  std::vector<ConvexBody> robotBodies_;  // in their link frames (pose = shape origin)
+  mutable std::mutex worldMutex_;
+  std::shared_ptr<const World> world_;
+  mutable ScratchPool<Scratch> scratch_;
+};
+
+}  // namespace fastron

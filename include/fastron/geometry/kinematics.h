@@ -1,0 +1,31 @@
+#pragma once
+// Forward kinematics: the world pose of every link for a configuration of the actuated joints.
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "fastron/geometry/robot.h"
+
+namespace fastron {
+
+/// Per-call scratch for forwardKinematics; make one per thread with makeKinematicsData.
+struct KinematicsData {
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> linkPoses;
+  std::vector<double> jointPositions;  ///< per joint, actuated or held
+};
+
+KinematicsData makeKinematicsData(const Robot& robot);
+
+/// Fills data.linkPoses with every link's pose in the world, the root placed at `base`.
+/// q: robot.dof() values of the actuated joints, in order. Does not allocate.
+void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data,
+                       const Eigen::Isometry3d& base = Eigen::Isometry3d::Identity());
+
+/// World pose of a collision shape after forwardKinematics.
+inline Eigen::Isometry3d shapePose(const Robot& robot, const KinematicsData& data,
+                                   std::size_t shape) {
+  const LinkShape& s = robot.shapes()[shape];
+  return data.linkPoses[static_cast<std::size_t>(s.link)] * s.origin;
+}
+
+}  // namespace fastron

@@ -1,0 +1,32 @@
+#pragma once
+// The robots shipped in data/robots (catalogue: data/robots/robots.yaml).
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/urdf.h"
+
+namespace fastron {
+
+struct RobotEntry {
+  std::string name, description;
+  std::filesystem::path urdf;
+  std::vector<std::string> joints;                   ///< actuated, in order
+  std::vector<std::pair<std::string, double>> held;  ///< positions of other joints
+  std::vector<std::pair<std::string, std::string>> allowedCollisions;  ///< links touching by design
+};
+
+/// The project's data folder: $FASTRON_DATA_DIR if set, else the source tree's data/.
+std::filesystem::path dataDirectory();
+
+/// Every shipped robot, from data/robots/robots.yaml.
+std::vector<RobotEntry> shippedRobots();
+
+/// A shipped robot by name (its catalogue joints actuated), or else a URDF file (every movable
+/// joint actuated). Throws FileError when it is neither, naming the shipped robots.
+Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options = {});
+
+}  // namespace fastron

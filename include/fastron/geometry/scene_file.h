@@ -1,0 +1,44 @@
+#pragma once
+// Scene files: the project's own YAML (docs/scenes.md) and MoveIt's PlanningScene and
+// MotionPlanRequest YAML, the format of public planning benchmarks.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
+
+namespace fastron {
+
+/// Reads a scene file: the project's format (a top-level `obstacles` list) or a MoveIt
+/// PlanningScene (a top-level `world`). Throws FileError naming the file and line.
+Scene loadScene(const std::filesystem::path& path);
+
+/// The project's scene format from a string; mesh files are resolved from `baseDirectory`.
+Scene parseScene(const std::string& yaml, const std::string& source,
+                 const std::filesystem::path& baseDirectory = {});
+
+/// A MoveIt PlanningScene: world.collision_objects (primitives box / sphere / cylinder with
+/// primitive_poses, optional object pose, inline meshes) and allowed_collision_matrix.
+Scene parseMoveItScene(const std::string& yaml, const std::string& source);
+
+/// Joint positions by name (a MoveIt joint_state, or joint_constraints).
+struct NamedPositions {
+  std::vector<std::string> names;
+  std::vector<double> positions;
+};
+
+/// A MoveIt MotionPlanRequest: start_state.joint_state and goal_constraints[0].joint_constraints.
+struct PlanRequest {
+  std::string group;
+  NamedPositions start, goal;
+};
+PlanRequest loadMoveItRequest(const std::filesystem::path& path);
+
+/// The robot's actuated joints taken from `positions` (extra names are ignored). Throws
+/// InvalidArgument naming the first actuated joint that is missing or out of its limits.
+std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,
+                                          const std::string& what);
+
+}  // namespace fastron

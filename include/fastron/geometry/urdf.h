@@ -1,0 +1,32 @@
+#pragma once
+// Robots from URDF files, read with urdfdom.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fastron/geometry/robot.h"
+
+namespace fastron {
+
+struct UrdfOptions {
+  /// Where `package://name/...` and relative mesh paths are looked up: for package URIs, a
+  /// folder that contains `name/` or is itself named `name`. Relative paths are tried next to the
+  /// URDF file first.
+  std::vector<std::filesystem::path> searchPaths;
+  /// Turn a cylinder with a sphere of its radius on each end (in one link) into one capsule.
+  bool mergeCapsules = true;
+};
+
+/// Reads a URDF: revolute, continuous, prismatic and fixed joints, limits, and collision geometry
+/// (box, cylinder, sphere, mesh). Throws FileError naming the file, and the line and element where
+/// it can: malformed XML, unknown geometry (urdfdom would silently drop it), zero or negative
+/// sizes, non-finite numbers, lower limit above upper, unsupported joint types, missing meshes.
+Robot loadUrdf(const std::filesystem::path& file, const UrdfOptions& options = {});
+
+/// The same from a string; `source` names it in messages and relative paths start from
+/// `baseDirectory`.
+Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOptions& options = {},
+                const std::filesystem::path& baseDirectory = {});
+
+}  // namespace fastron

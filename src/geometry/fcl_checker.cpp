@@ -1,0 +1,213 @@
+#include "fastron/geometry/fcl_checker.h"
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <limits>
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/kinematics.h"
+#include "overloaded.h"
+
+namespace fastron {
+namespace {
+
+using FclGeometry = std::shared_ptr<fcl::CollisionGeometryd>;
+
+FclGeometry toFcl(const Shape& shape) {
+  return std::visit(
+      Overloaded{
+          [](const Box& b) -> FclGeometry { return std::make_shared<fcl::Boxd>(b.size); },
+          [](const Sphere& s) -> FclGeometry { return std::make_shared<fcl::Sphered>(s.radius); },
+          [](const Cylinder& c) -> FclGeometry {
+            return std::make_shared<fcl::Cylinderd>(c.radius, c.length);
+          },
+          // FCL's capsule length is the cylinder part only, as ours.
+          [](const Capsule& c) -> FclGeometry {
+            return std::make_shared<fcl::Capsuled>(c.radius, c.length);
+          },
+          [](const Mesh& m) -> FclGeometry {
+            auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+            std::vector<fcl::Triangle> triangles;
+            triangles.reserve(m.mesh->triangles.size());
+            for (const auto& t : m.mesh->triangles) {
+              triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+                                     static_cast<std::size_t>(t[2]));
+            }
+            model->beginModel();
+            model->addSubModel(m.mesh->vertices, triangles);
+            model->endModel();
+            return model;
+          },
+      },
+      shape);
+}
+
+fcl::Transform3d toFcl(const Eigen::Isometry3d& pose) {
+  fcl::Transform3d t = fcl::Transform3d::Identity();
+  t.linear() = pose.linear();
+  t.translation() = pose.translation();
+  return t;
+}
+
+// Broad-phase callback: stop at the first collision and remember the obstacle it was.
+struct CollideData {
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  const fcl::CollisionObjectd* hit = nullptr;
+};
+
+bool collideCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* raw) {
+  auto* data = static_cast<CollideData*>(raw);
+  if (data->hit != nullptr) return true;
+  data->result.clear();
+  fcl::collide(a, b, data->request, data->result);
+  if (data->result.isCollision()) data->hit = a->getUserData() != nullptr ? a : b;
+  return data->hit != nullptr;
+}
+
+}  // namespace
+
+struct FclChecker::Geometry {
+  std::vector<FclGeometry> shapes;  // one per robot shape, padded
+};
+
+struct FclChecker::Obstacles {
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  std::vector<std::string> names;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
+  std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // robot shapes that must not touch
+};
+
+struct FclChecker::Scratch {
+  KinematicsData kinematics;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> robotObjects;
+};
+
+FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
+    : robot_(std::move(robot)), options_(options), scratch_([this] {
+        auto s = std::make_unique<Scratch>();
+        s->kinematics = makeKinematicsData(robot_);
+        for (const auto& g : geometry_->shapes)
+          s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+        return s;
+      }) {
+  if (robot_.dof() == 0)
+    throw InvalidArgument("FclChecker: robot '" + robot_.name() + "' has no actuated joints");
+  auto geometry = std::make_shared<Geometry>();
+  for (const LinkShape& s : robot_.shapes()) {
+    Shape shape = s.shape;
+    try {
+      shape = inflate(s.shape, options_.padding);
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument("FclChecker: link '" +
+                            robot_.links()[static_cast<std::size_t>(s.link)].name +
+                            "': " + e.what());
+    }
+    geometry->shapes.push_back(toFcl(shape));
+  }
+  geometry_ = std::move(geometry);
+  setScene(scene);
+}
+
+FclChecker::~FclChecker() = default;
+
+void FclChecker::setScene(const Scene& scene) {
+  auto next = std::make_shared<Obstacles>();
+  next->robotBase = scene.robotBase;
+  std::vector<fcl::CollisionObjectd*> raw;
+  for (std::size_t i = 0; i < scene.obstacles().size(); ++i) {
+    const Obstacle& o = scene.obstacles()[i];
+    auto object = std::make_unique<fcl::CollisionObjectd>(toFcl(o.shape), toFcl(o.pose));
+    object->computeAABB();
+    // User data marks obstacles (robot objects have none); the value is the index + 1.
+    object->setUserData(reinterpret_cast<void*>(i + 1));
+    raw.push_back(object.get());
+    next->objects.push_back(std::move(object));
+    next->names.push_back(o.name);
+  }
+  next->manager.registerObjects(raw);
+  next->manager.setup();
+  if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
+  const std::lock_guard lock(obstaclesMutex_);
+  obstacles_ = std::move(next);
+}
+
+std::shared_ptr<const FclChecker::Obstacles> FclChecker::obstacles() const {
+  const std::lock_guard lock(obstaclesMutex_);
+  return obstacles_;
+}
+
+std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) const {
+  const std::shared_ptr<const Obstacles> world = obstacles();
+  auto scratch = scratch_.lease();
+  forwardKinematics(robot_, q, scratch->kinematics, world->robotBase);
+  const auto& shapes = robot_.shapes();
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
+    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
+    object.computeAABB();
+  }
+  auto linkName = [&](std::size_t s) {
+    return robot_.links()[static_cast<std::size_t>(shapes[s].link)].name;
+  };
+
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    CollideData data;
+    world->manager.collide(scratch->robotObjects[s].get(), &data, collideCallback);
+    if (data.hit != nullptr) {
+      if (!wantContact) return Contact{};
+      const auto index = reinterpret_cast<std::size_t>(data.hit->getUserData()) - 1;
+      return Contact{linkName(s), world->names[index], false};
+    }
+  }
+  fcl::CollisionRequestd request;
+  for (const auto& [a, b] : world->selfPairs) {
+    const auto& oa = *scratch->robotObjects[a];
+    const auto& ob = *scratch->robotObjects[b];
+    if (!oa.getAABB().overlap(ob.getAABB())) continue;
+    fcl::CollisionResultd result;
+    fcl::collide(&oa, &ob, request, result);
+    if (result.isCollision()) return Contact{linkName(a), linkName(b), true};
+  }
+  return std::nullopt;
+}
+
+bool FclChecker::check(const double* q) const {
+  return collide(q, false).has_value();
+}
+
+std::optional<Contact> FclChecker::firstContact(std::span<const double> q) const {
+  checkConfiguration(q, dof());
+  return collide(q.data(), true);
+}
+
+double FclChecker::distance(std::span<const double> q) const {
+  checkConfiguration(q, dof());
+  if (collide(q.data(), false)) return 0;
+  const std::shared_ptr<const Obstacles> world = obstacles();
+  auto scratch = scratch_.lease();
+  forwardKinematics(robot_, q.data(), scratch->kinematics, world->robotBase);
+  double best = std::numeric_limits<double>::infinity();
+  fcl::DistanceRequestd request;
+  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
+    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
+    object.computeAABB();
+    for (const auto& obstacle : world->objects) {
+      fcl::DistanceResultd result;
+      fcl::distance(&object, obstacle.get(), request, result);
+      best = std::min(best, std::max(0.0, result.min_distance));
+    }
+  }
+  return best;
+}
+
+}  // namespace fastron

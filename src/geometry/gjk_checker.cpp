@@ -1,0 +1,186 @@
+#include "fastron/geometry/gjk_checker.h"
+
+#include <ccd/ccd.h>
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/kinematics.h"
+#include "overloaded.h"
+
+namespace fastron {
+namespace {
+
+double sign(double v) {
+  return v < 0 ? -1.0 : 1.0;
+}
+
+void supportCallback(const void* body, const ccd_vec3_t* direction, ccd_vec3_t* out) {
+  const Eigen::Vector3d d(direction->v[0], direction->v[1], direction->v[2]);
+  const Eigen::Vector3d p = static_cast<const ConvexBody*>(body)->support(d);
+  ccdVec3Set(out, p.x(), p.y(), p.z());
+}
+
+void centreCallback(const void* body, ccd_vec3_t* out) {
+  const Eigen::Vector3d c = static_cast<const ConvexBody*>(body)->pose.translation();
+  ccdVec3Set(out, c.x(), c.y(), c.z());
+}
+
+void firstDirection(const void* a, const void* b, ccd_vec3_t* out) {
+  Eigen::Vector3d d = static_cast<const ConvexBody*>(b)->pose.translation() -
+                      static_cast<const ConvexBody*>(a)->pose.translation();
+  if (d.squaredNorm() < 1e-24) d = Eigen::Vector3d::UnitX();
+  ccdVec3Set(out, d.x(), d.y(), d.z());
+}
+
+}  // namespace
+
+ConvexBody ConvexBody::from(const Shape& shape) {
+  ConvexBody body;
+  std::visit(Overloaded{
+                 [&](const Box& b) {
+                   body.kind = Kind::Box;
+                   body.halfSize = b.size / 2;
+                 },
+                 [&](const Sphere& s) {
+                   body.kind = Kind::Sphere;
+                   body.radius = s.radius;
+                 },
+                 [&](const Cylinder& c) {
+                   body.kind = Kind::Cylinder;
+                   body.radius = c.radius;
+                   body.halfLength = c.length / 2;
+                 },
+                 [&](const Capsule& c) {
+                   body.kind = Kind::Capsule;
+                   body.radius = c.radius;
+                   body.halfLength = c.length / 2;
+                 },
+                 [&](const Mesh& m) {
+                   body.kind = Kind::Hull;
+                   body.hull =
+                       std::make_shared<const std::vector<Eigen::Vector3d>>(m.mesh->vertices);
+                 },
+             },
+             shape);
+  return body;
+}
+
+Eigen::Vector3d ConvexBody::support(const Eigen::Vector3d& direction) const {
+  const Eigen::Vector3d d = pose.linear().transpose() * direction;  // into the body frame
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  switch (kind) {
+    case Kind::Box:
+      p = Eigen::Vector3d(sign(d.x()) * halfSize.x(), sign(d.y()) * halfSize.y(),
+                          sign(d.z()) * halfSize.z());
+      break;
+    case Kind::Sphere:
+      p = d.norm() > 0 ? Eigen::Vector3d(radius * d.normalized()) : Eigen::Vector3d(radius, 0, 0);
+      break;
+    case Kind::Cylinder: {
+      const double planar = std::hypot(d.x(), d.y());
+      if (planar > 0) p.head<2>() = radius * d.head<2>() / planar;
+      p.z() = sign(d.z()) * halfLength;
+      break;
+    }
+    case Kind::Capsule:
+      p = Eigen::Vector3d(0, 0, sign(d.z()) * halfLength);
+      if (d.norm() > 0) p += radius * d.normalized();
+      break;
+    case Kind::Hull: {
+      double best = -std::numeric_limits<double>::infinity();
+      for (const auto& v : *hull) {
+        const double score = v.dot(d);
+        if (score > best) {
+          best = score;
+          p = v;
+        }
+      }
+      break;
+    }
+  }
+  return pose * p;
+}
+
+bool gjkIntersect(const ConvexBody& a, const ConvexBody& b) {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.support1 = supportCallback;
+  ccd.support2 = supportCallback;
+  ccd.center1 = centreCallback;
+  ccd.center2 = centreCallback;
+  ccd.first_dir = firstDirection;
+  ccd.max_iterations = 100;
+  return ccdGJKIntersect(&a, &b, &ccd) != 0;
+}
+
+struct GjkChecker::World {
+  std::vector<ConvexBody> obstacles;
+  Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
+  std::vector<std::pair<std::size_t, std::size_t>> selfPairs;
+};
+
+struct GjkChecker::Scratch {
+  KinematicsData kinematics;
+  std::vector<ConvexBody> robot;
+};
+
+GjkChecker::GjkChecker(Robot robot, const Scene& scene, CheckerOptions options)
+    : robot_(std::move(robot)), options_(options), scratch_([this] {
+        auto s = std::make_unique<Scratch>();
+        s->kinematics = makeKinematicsData(robot_);
+        s->robot = robotBodies_;
+        return s;
+      }) {
+  if (robot_.dof() == 0)
+    throw InvalidArgument("GjkChecker: robot '" + robot_.name() + "' has no actuated joints");
+  for (const LinkShape& s : robot_.shapes()) {
+    const bool mesh = std::holds_alternative<Mesh>(s.shape);
+    ConvexBody body = ConvexBody::from(mesh ? s.shape : inflate(s.shape, options_.padding));
+    if (mesh && options_.padding > 0) {
+      throw InvalidArgument("GjkChecker: cannot pad the mesh of link '" +
+                            robot_.links()[static_cast<std::size_t>(s.link)].name + "'");
+    }
+    body.pose = s.origin;
+    robotBodies_.push_back(std::move(body));
+  }
+  setScene(scene);
+}
+
+GjkChecker::~GjkChecker() = default;
+
+void GjkChecker::setScene(const Scene& scene) {
+  auto next = std::make_shared<World>();
+  next->robotBase = scene.robotBase;
+  for (const Obstacle& o : scene.obstacles()) {
+    ConvexBody body = ConvexBody::from(o.shape);
+    body.pose = o.pose;
+    next->obstacles.push_back(std::move(body));
+  }
+  if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
+  const std::lock_guard lock(worldMutex_);
+  world_ = std::move(next);
+}
+
+std::shared_ptr<const GjkChecker::World> GjkChecker::world() const {
+  const std::lock_guard lock(worldMutex_);
+  return world_;
+}
+
+bool GjkChecker::check(const double* q) const {
+  const std::shared_ptr<const World> w = world();
+  auto scratch = scratch_.lease();
+  forwardKinematics(robot_, q, scratch->kinematics, w->robotBase);
+  const auto& shapes = robot_.shapes();
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    scratch->robot[s].pose =
+        scratch->kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
+    for (const ConvexBody& obstacle : w->obstacles) {
+      if (gjkIntersect(scratch->robot[s], obstacle)) return true;
+    }
+  }
+  for (const auto& [a, b] : w->selfPairs) {
+    if (gjkIntersect(scratch->robot[a], scratch->robot[b])) return true;
+  }
+  return false;
+}
+
+}  // namespace fastron

@@ -1,0 +1,380 @@
+#include "fastron/geometry/scene_file.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/mesh_loader.h"
+
+namespace fastron {
+namespace {
+
+// Reads YAML nodes and reports problems as "file:line: message".
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
+    const int line = node.IsDefined() ? node.Mark().line + 1 : 0;
+    throw FileError(source_ + (line > 0 ? ":" + std::to_string(line) : "") + ": " + message);
+  }
+
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const {
+    const YAML::Node value = map[key];
+    if (!value) fail(map, what + " has no '" + key + "'");
+    return value;
+  }
+
+  double number(const YAML::Node& node, const std::string& what) const {
+    double v = 0;
+    try {
+      v = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + " must be a number");
+    }
+    if (!std::isfinite(v)) fail(node, what + " is not finite");
+    return v;
+  }
+
+  std::vector<double> numbers(const YAML::Node& node, std::size_t count,
+                              const std::string& what) const {
+    if (!node.IsSequence() || (count > 0 && node.size() != count)) {
+      fail(node, what + " must be a list of " + std::to_string(count) + " numbers");
+    }
+    std::vector<double> v;
+    for (const auto& item : node) v.push_back(number(item, what));
+    return v;
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& what) const {
+    const auto v = numbers(node, 3, what);
+    return {v[0], v[1], v[2]};
+  }
+
+  /// `position` plus `rpy` or `orientation` (quaternion x, y, z, w) of a map.
+  Eigen::Isometry3d pose(const YAML::Node& map, const std::string& what) const {
+    const Eigen::Vector3d position =
+        map["position"] ? vector3(map["position"], what + " position") : Eigen::Vector3d::Zero();
+    if (map["rpy"] && map["orientation"]) fail(map, what + ": give rpy or orientation, not both");
+    if (map["orientation"]) {
+      const auto q = numbers(map["orientation"], 4, what + " orientation [x, y, z, w]");
+      const Eigen::Quaterniond quaternion(q[3], q[0], q[1], q[2]);
+      if (quaternion.norm() < 1e-9)
+        fail(map["orientation"], what + " orientation is a zero quaternion");
+      Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+      p.translation() = position;
+      p.linear() = quaternion.normalized().toRotationMatrix();
+      return p;
+    }
+    return makePose(position,
+                    map["rpy"] ? vector3(map["rpy"], what + " rpy") : Eigen::Vector3d::Zero());
+  }
+
+  void onlyKeys(const YAML::Node& map, const std::set<std::string>& allowed,
+                const std::string& what) const {
+    if (!map.IsMap()) fail(map, what + " must be a map");
+    for (const auto& entry : map) {
+      const std::string key = entry.first.as<std::string>();
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+        fail(entry.first, what + ": unknown key '" + key + "' (expected " + list + ")");
+      }
+    }
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+};
+
+YAML::Node parseYaml(const std::string& text, const std::string& source) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw FileError(source + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+}
+
+std::string readText(const std::filesystem::path& path, const char* what) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path.string() + ": cannot open " + what);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
+                const std::filesystem::path& base) {
+  const std::string type = r.required(o, "shape", what).as<std::string>();
+  Shape shape = Sphere{1};
+  if (type == "box") {
+    shape = Box{r.vector3(r.required(o, "size", what), what + " size")};
+  } else if (type == "sphere") {
+    shape = Sphere{r.number(r.required(o, "radius", what), what + " radius")};
+  } else if (type == "cylinder") {
+    shape = Cylinder{r.number(r.required(o, "radius", what), what + " radius"),
+                     r.number(r.required(o, "length", what), what + " length")};
+  } else if (type == "capsule") {
+    shape = Capsule{r.number(r.required(o, "radius", what), what + " radius"),
+                    r.number(r.required(o, "length", what), what + " length")};
+  } else if (type == "mesh") {
+    const std::filesystem::path file = base / r.required(o, "file", what).as<std::string>();
+    const Eigen::Vector3d scale =
+        o["scale"] ? r.vector3(o["scale"], what + " scale") : Eigen::Vector3d::Ones();
+    try {
+      shape = Mesh{loadMesh(file, scale)};
+    } catch (const FileError& e) {
+      r.fail(o["file"], what + ": " + e.what());
+    }
+  } else {
+    r.fail(o["shape"],
+           what + ": unknown shape '" + type + "' (box, sphere, cylinder, capsule, mesh)");
+  }
+  try {
+    validate(shape, what);
+  } catch (const InvalidArgument& e) {
+    r.fail(o, e.what());
+  }
+  return shape;
+}
+
+Motion readMotion(const Reader& r, const YAML::Node& m, const std::string& what) {
+  const std::string type = r.required(m, "type", what).as<std::string>();
+  if (type == "random_walk") {
+    r.onlyKeys(m, {"type", "step", "bounds", "seed"}, what);
+    RandomWalk w;
+    const auto step = r.numbers(r.required(m, "step", what), 2, what + " step [min, max]");
+    w.minStep = step[0];
+    w.maxStep = step[1];
+    const YAML::Node bounds = r.required(m, "bounds", what);
+    if (!bounds.IsSequence() || bounds.size() != 2)
+      r.fail(bounds, what + " bounds must be [[min x, y, z], [max x, y, z]]");
+    w.bounds = Eigen::AlignedBox3d(r.vector3(bounds[0], what + " bounds"),
+                                   r.vector3(bounds[1], what + " bounds"));
+    w.seed = m["seed"] ? m["seed"].as<std::uint64_t>() : 1;
+    return w;
+  }
+  if (type == "circle") {
+    r.onlyKeys(m, {"type", "centre", "center", "radius", "axis", "period", "phase"}, what);
+    CircularPath c;
+    const YAML::Node centre = m["centre"] ? m["centre"] : m["center"];
+    if (!centre) r.fail(m, what + " has no 'centre'");
+    c.centre = r.vector3(centre, what + " centre");
+    c.radius = r.number(r.required(m, "radius", what), what + " radius");
+    if (m["axis"]) c.axis = r.vector3(m["axis"], what + " axis");
+    c.period = r.number(r.required(m, "period", what), what + " period");
+    if (m["phase"]) c.phase = r.number(m["phase"], what + " phase");
+    return c;
+  }
+  if (type == "scripted") {
+    r.onlyKeys(m, {"type", "keyframes"}, what);
+    ScriptedPoses s;
+    const YAML::Node keys = r.required(m, "keyframes", what);
+    if (!keys.IsSequence() || keys.size() == 0)
+      r.fail(keys, what + " keyframes must be a non-empty list");
+    for (const auto& k : keys) {
+      r.onlyKeys(k, {"time", "position", "rpy", "orientation"}, what + " keyframe");
+      s.times.push_back(
+          r.number(r.required(k, "time", what + " keyframe"), what + " keyframe time"));
+      s.poses.push_back(r.pose(k, what + " keyframe"));
+    }
+    return s;
+  }
+  r.fail(m["type"], what + ": unknown motion type '" + type + "' (random_walk, circle, scripted)");
+}
+
+void readAllowedPairs(const Reader& r, const YAML::Node& pairs, Scene& scene) {
+  if (!pairs.IsSequence()) r.fail(pairs, "allowed_collisions must be a list of [link, link] pairs");
+  for (const auto& p : pairs) {
+    if (!p.IsSequence() || p.size() != 2)
+      r.fail(p, "allowed_collisions entries are [link, link] pairs");
+    scene.allowedCollisions.allow(p[0].as<std::string>(), p[1].as<std::string>());
+  }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& yaml, const std::string& source,
+                 const std::filesystem::path& baseDirectory) {
+  const Reader r(source);
+  const YAML::Node root = parseYaml(yaml, source);
+  if (!root.IsMap()) throw FileError(source + ": a scene file is a YAML map");
+  if (root["world"] && !root["obstacles"]) return parseMoveItScene(yaml, source);
+  r.onlyKeys(root, {"obstacles", "robot_base", "allowed_collisions", "description"}, "scene");
+  Scene scene;
+  if (root["robot_base"]) {
+    r.onlyKeys(root["robot_base"], {"position", "rpy", "orientation"}, "robot_base");
+    scene.robotBase = r.pose(root["robot_base"], "robot_base");
+  }
+  if (root["allowed_collisions"]) readAllowedPairs(r, root["allowed_collisions"], scene);
+  const YAML::Node obstacles = root["obstacles"];
+  if (!obstacles) return scene;
+  if (!obstacles.IsSequence()) r.fail(obstacles, "'obstacles' must be a list");
+  std::size_t index = 0;
+  for (const auto& o : obstacles) {
+    const std::string name =
+        o["name"] ? o["name"].as<std::string>() : "obstacle" + std::to_string(index);
+    const std::string what = "obstacle '" + name + "'";
+    r.onlyKeys(o,
+               {"name", "shape", "size", "radius", "length", "file", "scale", "position", "rpy",
+                "orientation", "motion"},
+               what);
+    Obstacle obstacle{name, readShape(r, o, what, baseDirectory), r.pose(o, what), std::nullopt};
+    if (o["motion"]) obstacle.motion = readMotion(r, o["motion"], what + " motion");
+    try {
+      scene.add(std::move(obstacle));
+    } catch (const InvalidArgument& e) {
+      r.fail(o, e.what());
+    }
+    ++index;
+  }
+  return scene;
+}
+
+Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
+  const Reader r(source);
+  const YAML::Node root = parseYaml(yaml, source);
+  Scene scene;
+  const YAML::Node world = root["world"];
+  if (!world || !world.IsMap()) r.fail(root, "not a MoveIt PlanningScene: no 'world' map");
+  const YAML::Node objects = world["collision_objects"];
+  if (objects && !objects.IsSequence()) r.fail(objects, "world.collision_objects must be a list");
+  for (const auto& object : objects) {
+    const std::string id = r.required(object, "id", "a collision object").as<std::string>();
+    const std::string what = "collision object '" + id + "'";
+    const Eigen::Isometry3d objectPose =
+        object["pose"] ? r.pose(object["pose"], what + " pose") : Eigen::Isometry3d::Identity();
+    std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;
+    const YAML::Node primitives = object["primitives"];
+    const YAML::Node poses = object["primitive_poses"];
+    if (primitives) {
+      if (!poses || poses.size() != primitives.size())
+        r.fail(object, what + ": one primitive_pose per primitive is needed");
+      for (std::size_t i = 0; i < primitives.size(); ++i) {
+        const YAML::Node p = primitives[i];
+        const std::string type = r.required(p, "type", what + " primitive").as<std::string>();
+        const YAML::Node dims = r.required(p, "dimensions", what + " primitive");
+        Shape shape = Sphere{1};
+        if (type == "box") {
+          shape = Box{r.vector3(dims, what + " box dimensions")};
+        } else if (type == "sphere") {
+          shape = Sphere{r.numbers(dims, 1, what + " sphere dimensions [radius]")[0]};
+        } else if (type == "cylinder") {
+          const auto d = r.numbers(dims, 2, what + " cylinder dimensions [height, radius]");
+          shape = Cylinder{d[1], d[0]};
+        } else {
+          r.fail(p["type"],
+                 what + ": primitive type '" + type + "' is not supported (box, sphere, cylinder)");
+        }
+        parts.emplace_back(shape, objectPose * r.pose(poses[i], what + " primitive_pose"));
+      }
+    }
+    if (const YAML::Node meshes = object["meshes"]) {
+      const YAML::Node meshPoses = object["mesh_poses"];
+      if (!meshPoses || meshPoses.size() != meshes.size())
+        r.fail(object, what + ": one mesh_pose per mesh is needed");
+      for (std::size_t i = 0; i < meshes.size(); ++i) {
+        auto mesh = std::make_shared<TriangleMesh>();
+        mesh->source = source + " (" + id + ")";
+        for (const auto& v : r.required(meshes[i], "vertices", what + " mesh"))
+          mesh->vertices.push_back(r.vector3(v, what + " vertex"));
+        for (const auto& t : r.required(meshes[i], "triangles", what + " mesh")) {
+          const auto idx =
+              r.numbers(t["vertex_indices"] ? t["vertex_indices"] : t, 3, what + " triangle");
+          for (const double k : idx) {
+            if (k < 0 || k >= static_cast<double>(mesh->vertices.size()))
+              r.fail(t, what + ": triangle vertex index out of range");
+          }
+          mesh->triangles.emplace_back(static_cast<int>(idx[0]), static_cast<int>(idx[1]),
+                                       static_cast<int>(idx[2]));
+        }
+        parts.emplace_back(Mesh{mesh}, objectPose * r.pose(meshPoses[i], what + " mesh_pose"));
+      }
+    }
+    if (parts.empty()) r.fail(object, what + " has no primitives or meshes");
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      try {
+        scene.add({parts.size() == 1 ? id : id + "/" + std::to_string(i), parts[i].first,
+                   parts[i].second, std::nullopt});
+      } catch (const InvalidArgument& e) {
+        r.fail(object, e.what());
+      }
+    }
+  }
+  if (const YAML::Node acm = root["allowed_collision_matrix"]) {
+    const YAML::Node names = r.required(acm, "entry_names", "allowed_collision_matrix");
+    const YAML::Node values = r.required(acm, "entry_values", "allowed_collision_matrix");
+    if (values.size() != names.size())
+      r.fail(values, "allowed_collision_matrix: one row of entry_values per entry name");
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (values[i].size() != names.size())
+        r.fail(values[i],
+               "allowed_collision_matrix: row " + std::to_string(i) + " has the wrong length");
+      for (std::size_t j = 0; j < names.size(); ++j) {
+        if (values[i][j].as<bool>())
+          scene.allowedCollisions.allow(names[i].as<std::string>(), names[j].as<std::string>());
+      }
+    }
+  }
+  return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+  return parseScene(readText(path, "scene file"), path.string(), path.parent_path());
+}
+
+PlanRequest loadMoveItRequest(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  const Reader r(source);
+  const YAML::Node root = parseYaml(readText(path, "motion plan request"), source);
+  PlanRequest request;
+  if (root["group_name"]) request.group = root["group_name"].as<std::string>();
+  const YAML::Node state =
+      r.required(r.required(root, "start_state", "the request"), "joint_state", "start_state");
+  const YAML::Node names = r.required(state, "name", "start_state.joint_state");
+  const YAML::Node positions = r.required(state, "position", "start_state.joint_state");
+  if (names.size() != positions.size())
+    r.fail(state, "start_state.joint_state: one position per name is needed");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    request.start.names.push_back(names[i].as<std::string>());
+    request.start.positions.push_back(
+        r.number(positions[i], "start position of " + request.start.names.back()));
+  }
+  const YAML::Node goals = r.required(root, "goal_constraints", "the request");
+  if (!goals.IsSequence() || goals.size() == 0)
+    r.fail(goals, "goal_constraints must be a non-empty list");
+  const YAML::Node joints = r.required(goals[0], "joint_constraints", "goal_constraints[0]");
+  for (const auto& c : joints) {
+    request.goal.names.push_back(
+        r.required(c, "joint_name", "a joint constraint").as<std::string>());
+    request.goal.positions.push_back(r.number(r.required(c, "position", "a joint constraint"),
+                                              "goal position of " + request.goal.names.back()));
+  }
+  return request;
+}
+
+std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,
+                                          const std::string& what) {
+  std::vector<double> q;
+  for (const int j : robot.actuatedJoints()) {
+    const Joint& joint = robot.joints()[static_cast<std::size_t>(j)];
+    const auto it = std::find(positions.names.begin(), positions.names.end(), joint.name);
+    if (it == positions.names.end())
+      throw InvalidArgument(what + " has no position for joint '" + joint.name + "'");
+    const double v = positions.positions[static_cast<std::size_t>(it - positions.names.begin())];
+    if (v < joint.lower - 1e-9 || v > joint.upper + 1e-9) {
+      throw InvalidArgument(what + ": joint '" + joint.name + "' at " + std::to_string(v) +
+                            " is outside its limits [" + std::to_string(joint.lower) + ", " +
+                            std::to_string(joint.upper) + "]");
+    }
+    q.push_back(v);
+  }
+  return q;
+}
+
+}  // namespace fastron

@@ -1,0 +1,251 @@
+// FCL and GJK checkers: hand-computed contacts for every shape pair, agreement between the two,
+// self-collision, contacts, distance, padding and scene updates.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/core/error.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/robot_library.h"
+#include "fastron/proxy/labelling.h"
+#include "temp_dir.h"
+
+namespace fastron {
+namespace {
+
+#ifdef FASTRON_SANITIZED
+constexpr std::size_t kAgreementSamples = 10'000;  // sanitizers slow checks down ~10 times
+#else
+constexpr std::size_t kAgreementSamples = 100'000;
+#endif
+
+std::shared_ptr<const TriangleMesh> cubeMesh(double side) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  const double h = side / 2;
+  for (int i = 0; i < 8; ++i)
+    mesh->vertices.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
+  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  for (const auto& f : faces) mesh->triangles.emplace_back(f[0], f[1], f[2]);
+  mesh->source = "cube";
+  return mesh;
+}
+
+// A body that slides along world x: q is its centre's x coordinate.
+Robot slider(const Shape& shape) {
+  Joint joint;
+  joint.name = "x";
+  joint.type = JointType::Prismatic;
+  joint.parent = 0;
+  joint.child = 1;
+  joint.axis = Eigen::Vector3d::UnitX();
+  joint.lower = -5;
+  joint.upper = 5;
+  return Robot("slider", {{"base", -1}, {"body", -1}}, {joint},
+               {{1, Eigen::Isometry3d::Identity(), shape}});
+}
+
+struct NamedShape {
+  std::string name;
+  Shape shape;
+};
+
+// Every shape has half-width 0.1 along x, so two of them touch at q = 0.2.
+std::vector<NamedShape> shapesOfHalfWidthOneTenth() {
+  return {{"box", Box{Eigen::Vector3d(0.2, 0.3, 0.4)}},
+          {"sphere", Sphere{0.1}},
+          {"cylinder", Cylinder{0.1, 0.3}},
+          {"capsule", Capsule{0.1, 0.3}},
+          {"mesh", Mesh{cubeMesh(0.2)}}};
+}
+
+TEST(Checkers, EveryShapePairTouchesWhereHandComputed) {
+  const double gap = 0.005;
+  std::size_t pairs = 0;
+  for (const auto& robotShape : shapesOfHalfWidthOneTenth()) {
+    for (const auto& obstacleShape : shapesOfHalfWidthOneTenth()) {
+      Scene scene;
+      scene.add({"obstacle", obstacleShape.shape, Eigen::Isometry3d::Identity(), std::nullopt});
+      const FclChecker fcl(slider(robotShape.shape), scene);
+      const GjkChecker gjk(slider(robotShape.shape), scene);
+      for (const double side : {1.0, -1.0}) {
+        const std::vector<double> apart{side * (0.2 + gap)}, overlapping{side * (0.2 - gap)},
+            centred{0.0};
+        const std::string pair = robotShape.name + " vs " + obstacleShape.name;
+        EXPECT_FALSE(fcl.inCollision(apart)) << "FCL " << pair;
+        EXPECT_FALSE(gjk.inCollision(apart)) << "GJK " << pair;
+        EXPECT_TRUE(fcl.inCollision(overlapping)) << "FCL " << pair;
+        EXPECT_TRUE(gjk.inCollision(overlapping)) << "GJK " << pair;
+        EXPECT_TRUE(gjk.inCollision(centred)) << "GJK " << pair;
+      }
+      ++pairs;
+    }
+  }
+  EXPECT_EQ(pairs, 25u);
+}
+
+TEST(Checkers, RotatedObstaclesAndEnds) {
+  // A box turned 45 degrees about z reaches 0.1 * sqrt(2) along x.
+  Scene turned;
+  turned.add({"box", Box{Eigen::Vector3d(0.2, 0.2, 0.2)},
+              makePose({0, 0, 0}, {0, 0, std::numbers::pi / 4}), std::nullopt});
+  const double corner = 0.1 * std::sqrt(2.0) + 0.1;
+  for (const CollisionChecker* c : std::initializer_list<const CollisionChecker*>{
+           new FclChecker(slider(Sphere{0.1}), turned),
+           new GjkChecker(slider(Sphere{0.1}), turned)}) {
+    EXPECT_FALSE(c->inCollision(std::vector<double>{corner + 0.005})) << c->name();
+    EXPECT_TRUE(c->inCollision(std::vector<double>{corner - 0.005})) << c->name();
+    delete c;
+  }
+  // A capsule lying along x reaches r + l/2 = 0.25 from its centre; a cylinder 0.15.
+  Scene lying;
+  lying.add(
+      {"pill", Capsule{0.1, 0.3}, makePose({0, 0, 0}, {0, std::numbers::pi / 2, 0}), std::nullopt});
+  lying.add(
+      {"can", Cylinder{0.1, 0.3}, makePose({0, 3, 0}, {0, std::numbers::pi / 2, 0}), std::nullopt});
+  const FclChecker fcl(slider(Sphere{0.05}), lying);
+  const GjkChecker gjk(slider(Sphere{0.05}), lying);
+  EXPECT_FALSE(fcl.inCollision(std::vector<double>{0.305}));
+  EXPECT_TRUE(fcl.inCollision(std::vector<double>{0.295}));
+  EXPECT_FALSE(gjk.inCollision(std::vector<double>{0.305}));
+  EXPECT_TRUE(gjk.inCollision(std::vector<double>{0.295}));
+}
+
+// A scene of primitives around Baxter's right arm: FCL and GJK see the same geometry, so they
+// must agree except within numerical tolerance of a contact.
+Scene baxterPrimitives() {
+  Scene scene;
+  scene.add({"box", Box{Eigen::Vector3d(0.2, 0.2, 0.2)},
+             makePose({0.6, -0.6, 0.2}, {0.3, 0.2, 0.5}), std::nullopt});
+  scene.add({"ball", Sphere{0.12}, makePose({0.4, -0.9, 0.5}), std::nullopt});
+  scene.add({"can", Cylinder{0.08, 0.4}, makePose({0.8, -0.3, 0.0}, {0.5, 0, 0}), std::nullopt});
+  scene.add({"pill", Capsule{0.06, 0.3}, makePose({0.3, -0.5, -0.2}, {0, 1.2, 0}), std::nullopt});
+  scene.add({"cube_mesh", Mesh{cubeMesh(0.15)}, makePose({0.9, -0.8, 0.4}), std::nullopt});
+  return scene;
+}
+
+TEST(Checkers, FclAndGjkAgreeOnPrimitiveScenes) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = baxterPrimitives();
+  const FclChecker fcl(baxter, scene);
+  const GjkChecker gjk(baxter, scene);
+  Rng rng(5);
+  const Configurations q = uniformConfigurations(baxter.limits(), kAgreementSamples, rng);
+  const Labels a = labelConfigurations(fcl, q), b = labelConfigurations(gjk, q);
+  std::size_t disagreements = 0, collisions = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    disagreements += a[i] != b[i];
+    collisions += a[i] > 0;
+  }
+  RecordProperty("disagreements", static_cast<int>(disagreements));
+  RecordProperty("configurations", static_cast<int>(a.size()));
+  std::cout << "FCL vs GJK on " << a.size() << " Baxter configurations: " << collisions
+            << " in collision, " << disagreements << " disagreements\n";
+  EXPECT_GT(collisions, a.size() / 20);  // the scene is not trivially free
+  EXPECT_LE(disagreements, a.size() / 10'000);
+}
+
+TEST(Checkers, SelfCollisionFindsTheArmHittingTheBody) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene empty;
+  const FclChecker withoutSelf(baxter, empty);
+  const FclChecker fcl(baxter, empty, {.selfCollision = true});
+  const GjkChecker gjk(baxter, empty, {.selfCollision = true});
+  const std::vector<double> zero(7, 0.0);
+  EXPECT_FALSE(fcl.inCollision(zero));
+  Rng rng(6);
+  const Configurations q = uniformConfigurations(baxter.limits(), 3000, rng);
+  std::size_t selfHits = 0, disagreements = 0;
+  const AllowedCollisionMatrix adjacent = baxter.adjacentLinks();
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const std::span<const double> c(q.row(i).data(), 7);
+    EXPECT_FALSE(withoutSelf.inCollision(c));  // nothing else in the scene
+    const auto contact = fcl.firstContact(c);
+    disagreements += contact.has_value() != gjk.inCollision(c);
+    if (!contact) continue;
+    ++selfHits;
+    EXPECT_TRUE(contact->selfCollision);
+    EXPECT_FALSE(adjacent.allowed(contact->robotLink, contact->other))
+        << contact->robotLink << " " << contact->other;
+  }
+  EXPECT_GT(selfHits, 30u);
+  EXPECT_LE(disagreements, 3u);
+  // Allowing every pair of the scene's matrix silences them.
+  Scene allowAll;
+  for (const auto& a : baxter.links()) {
+    for (const auto& b : baxter.links()) allowAll.allowedCollisions.allow(a.name, b.name);
+  }
+  const FclChecker permissive(baxter, allowAll, {.selfCollision = true});
+  for (Eigen::Index i = 0; i < 200; ++i) EXPECT_FALSE(permissive.inCollision({q.row(i).data(), 7}));
+}
+
+TEST(Checkers, ContactNamesTheLinkAndTheObstacle) {
+  const Robot baxter = loadRobot("baxter");
+  Scene scene;
+  scene.add({"on_the_hand", Sphere{0.05}, makePose({0.797, -0.992, 0.321}), std::nullopt});
+  const FclChecker fcl(baxter, scene);
+  const auto contact = fcl.firstContact(std::vector<double>(7, 0.0));
+  ASSERT_TRUE(contact.has_value());
+  EXPECT_THAT(contact->robotLink, ::testing::AnyOf("right_hand", "right_wrist"));
+  EXPECT_EQ(contact->other, "on_the_hand");
+  EXPECT_FALSE(contact->selfCollision);
+}
+
+TEST(Checkers, DistanceAndPadding) {
+  const Robot rod = loadRobot("rod2");  // capsule from x = 0 to 0.5, radius 0.03, at q = 0
+  Scene scene;
+  scene.add({"ball", Sphere{0.1}, makePose({0.8, 0, 0}), std::nullopt});
+  const FclChecker fcl(rod, scene);
+  EXPECT_NEAR(fcl.distance(std::vector<double>{0, 0}), 0.8 - 0.1 - 0.53, 1e-4);
+  EXPECT_EQ(fcl.distance(std::vector<double>{0, 0}) > 0,
+            !fcl.inCollision(std::vector<double>{0, 0}));
+
+  scene.setPose("ball", makePose({0.66, 0, 0}));  // 0.03 from the rod
+  const FclChecker bare(rod, scene), padded(rod, scene, {.padding = 0.05});
+  const GjkChecker gjkPadded(rod, scene, {.padding = 0.05});
+  EXPECT_FALSE(bare.inCollision(std::vector<double>{0, 0}));
+  EXPECT_TRUE(padded.inCollision(std::vector<double>{0, 0}));
+  EXPECT_TRUE(gjkPadded.inCollision(std::vector<double>{0, 0}));
+  EXPECT_EQ(bare.distance(std::vector<double>{0, 0.5}) > 0.03, true);
+}
+
+TEST(Checkers, SetSceneMovesTheObstacles) {
+  const Robot rod = loadRobot("rod2");
+  Scene scene;
+  scene.add({"ball", Sphere{0.1}, makePose({0.3, 0, 0}), std::nullopt});
+  FclChecker fcl(rod, scene);
+  GjkChecker gjk(rod, scene);
+  const std::vector<double> q{0, 0};
+  EXPECT_TRUE(fcl.inCollision(q));
+  EXPECT_TRUE(gjk.inCollision(q));
+  scene.setPose("ball", makePose({0, 0.3, 0}));
+  fcl.setScene(scene);
+  gjk.setScene(scene);
+  EXPECT_FALSE(fcl.inCollision(q));
+  EXPECT_FALSE(gjk.inCollision(q));
+  EXPECT_TRUE(fcl.inCollision(std::vector<double>{std::numbers::pi / 2, 0}));
+  // The robot base moves the robot, not the obstacles.
+  scene.robotBase = makePose({0, 0.3, 0});
+  fcl.setScene(scene);
+  EXPECT_TRUE(fcl.inCollision(q));
+}
+
+TEST(Checkers, RefuseBadConfigurationsAndOptions) {
+  const Robot rod = loadRobot("rod2");
+  const FclChecker fcl(rod, Scene{});
+  const GjkChecker gjk(rod, Scene{});
+  EXPECT_THROW(fcl.inCollision(std::vector<double>{0.0}), InvalidArgument);
+  EXPECT_THROW(gjk.inCollision(std::vector<double>{0.0, std::nan("")}), InvalidArgument);
+  EXPECT_THROW(fcl.firstContact(std::vector<double>{0, 0, 0}), InvalidArgument);
+  EXPECT_THROW(FclChecker(slider(Mesh{cubeMesh(0.2)}), Scene{}, {.padding = 0.01}),
+               InvalidArgument);
+  EXPECT_THROW(FclChecker(rod, Scene{}, {.padding = -1}), InvalidArgument);
+  EXPECT_EQ(fcl.callCount(), 0u);  // refused calls are not counted
+}
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,202 @@
+// URDF loading: geometry, meshes and search paths, capsules, and every bad-input case.
+
+#include "fastron/geometry/urdf.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/robot_library.h"
+#include "temp_dir.h"
+
+namespace fastron {
+namespace {
+
+using test::messageOf;
+using ::testing::HasSubstr;
+
+// A unit cube (side 0.2) as Wavefront OBJ.
+const char* kCubeObj = R"(v -0.1 -0.1 -0.1
+v 0.1 -0.1 -0.1
+v 0.1 0.1 -0.1
+v -0.1 0.1 -0.1
+v -0.1 -0.1 0.1
+v 0.1 -0.1 0.1
+v 0.1 0.1 0.1
+v -0.1 0.1 0.1
+f 1 3 2
+f 1 4 3
+f 5 6 7
+f 5 7 8
+f 1 2 6
+f 1 6 5
+f 2 3 7
+f 2 7 6
+f 3 4 8
+f 3 8 7
+f 4 1 5
+f 4 5 8
+)";
+
+std::string urdf(const std::string& linkBody, const std::string& joint = "") {
+  return R"(<?xml version="1.0"?>
+<robot name="test">
+  <link name="base"/>
+  <link name="arm">
+)" + linkBody +
+         R"(
+  </link>
+)" +
+         (joint.empty()
+              ? R"(  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>)"
+              : joint) +
+         "\n</robot>\n";
+}
+
+class Urdf : public test::TempDir {
+ protected:
+  std::string error(const std::string& xml) {
+    return messageOf<FileError>([&] { parseUrdf(xml, "t.urdf"); });
+  }
+};
+
+TEST_F(Urdf, ReadsPrimitiveGeometryAndJoints) {
+  const Robot robot = parseUrdf(
+      urdf(
+          R"(<collision><origin xyz="0 0 0.5"/><geometry><box size="0.1 0.2 0.3"/></geometry></collision>
+    <collision><geometry><cylinder radius="0.05" length="0.4"/></geometry></collision>
+    <collision><origin xyz="1 0 0"/><geometry><sphere radius="0.07"/></geometry></collision>)"),
+      "t.urdf");
+  EXPECT_EQ(robot.name(), "test");
+  ASSERT_EQ(robot.shapes().size(), 3u);
+  ASSERT_EQ(robot.dof(), 1u);
+  EXPECT_EQ(robot.limits().lower()[0], -1);
+  int boxes = 0, cylinders = 0, spheres = 0;
+  for (const auto& s : robot.shapes()) {
+    boxes += std::holds_alternative<Box>(s.shape);
+    cylinders += std::holds_alternative<Cylinder>(s.shape);
+    spheres += std::holds_alternative<Sphere>(s.shape);
+  }
+  EXPECT_EQ(boxes + cylinders + spheres, 3);
+  EXPECT_EQ(boxes, 1);
+}
+
+TEST_F(Urdf, MergesACylinderWithEndSpheresIntoACapsule) {
+  const Robot rod = loadRobot("rod2");
+  ASSERT_EQ(rod.shapes().size(), 1u);
+  const auto* capsule = std::get_if<Capsule>(&rod.shapes()[0].shape);
+  ASSERT_NE(capsule, nullptr);
+  EXPECT_EQ(capsule->radius, 0.03);
+  EXPECT_EQ(capsule->length, 0.5);
+  UrdfOptions keep;
+  keep.mergeCapsules = false;
+  EXPECT_EQ(loadUrdf(dataDirectory() / "robots/rod2.urdf", keep).shapes().size(), 3u);
+}
+
+TEST_F(Urdf, ContinuousAndPrismaticJoints) {
+  const Robot robot = parseUrdf(
+      urdf("",
+           R"(<joint name="spin" type="continuous"><parent link="base"/><child link="mid"/></joint>
+  <link name="mid"/>
+  <joint name="slide" type="prismatic"><parent link="mid"/><child link="arm"/><axis xyz="0 0 2"/>
+    <limit lower="0" upper="0.3" effort="1" velocity="1"/></joint>)"),
+      "t.urdf");
+  ASSERT_EQ(robot.dof(), 2u);
+  EXPECT_NEAR(robot.limits().lower()[0], -std::numbers::pi, 1e-12);
+  EXPECT_NEAR(robot.limits().upper()[0], std::numbers::pi, 1e-12);
+  EXPECT_EQ(robot.joints()[static_cast<std::size_t>(robot.jointIndex("slide"))].axis,
+            Eigen::Vector3d::UnitZ());
+}
+
+TEST_F(Urdf, MeshesThroughPackageUrisRelativePathsAndSearchPaths) {
+  std::filesystem::create_directories(path("pkgs/my_robot/meshes"));
+  write("pkgs/my_robot/meshes/cube.obj", kCubeObj);
+  write("cube.obj", kCubeObj);
+  const std::string xml = urdf(
+      R"(<collision><geometry><mesh filename="package://my_robot/meshes/cube.obj" scale="2 2 2"/></geometry></collision>
+    <collision><geometry><mesh filename="cube.obj"/></geometry></collision>)");
+  write("robot.urdf", xml);
+  UrdfOptions options;
+  options.searchPaths = {path("pkgs")};
+  const Robot robot = loadUrdf(path("robot.urdf"), options);
+  ASSERT_EQ(robot.shapes().size(), 2u);
+  const auto& scaled = std::get<Mesh>(robot.shapes()[0].shape).mesh;
+  EXPECT_EQ(scaled->triangles.size(), 12u);
+  EXPECT_NEAR(boundingRadius(robot.shapes()[0].shape), 0.2 * std::sqrt(3.0),
+              1e-6);  // assimp reads floats
+
+  const std::string missing = messageOf<FileError>([&] { loadUrdf(path("robot.urdf")); });
+  EXPECT_THAT(missing,
+              HasSubstr("link 'arm': mesh 'package://my_robot/meshes/cube.obj' not found"));
+}
+
+TEST_F(Urdf, MeshFileThatIsNotAMesh) {
+  write("broken.stl", "solid nothing\nthis is not an stl file\n");
+  write("robot.urdf",
+        urdf(R"(<collision><geometry><mesh filename="broken.stl"/></geometry></collision>)"));
+  EXPECT_THAT(messageOf<FileError>([&] { loadUrdf(path("robot.urdf")); }), HasSubstr("broken.stl"));
+}
+
+TEST_F(Urdf, RefusesWhatUrdfdomWouldDropOrAccept) {
+  // urdfdom drops an unknown geometry and every other collision of that link without failing.
+  EXPECT_THAT(
+      error(urdf(
+          R"(<collision><geometry><capsule radius="0.1" length="0.2"/></geometry></collision>)")),
+      HasSubstr("t.urdf:5: link 'arm': unknown collision geometry <capsule>"));
+  EXPECT_THAT(error(urdf(R"(<collision><geometry><box size="0 1 1"/></geometry></collision>)")),
+              HasSubstr("t.urdf:5: link 'arm': <box> size=\"0 1 1\" must be positive"));
+  EXPECT_THAT(error(urdf(R"(<collision><geometry><sphere radius="-0.1"/></geometry></collision>)")),
+              HasSubstr("must be positive"));
+  EXPECT_THAT(
+      error(urdf(R"(<collision><geometry><cylinder radius="0.1"/></geometry></collision>)")),
+      HasSubstr("<cylinder> has no 'length' attribute"));
+  EXPECT_THAT(
+      error(urdf(
+          R"(<collision><origin xyz="0 nan 0"/><geometry><sphere radius="1"/></geometry></collision>)")),
+      HasSubstr("t.urdf:5: <origin> xyz=\"0 nan 0\" needs 3 finite numbers"));
+  EXPECT_THAT(
+      error(urdf("", R"(<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <limit lower="2" upper="1" effort="1" velocity="1"/></joint>)")),
+      HasSubstr("t.urdf:8: joint 'j': lower limit 2.000000 is above the upper limit 1.000000"));
+  EXPECT_THAT(
+      error(urdf(
+          "",
+          R"(<joint name="j" type="floating"><parent link="base"/><child link="arm"/></joint>)")),
+      HasSubstr("floating joints are not supported"));
+}
+
+TEST_F(Urdf, MalformedFilesNameTheProblem) {
+  EXPECT_THAT(error("<robot name='x'><link name='a'></robot>"),
+              HasSubstr("t.urdf:1: malformed XML"));
+  EXPECT_THAT(error("<model/>"), HasSubstr("not a URDF file"));
+  EXPECT_THAT(
+      error(urdf(
+          "", R"(<joint name="j" type="bogus"><parent link="base"/><child link="arm"/></joint>)")),
+      HasSubstr("invalid URDF: Joint [j] has no known type [bogus]"));
+  EXPECT_THAT(
+      error(urdf("", R"(<joint name="j" type="revolute"><parent link="base"/><child link="nowhere"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>)")),
+      HasSubstr("invalid URDF"));
+  EXPECT_THAT(messageOf<FileError>([&] { loadUrdf(path("absent.urdf")); }),
+              HasSubstr("absent.urdf: cannot open"));
+  EXPECT_THAT(messageOf<FileError>([&] { loadRobot("not_a_robot"); }),
+              HasSubstr("neither a shipped robot (rod2, rod4, baxter, ur3, panda, psm)"));
+}
+
+TEST(RobotLibrary, EveryShippedRobotLoadsWithItsJoints) {
+  const auto robots = shippedRobots();
+  ASSERT_EQ(robots.size(), 6u);
+  for (const RobotEntry& entry : robots) {
+    const Robot robot = loadRobot(entry.name);
+    EXPECT_EQ(robot.actuatedJointNames(), entry.joints) << entry.name;
+    EXPECT_FALSE(robot.shapes().empty()) << entry.name;
+    const JointLimits limits = robot.limits();
+    EXPECT_TRUE((limits.lower().array() < limits.upper().array()).all()) << entry.name;
+  }
+}
+
+}  // namespace
+}  // namespace fastron
