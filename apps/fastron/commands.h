@@ -8,5 +8,7 @@ namespace fastron::cli {
 void addTrainCommand(CLI::App& app, int& exitCode);
 void addEvalCommand(CLI::App& app, int& exitCode);
 void addDemoCommand(CLI::App& app, int& exitCode);
+void addCheckCommand(CLI::App& app, int& exitCode);
+void addRobotsCommand(CLI::App& app, int& exitCode);
 
 }  // namespace fastron::cli

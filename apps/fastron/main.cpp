@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   fastron::cli::addTrainCommand(app, exitCode);
   fastron::cli::addEvalCommand(app, exitCode);
   fastron::cli::addDemoCommand(app, exitCode);
+  fastron::cli::addCheckCommand(app, exitCode);
+  fastron::cli::addRobotsCommand(app, exitCode);
 
   try {
     app.parse(argc, argv);

@@ -232,7 +232,8 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
   TiXmlDocument document;
   document.Parse(xml.c_str());
   if (document.Error()) {
-    throw FileError(source + ":" + std::to_string(document.ErrorRow()) +
+    const int row = document.ErrorRow();  // 0 when the text is not XML at all
+    throw FileError(source + (row > 0 ? ":" + std::to_string(row) : "") +
                     ": malformed XML: " + document.ErrorDesc());
   }
   const TiXmlElement* robotElement = document.RootElement();
