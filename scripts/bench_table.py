@@ -30,12 +30,38 @@ def ns(b):
     return b["real_time"] * scale
 
 
+ROBOTS = ["rod2", "rod4", "baxter", "ur3", "panda", "psm"]
+
+
+def geometry_table(runs):
+    fk = {dict(a)["robot"]: b for (f, a), b in runs.items() if f == "BM_ForwardKinematics"}
+    if not fk:
+        return
+    print("Time per exact check (ns): forward kinematics alone, FK + FCL and FK + GJK, with 0.1 m "
+          "boxes placed near the robot; the share of the queries in collision in brackets:\n")
+    print("| robot | obstacles | FK | FK + FCL | FK + GJK | GJK / FCL |")
+    print("|---|---|---|---|---|---|")
+    for r, name in enumerate(ROBOTS):
+        for n in (1, 3, 10, 100):
+            key = (("obstacles", n), ("robot", r))
+            fcl = runs.get(("BM_Check<FclChecker>", key))
+            gjk = runs.get(("BM_Check<GjkChecker>", key))
+            if not fcl or not gjk:
+                continue
+            print(f"| {name} | {n} | {ns(fk[r]):.0f} | {ns(fcl):.0f} ({fcl['in_collision']:.0%}) | "
+                  f"{ns(gjk):.0f} ({gjk['in_collision']:.0%}) | {ns(gjk) / ns(fcl):.1f}x |")
+    print()
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     context, runs = load(sys.argv[1])
     print(f"Machine: {context.get('num_cpus')} CPUs at {context.get('mhz_per_cpu')} MHz; "
           f"run {context.get('date')}.\n")
+    geometry_table(runs)
+    if not any(f == "BM_Train" for f, _ in runs):
+        return
 
     train = defaultdict(dict)
     for (family, args), b in runs.items():

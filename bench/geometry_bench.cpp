@@ -1,0 +1,96 @@
+// Time per exact check for each shipped robot: forward kinematics alone, FK + FCL, FK + GJK,
+// against 1, 3, 10 and 100 obstacles. Compare within a run (scripts/bench_table.py).
+
+#include <benchmark/benchmark.h>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/robot_library.h"
+
+namespace fastron {
+namespace {
+
+const std::vector<std::string> kRobots{"rod2", "rod4", "baxter", "ur3", "panda", "psm"};
+
+// n boxes of 0.1 m, each within 0.25 m of a moving link of the robot at a random
+// configuration, and none touching the robot's fixed geometry (which would put every
+// configuration in collision). Seeded.
+Scene boxesNearTheRobot(const Robot& robot, std::size_t n) {
+  Rng rng(11);
+  KinematicsData a = makeKinematicsData(robot), b = makeKinematicsData(robot);
+  const Configurations two = uniformConfigurations(robot.limits(), 2, rng);
+  forwardKinematics(robot, two.row(0).data(), a);
+  forwardKinematics(robot, two.row(1).data(), b);
+  std::vector<std::size_t> moving;
+  std::vector<ConvexBody> fixed;
+  for (std::size_t s = 0; s < robot.shapes().size(); ++s) {
+    if (shapePose(robot, a, s).isApprox(shapePose(robot, b, s))) {
+      fixed.push_back(ConvexBody::from(robot.shapes()[s].shape));
+      fixed.back().pose = shapePose(robot, a, s);
+    } else {
+      moving.push_back(s);
+    }
+  }
+  std::uniform_real_distribution<double> offset(-0.25, 0.25);
+  std::uniform_int_distribution<std::size_t> pick(0, moving.size() - 1);
+  Scene scene;
+  while (scene.size() < n) {
+    const Configurations q = uniformConfigurations(robot.limits(), 1, rng);
+    forwardKinematics(robot, q.data(), a);
+    const Eigen::Vector3d near = shapePose(robot, a, moving[pick(rng)]).translation();
+    const Box box{Eigen::Vector3d::Constant(0.1)};
+    ConvexBody body = ConvexBody::from(box);
+    body.pose = makePose(near + Eigen::Vector3d(offset(rng), offset(rng), offset(rng)));
+    bool touchesFixed = false;
+    for (const ConvexBody& f : fixed) touchesFixed = touchesFixed || gjkIntersect(body, f);
+    if (!touchesFixed)
+      scene.add({"box" + std::to_string(scene.size()), box, body.pose, std::nullopt});
+  }
+  return scene;
+}
+
+Configurations queries(const Robot& robot) {
+  Rng rng(12);
+  return uniformConfigurations(robot.limits(), 1024, rng);
+}
+
+void BM_ForwardKinematics(benchmark::State& state) {
+  const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
+  const Configurations q = queries(robot);
+  KinematicsData data = makeKinematicsData(robot);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    forwardKinematics(robot, q.row(static_cast<Eigen::Index>(i)).data(), data);
+    benchmark::DoNotOptimize(data.linkPoses.data());
+    i = (i + 1) % 1024;
+  }
+  state.SetLabel(robot.name());
+}
+BENCHMARK(BM_ForwardKinematics)->DenseRange(0, 5)->ArgName("robot");
+
+template <class Checker>
+void BM_Check(benchmark::State& state) {
+  const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
+  const auto obstacles = static_cast<std::size_t>(state.range(1));
+  const Checker checker(robot, boxesNearTheRobot(robot, obstacles));
+  const Configurations q = queries(robot);
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    hits += checker.inCollision({q.row(static_cast<Eigen::Index>(i)).data(), robot.dof()});
+    i = (i + 1) % 1024;
+  }
+  state.SetLabel(robot.name());
+  state.counters["in_collision"] =
+      static_cast<double>(hits) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_Check<FclChecker>)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
+    ->ArgNames({"robot", "obstacles"});
+BENCHMARK(BM_Check<GjkChecker>)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
+    ->ArgNames({"robot", "obstacles"});
+
+}  // namespace
+}  // namespace fastron

@@ -1,0 +1,101 @@
+// Exact checkers called from many threads while the scene is replaced (runs under ThreadSanitizer
+// in ./dev.sh test): every check answers for one whole scene, old or new.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/robot_library.h"
+#include "fastron/proxy/labelling.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+
+namespace fastron {
+namespace {
+
+Scene ballAt(double y) {
+  Scene scene;
+  scene.add({"ball", Sphere{0.1}, makePose({0.3, y, 0}), std::nullopt});
+  return scene;
+}
+
+template <class Checker>
+void checkWhileTheSceneChanges() {
+  const Robot rod = loadRobot("rod2");
+  // The ball sits either on the rod at q = (0, 0) or far away: each answer belongs to one scene.
+  Checker checker(rod, ballAt(0));
+  const std::vector<double> q{0, 0};
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> hits{0}, misses{0};
+  auto worker = [&] {
+    while (!done) (checker.inCollision(q) ? hits : misses)++;
+  };
+  {
+    std::jthread a(worker), b(worker);
+    for (int i = 0; i < 200; ++i) checker.setScene(ballAt(i % 2 == 0 ? 2.0 : 0.0));
+    done = true;
+  }
+  EXPECT_GT(hits + misses, 0u);
+  checker.setScene(ballAt(2.0));
+  EXPECT_FALSE(checker.inCollision(q));
+}
+
+TEST(CheckerConcurrency, FclChecksDuringSceneUpdates) {
+  checkWhileTheSceneChanges<FclChecker>();
+}
+TEST(CheckerConcurrency, GjkChecksDuringSceneUpdates) {
+  checkWhileTheSceneChanges<GjkChecker>();
+}
+
+TEST(CheckerConcurrency, ParallelLabellingEqualsSerial) {
+  const Robot baxter = loadRobot("baxter");
+  Scene scene;
+  scene.add({"box", Box{Eigen::Vector3d::Constant(0.3)}, makePose({0.6, -0.6, 0.2}), std::nullopt});
+  const FclChecker fcl(baxter, scene, {.selfCollision = true});
+  Rng rng(1);
+  const Configurations q = uniformConfigurations(baxter.limits(), 2000, rng);
+  EXPECT_EQ(labelConfigurations(fcl, q, 4), labelConfigurations(fcl, q, 1));
+}
+
+// The paper's pipeline on a real robot: the proxy learns Baxter's C-space from FCL while the box
+// moves, updating in the background as the scene is replaced under the checker.
+TEST(CheckerConcurrency, ProxyLearnsFromFclWhileTheBoxMoves) {
+  Robot baxter = loadRobot("baxter");
+  baxter.setActuatedJoints({"right_s0", "right_s1", "right_e0", "right_e1"});
+  Scene scene;
+  scene.add({"box", Box{Eigen::Vector3d::Constant(0.2)}, makePose({0.6, -0.6, 0.2}),
+             RandomWalk{0.01, 0.04,
+                        Eigen::AlignedBox3d(Eigen::Vector3d(0.3, -1.0, -0.2),
+                                            Eigen::Vector3d(1.0, -0.2, 0.6)),
+                        3}});
+  auto fcl = std::make_shared<FclChecker>(baxter, scene);
+  ProxyParams params;
+  params.train.kernel.gamma = 10;
+  params.train.beta = 100;
+  params.activeLearning.maxSamples = 300;
+  ProxyCollisionDetector proxy(fcl, baxter.limits(), params);
+  proxy.initialize(1500);
+  std::atomic<int> steps{0};
+  proxy.startBackground([&](const StepReport&) { ++steps; });
+  while (steps < 5) {
+    scene.step();
+    fcl->setScene(scene);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  proxy.stopBackground();
+  proxy.step();  // one synchronous step on the final scene
+  Rng rng(2);
+  const Configurations test = uniformConfigurations(baxter.limits(), 1000, rng);
+  const Labels truth = labelConfigurations(*fcl, test);
+  const Eigen::VectorXd scores = proxy.model()->scoreBatch(test);
+  std::size_t correct = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i)
+    correct += (scores[static_cast<Eigen::Index>(i)] > 0) == (truth[i] > 0);
+  EXPECT_GT(static_cast<double>(correct) / static_cast<double>(truth.size()), 0.85);
+}
+
+}  // namespace
+}  // namespace fastron
