@@ -133,6 +133,31 @@ TEST_F(Urdf, MeshesThroughPackageUrisRelativePathsAndSearchPaths) {
               HasSubstr("link 'arm': mesh 'package://my_robot/meshes/cube.obj' not found"));
 }
 
+TEST_F(Urdf, ReadsAsciiStl) {
+  write("tri.stl", R"(solid t
+facet normal 0 0 1
+ outer loop
+  vertex 0 0 0
+  vertex 1 0 0
+  vertex 0 1 0
+ endloop
+endfacet
+facet normal 0 -1 0
+ outer loop
+  vertex 0 0 0
+  vertex 0 0 1
+  vertex 1 0 0
+ endloop
+endfacet
+endsolid t
+)");
+  write("robot.urdf", urdf(R"(<collision><geometry><mesh filename="tri.stl" scale="0.5 0.5 0.5"/></geometry></collision>)"));
+  const Robot robot = loadUrdf(path("robot.urdf"));
+  const auto& mesh = std::get<Mesh>(robot.shapes()[0].shape).mesh;
+  EXPECT_EQ(mesh->triangles.size(), 2u);
+  EXPECT_NEAR(boundingRadius(robot.shapes()[0].shape), 0.5, 1e-6);
+}
+
 TEST_F(Urdf, MeshFileThatIsNotAMesh) {
   write("broken.stl", "solid nothing\nthis is not an stl file\n");
   write("robot.urdf",

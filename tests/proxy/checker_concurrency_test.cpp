@@ -35,10 +35,13 @@ void checkWhileTheSceneChanges() {
   };
   {
     std::jthread a(worker), b(worker);
-    for (int i = 0; i < 200; ++i) checker.setScene(ballAt(i % 2 == 0 ? 2.0 : 0.0));
+    // Swap scenes until the workers have checked a good number of times during the swaps.
+    for (int i = 0; i < 200 || hits + misses < 2000; ++i)
+      checker.setScene(ballAt(i % 2 == 0 ? 2.0 : 0.0));
     done = true;
   }
-  EXPECT_GT(hits + misses, 0u);
+  EXPECT_GT(hits.load(), 0u);  // both scenes were seen
+  EXPECT_GT(misses.load(), 0u);
   checker.setScene(ballAt(2.0));
   EXPECT_FALSE(checker.inCollision(q));
 }
