@@ -151,7 +151,10 @@ facet normal 0 -1 0
 endfacet
 endsolid t
 )");
-  write("robot.urdf", urdf(R"(<collision><geometry><mesh filename="tri.stl" scale="0.5 0.5 0.5"/></geometry></collision>)"));
+  write(
+      "robot.urdf",
+      urdf(
+          R"(<collision><geometry><mesh filename="tri.stl" scale="0.5 0.5 0.5"/></geometry></collision>)"));
   const Robot robot = loadUrdf(path("robot.urdf"));
   const auto& mesh = std::get<Mesh>(robot.shapes()[0].shape).mesh;
   EXPECT_EQ(mesh->triangles.size(), 2u);
