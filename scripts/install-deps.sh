@@ -11,6 +11,8 @@ packages=(
   # geometry: robots, meshes, scenes, exact collision checking
   liburdfdom-dev libtinyxml-dev libconsole-bridge-dev libassimp-dev libyaml-cpp-dev
   libfcl-dev libccd-dev liboctomap-dev
+  # baselines
+  libsvm-dev
   # command line, tests, benchmarks
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # plots (scripts/*.py run with /usr/bin/python3)
