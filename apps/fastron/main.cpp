@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   fastron::cli::addDemoCommand(app, exitCode);
   fastron::cli::addCheckCommand(app, exitCode);
   fastron::cli::addRobotsCommand(app, exitCode);
+  fastron::cli::addBenchCommand(app, exitCode);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,58 @@
+#pragma once
+// What every experiment shares: progress reports, statistics, timing, tables, random scenes.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fastron/core/types.h"
+#include "fastron/geometry/collision_checker.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
+
+namespace fastron {
+
+/// Called with a line of progress; the command prints it, the library never does.
+using Progress = std::function<void(std::string_view)>;
+
+struct Summary {
+  double mean = 0, stddev = 0;
+  std::size_t count = 0;
+};
+/// Mean and sample standard deviation, ignoring NaN values.
+Summary summarize(const std::vector<double>& values);
+/// "12.3 ± 4.5" with `digits` decimals.
+std::string meanStd(const Summary& s, int digits);
+/// A duration in seconds as "mean ± std unit" with a unit chosen for the mean (ns, µs, ms, s).
+std::string durationMeanStd(const Summary& seconds);
+
+/// A table of text cells with a header: written as CSV, read back by the plot scripts.
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+
+  void add(std::vector<std::string> row);
+  using Filter = std::vector<std::pair<std::string, std::string>>;
+  /// Values of one column, as numbers, of the rows whose cells equal every (column, value) of
+  /// `where`.
+  std::vector<double> numbers(const std::string& column, const Filter& where = {}) const;
+  /// The distinct values of a column, in order of appearance.
+  std::vector<std::string> distinct(const std::string& column, const Filter& where = {}) const;
+  std::size_t index(const std::string& column) const;
+  void writeCsv(const std::filesystem::path& path) const;
+};
+
+/// Formats a number for a CSV cell (full precision, "nan" for NaN).
+std::string cell(double value);
+
+/// Mean seconds per call of `fn` on each row of q, over at least `minSeconds` (whole passes).
+double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,
+                          double minSeconds = 0.05);
+
+/// Up to `maxCubes` cubes (at least one) of random size in [minSide, maxSide], centred in the
+/// upper half of the ball of radius `reach` around the robot's base, and clear of the base.
+Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double reach, Rng& rng);
+
+}  // namespace fastron

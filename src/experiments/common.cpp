@@ -1,0 +1,149 @@
+#include "fastron/experiments/common.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+
+Summary summarize(const std::vector<double>& values) {
+  Summary s;
+  double sum = 0, squares = 0;
+  for (const double v : values) {
+    if (std::isnan(v)) continue;
+    sum += v;
+    ++s.count;
+  }
+  if (s.count == 0) return {std::nan(""), std::nan(""), 0};
+  s.mean = sum / static_cast<double>(s.count);
+  for (const double v : values) {
+    if (!std::isnan(v)) squares += (v - s.mean) * (v - s.mean);
+  }
+  s.stddev = s.count > 1 ? std::sqrt(squares / static_cast<double>(s.count - 1)) : 0.0;
+  return s;
+}
+
+std::string meanStd(const Summary& s, int digits) {
+  if (s.count == 0) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", digits, s.mean, digits, s.stddev);
+  return buffer;
+}
+
+std::string durationMeanStd(const Summary& seconds) {
+  if (seconds.count == 0) return "n/a";
+  struct Unit {
+    double scale;
+    const char* name;
+  };
+  const Unit unit = seconds.mean < 1e-6   ? Unit{1e9, "ns"}
+                    : seconds.mean < 1e-3 ? Unit{1e6, "µs"}
+                    : seconds.mean < 1    ? Unit{1e3, "ms"}
+                                          : Unit{1, "s"};
+  const int digits = seconds.mean * unit.scale < 10 ? 2 : 1;
+  return meanStd({seconds.mean * unit.scale, seconds.stddev * unit.scale, seconds.count}, digits) +
+         " " + unit.name;
+}
+
+void Table::add(std::vector<std::string> row) {
+  if (row.size() != columns.size())
+    throw InvalidArgument("table row has the wrong number of cells");
+  rows.push_back(std::move(row));
+}
+
+std::size_t Table::index(const std::string& column) const {
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (columns[i] == column) return i;
+  }
+  throw InvalidArgument("table has no column '" + column + "'");
+}
+
+namespace {
+
+bool matches(const Table& t, const std::vector<std::string>& row, const Table::Filter& where) {
+  for (const auto& [column, value] : where) {
+    if (row[t.index(column)] != value) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<double> Table::numbers(const std::string& column, const Filter& where) const {
+  const std::size_t c = index(column);
+  std::vector<double> values;
+  for (const auto& row : rows) {
+    if (matches(*this, row, where))
+      values.push_back(row[c] == "nan" ? std::nan("") : std::stod(row[c]));
+  }
+  return values;
+}
+
+std::vector<std::string> Table::distinct(const std::string& column, const Filter& where) const {
+  const std::size_t c = index(column);
+  std::vector<std::string> values;
+  for (const auto& row : rows) {
+    if (matches(*this, row, where) &&
+        std::find(values.begin(), values.end(), row[c]) == values.end())
+      values.push_back(row[c]);
+  }
+  return values;
+}
+
+void Table::writeCsv(const std::filesystem::path& path) const {
+  std::ofstream out(path);
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << '\n';
+  for (const auto& row : rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+    out << '\n';
+  }
+  out.close();
+  if (!out) throw FileError(path.string() + ": cannot write");
+}
+
+std::string cell(double value) {
+  if (std::isnan(value)) return "nan";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value);
+  return buffer;
+}
+
+double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,
+                          double minSeconds) {
+  using Clock = std::chrono::steady_clock;
+  std::size_t calls = 0;
+  volatile bool sink = false;
+  const auto start = Clock::now();
+  do {
+    for (Eigen::Index i = 0; i < q.rows(); ++i) sink = fn(q.row(i).data());
+    calls += static_cast<std::size_t>(q.rows());
+  } while (std::chrono::duration<double>(Clock::now() - start).count() < minSeconds &&
+           q.rows() > 0);
+  return calls == 0 ? std::nan("")
+                    : std::chrono::duration<double>(Clock::now() - start).count() /
+                          static_cast<double>(calls);
+}
+
+Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double reach, Rng& rng) {
+  std::uniform_int_distribution<std::size_t> count(1, maxCubes);
+  std::uniform_real_distribution<double> side(minSide, maxSide), unit(-1.0, 1.0),
+      yaw(-3.14159, 3.14159);
+  Scene scene;
+  const std::size_t n = count(rng);
+  while (scene.size() < n) {
+    const double s = side(rng);
+    const Eigen::Vector3d c(reach * unit(rng), reach * unit(rng), reach * std::abs(unit(rng)));
+    // In reach, and clear of the base: a cube holding the base would fill the whole C-space.
+    if (c.norm() > reach || c.norm() < s * 0.87 + 0.08) continue;
+    scene.add({"cube" + std::to_string(scene.size() + 1), Box{Eigen::Vector3d::Constant(s)},
+               makePose(c, {0, 0, yaw(rng)}), std::nullopt});
+  }
+  return scene;
+}
+
+}  // namespace fastron

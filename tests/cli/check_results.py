@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""Checks the results of `fastron bench NAME --quick` for shape and sane values.
+
+Usage: check_results.py NAME OUTPUT_DIR; exits non-zero with a message naming the problem.
+"""
+import csv
+import math
+import sys
+from pathlib import Path
+
+
+def fail(message):
+    sys.exit(f"check_results: {message}")
+
+
+def rows_of(out):
+    with open(out / "results.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        fail("results.csv has no rows")
+    return rows
+
+
+def value(row, key):
+    text = row[key]
+    return math.nan if text == "nan" else float(text)
+
+
+def rate_columns(rows, keys):
+    for row in rows:
+        for key in keys:
+            v = value(row, key)
+            if not math.isnan(v) and not 0.0 <= v <= 1.0:
+                fail(f"{key} = {v} is not a rate in [0, 1]: {row}")
+
+
+def check_static(rows):
+    rate_columns(rows, ["accuracy", "tpr", "tnr", "cobs_fraction"])
+    methods = {r["method"] for r in rows}
+    expected = {"Fastron", "ISVM", "SSVM", "LIBSVM", "FK+GJK", "FK+FCL"}
+    if methods != expected:
+        fail(f"methods {sorted(methods)}, expected {sorted(expected)}")
+    for dof in {r["dof"] for r in rows}:
+        def mean(method, key):
+            values = [value(r, key) for r in rows if r["dof"] == dof and r["method"] == method]
+            return sum(values) / len(values)
+        if mean("FK+FCL", "accuracy") != 1.0:
+            fail("FCL disagrees with its own labels")
+        if not mean("Fastron", "train_s") < mean("SSVM", "train_s"):
+            fail(f"{dof} DOF: Fastron trained slower than SSVM")
+        if not mean("Fastron", "query_s") < mean("FK+FCL", "query_s"):
+            fail(f"{dof} DOF: Fastron queried slower than FK+FCL")
+        if mean("Fastron", "accuracy") < 0.75:
+            fail(f"{dof} DOF: Fastron accuracy {mean('Fastron', 'accuracy')}")
+
+
+def check_sweep(rows, parameter):
+    rate_columns(rows, ["accuracy", "tpr", "tnr"])
+    values = sorted({float(r[parameter]) for r in rows})
+    if len(values) < 5:
+        fail(f"only {len(values)} values of {parameter}")
+    for row in rows:
+        if not 0 < value(row, "support_ratio") <= 1:
+            fail(f"support_ratio out of (0, 1]: {row}")
+
+
+def main():
+    name, out = sys.argv[1], Path(sys.argv[2])
+    rows = rows_of(out)
+    report = (out / "report.md").read_text()
+    if "|---|" not in report:
+        fail("report.md has no table")
+    if name == "static":
+        check_static(rows)
+    elif name.startswith("static-"):
+        check_sweep(rows, name.split("-")[1])
+    else:
+        fail(f"no checks for '{name}'")
+    print(f"{name}: {len(rows)} result rows look sane")
+
+
+if __name__ == "__main__":
+    main()
