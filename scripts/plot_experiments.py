@@ -77,6 +77,60 @@ def plot_sweep(rows, out, parameter):
     fig.savefig(out / f"static-{parameter}.png", dpi=110)
 
 
+def plot_cspace(out):
+    """The paper's Fig. 7: one row per environment: the cubes seen from above, then the exact
+    C-space and the ones Fastron, ISVM and SSVM learn, with their support points."""
+    grid = read(out / "grid.csv")
+    support = read(out / "support.csv")
+    cubes = read(out / "cubes.csv")
+    envs = list(dict.fromkeys(r["environment"] for r in grid))
+    methods = ["truth", "Fastron", "ISVM", "SSVM"]
+    titles = {"truth": "FK + FCL (exact)", "Fastron": "Fastron", "ISVM": "ISVM", "SSVM": "SSVM"}
+    fig, axes = plt.subplots(len(envs), 5, figsize=(17, 3.5 * len(envs)), squeeze=False)
+    for row, env in zip(axes, envs):
+        cells = [r for r in grid if r["environment"] == env]
+        n = int(round(len(cells) ** 0.5))
+        x1 = np.array([float(r["x1"]) for r in cells]).reshape(n, n)
+        x2 = np.array([float(r["x2"]) for r in cells]).reshape(n, n)
+        ws = row[0]
+        ws.add_patch(plt.Circle((0, 0), 0.53, fill=False, ls="--", color="0.5"))
+        for c in (c for c in cubes if c["environment"] == env):
+            side, yaw = float(c["side"]), float(c["yaw"])
+            corner = np.array([float(c["x"]), float(c["y"])]) - side / 2 * np.array(
+                [np.cos(yaw) - np.sin(yaw), np.sin(yaw) + np.cos(yaw)])
+            ws.add_patch(plt.Rectangle(corner, side, side, angle=np.degrees(yaw), color="tab:orange", alpha=0.8))
+        ws.set_xlim(-0.7, 0.7)
+        ws.set_ylim(-0.7, 0.7)
+        ws.set_aspect("equal")
+        ws.set_title(f"Environment {int(env) + 1}: cubes from above")
+        ws.set_xlabel("x (m)")
+        ws.set_ylabel("y (m)")
+        for ax, method in zip(row[1:], methods):
+            values = np.array([float(r[method]) for r in cells]).reshape(n, n)
+            ax.contourf(x1, x2, values, levels=[0.5 if method == "truth" else 0, np.inf], colors=["0.55"])
+            ax.contour(x1, x2, values, levels=[0.5 if method == "truth" else 0], colors=["k"], linewidths=0.8)
+            if method != "truth":
+                pts = [r for r in support if r["environment"] == env and r["method"] == method]
+                pos = [(float(p["x1"]), float(p["x2"])) for p in pts if float(p["weight"]) > 0]
+                neg = [(float(p["x1"]), float(p["x2"])) for p in pts if float(p["weight"]) <= 0]
+                if pos:
+                    ax.scatter(*zip(*pos), s=9, c="tab:red", label="support, in collision")
+                if neg:
+                    ax.scatter(*zip(*neg), s=9, c="tab:blue", label="support, free")
+                ax.set_title(f"{titles[method]} ({len(pts)} support points)")
+            else:
+                ax.set_title(titles[method])
+            ax.set_xlim(-1, 1)
+            ax.set_ylim(-1, 1)
+            ax.set_aspect("equal")
+            ax.set_xlabel("yaw (scaled to [-1, 1])")
+            ax.set_ylabel("pitch (scaled)")
+    handles, labels = axes[0][2].get_legend_handles_labels()
+    fig.legend(handles + [plt.Rectangle((0, 0), 1, 1, color="0.55")], labels + ["C_obs"], loc="lower center", ncol=3)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    fig.savefig(out / "cspace.png", dpi=100)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -86,6 +140,8 @@ def main():
         plot_static(rows, out)
     elif name in ("static-beta", "static-gamma"):
         plot_sweep(rows, out, name.split("-")[1])
+    elif name == "cspace":
+        plot_cspace(out)
     else:
         sys.exit(f"no plot for '{name}'")
 

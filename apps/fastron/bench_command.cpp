@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
+#include "fastron/experiments/cspace_experiment.h"
 #include "fastron/experiments/static_experiment.h"
 #include "plotting.h"
 
@@ -48,6 +49,14 @@ int runBench(const BenchOptions& o) {
     const std::string parameter = o.name.substr(7);
     results = runStaticSweep(options, parameter, progress);
     report = staticSweepReport(results, parameter, options);
+  } else if (o.name == "cspace") {
+    const CspaceOptions cspace{o.trials ? o.trials : (o.quick ? 1u : 3u), o.seed, o.quick};
+    const CspaceResults r = runCspace(cspace, progress);
+    results = r.summary;
+    r.grid.writeCsv(dir / "grid.csv");
+    r.support.writeCsv(dir / "support.csv");
+    r.cubes.writeCsv(dir / "cubes.csv");
+    report = cspaceReport(r, cspace);
   } else {
     throw InvalidArgument("unknown experiment '" + o.name + "'");
   }
@@ -69,9 +78,9 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Run one of the paper's experiments");
-  cmd->add_option("name", o->name, "static, static-beta, static-gamma")
+  cmd->add_option("name", o->name, "static, static-beta, static-gamma, cspace")
       ->required()
-      ->check(CLI::IsMember({"static", "static-beta", "static-gamma"}));
+      ->check(CLI::IsMember({"static", "static-beta", "static-gamma", "cspace"}));
   cmd->add_option("--trials", o->trials,
                   "trials (random environments); default: the experiment's own");
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();

@@ -3,99 +3,83 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "fastron/core/error.h"
 
 namespace fastron {
 namespace {
 
-double violationAt(double gradient, double x, double upper) {
-  if (x <= 0) return std::max(-gradient, 0.0);
-  if (x >= upper) return std::max(gradient, 0.0);
-  return std::abs(gradient);
-}
-
-double violation(const Eigen::VectorXd& gradient, const Eigen::VectorXd& x, double upper) {
-  double worst = 0;
-  for (Eigen::Index i = 0; i < x.size(); ++i)
-    worst = std::max(worst, violationAt(gradient[i], x[i], upper));
-  return worst;
+// Largest step in (0, 1] keeping v + s dv > 0, shortened to 99% of the way to the boundary.
+double stepToBoundary(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
+  double step = 1.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (dv[i] < 0) step = std::min(step, -0.99 * v[i] / dv[i]);
+  }
+  return step;
 }
 
 }  // namespace
 
-double boxQpViolation(const Eigen::MatrixXd& B, const Eigen::VectorXd& c, double upper,
-                      const Eigen::VectorXd& x) {
-  return violation(B.transpose() * (B * x) - c, x, upper);
-}
-
 BoxQpResult solveBoxQp(const Eigen::MatrixXd& B, const Eigen::VectorXd& c, double upper,
-                       double tolerance, std::size_t maxIterations, Eigen::VectorXd start) {
-  const Eigen::Index n = c.size();
-  if (B.cols() != n || start.size() != n) throw InvalidArgument("box QP: inconsistent sizes");
-  if (!(upper > 0)) throw InvalidArgument("box QP: the upper bound must be positive");
-  auto project = [upper](const Eigen::VectorXd& v) {
-    return Eigen::VectorXd(v.cwiseMax(0.0).cwiseMin(upper));
-  };
-  auto objective = [&](const Eigen::VectorXd& x) { return 0.5 * (B * x).squaredNorm() - c.dot(x); };
+                       double tolerance, std::size_t maxIterations) {
+  const Eigen::Index n = c.size(), m = B.rows();
+  if (B.cols() != n)
+    throw InvalidArgument("box QP: B has " + std::to_string(B.cols()) + " columns for " +
+                          std::to_string(n) + " variables");
+  if (!(upper > 0) || !std::isfinite(upper))
+    throw InvalidArgument("box QP: the upper bound must be positive");
+  const bool woodbury = m < n;
+  const Eigen::MatrixXd H = woodbury ? Eigen::MatrixXd() : Eigen::MatrixXd(B.transpose() * B);
 
-  BoxQpResult result;
-  result.x = project(start);
-  const Eigen::VectorXd diagonal = B.colwise().squaredNorm().transpose();
-  for (result.iterations = 0; result.iterations < maxIterations; ++result.iterations) {
-    const Eigen::VectorXd g = B.transpose() * (B * result.x) - c;
-    result.violation = violation(g, result.x, upper);
-    if (result.violation <= tolerance) {
-      result.converged = true;
-      return result;
+  BoxQpResult r;
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(n, upper / 2);
+  Eigen::VectorXd z = Eigen::VectorXd::Ones(n), w = Eigen::VectorXd::Ones(n);
+  constexpr double kCentring = 0.1;
+  for (r.iterations = 0; r.iterations < maxIterations; ++r.iterations) {
+    const Eigen::VectorXd s = Eigen::VectorXd::Constant(n, upper) - x;
+    const Eigen::VectorXd gradient = B.transpose() * (B * x) - c;
+    const Eigen::VectorXd residual = gradient - z + w;
+    r.stationarity = residual.cwiseAbs().maxCoeff();
+    r.complementarity = std::max(x.cwiseProduct(z).maxCoeff(), s.cwiseProduct(w).maxCoeff());
+    if (r.stationarity <= tolerance && r.complementarity <= tolerance) {
+      r.converged = true;
+      break;
     }
-    // Bounds within eps of binding whose gradient pushes outwards stay fixed (Bertsekas' eps-active
-    // set, with eps the size of the projected-gradient step).
-    const double eps =
-        std::min(1e-3 * upper, (result.x - project(result.x - g)).cwiseAbs().maxCoeff());
-    std::vector<Eigen::Index> free;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const bool atLower = result.x[i] <= eps && g[i] > 0;
-      const bool atUpper = result.x[i] >= upper - eps && g[i] < 0;
-      if (!atLower && !atUpper) free.push_back(i);
+    const double mu = (x.dot(z) + s.dot(w)) / static_cast<double>(2 * n);
+    const double target = kCentring * mu;
+    // (H + D) dx = rhs, with D = Z/X + W/S from eliminating dz and dw.
+    const Eigen::VectorXd d = z.cwiseQuotient(x) + w.cwiseQuotient(s);
+    const Eigen::VectorXd rhs = -residual + (target / x.array() - z.array()).matrix() -
+                                (target / s.array() - w.array()).matrix();
+    Eigen::VectorXd dx;
+    if (woodbury) {
+      // (D + B^T B)^-1 = D^-1 - D^-1 B^T (I + B D^-1 B^T)^-1 B D^-1
+      const Eigen::VectorXd dinv = d.cwiseInverse();
+      const Eigen::MatrixXd scaled = B * dinv.asDiagonal();
+      Eigen::MatrixXd small = scaled * B.transpose();
+      small.diagonal().array() += 1.0;
+      const Eigen::VectorXd t = dinv.cwiseProduct(rhs);
+      dx = t - dinv.cwiseProduct(B.transpose() * small.llt().solve(B * t));
+    } else {
+      Eigen::MatrixXd system = H;
+      system.diagonal() += d;
+      dx = system.llt().solve(rhs);
     }
-    // Direction: Newton on the free variables, diagonally scaled gradient on the fixed ones.
-    Eigen::VectorXd d(n);
-    for (Eigen::Index i = 0; i < n; ++i) d[i] = -g[i] / std::max(diagonal[i], 1e-12);
-    if (!free.empty()) {
-      const auto f = static_cast<Eigen::Index>(free.size());
-      Eigen::MatrixXd Bf(B.rows(), f);
-      Eigen::VectorXd gf(f);
-      for (Eigen::Index k = 0; k < f; ++k) {
-        Bf.col(k) = B.col(free[static_cast<std::size_t>(k)]);
-        gf[k] = g[free[static_cast<std::size_t>(k)]];
-      }
-      Eigen::MatrixXd Hf = Bf.transpose() * Bf;
-      // A ridge relative to the diagonal keeps the factorisation defined where H_FF is singular.
-      Hf.diagonal().array() += 1e-10 * (Hf.diagonal().maxCoeff() + 1e-300);
-      const Eigen::VectorXd step = Hf.ldlt().solve(-gf);
-      if (step.allFinite()) {
-        for (Eigen::Index k = 0; k < f; ++k) d[free[static_cast<std::size_t>(k)]] = step[k];
-      }
-    }
-    // Armijo search along the projection arc x(s) = P(x + s d).
-    const double current = objective(result.x);
-    bool accepted = false;
-    for (double s = 1.0; s > 1e-12; s *= 0.5) {
-      const Eigen::VectorXd candidate = project(result.x + s * d);
-      const double predicted = g.dot(result.x - candidate);  // first-order decrease
-      if (predicted > 0 && objective(candidate) <= current - 1e-4 * predicted) {
-        result.x = candidate;
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;  // no further decrease is representable
+    const Eigen::VectorXd dz = ((target - (x.cwiseProduct(z)).array()) / x.array()).matrix() -
+                               z.cwiseQuotient(x).cwiseProduct(dx);
+    const Eigen::VectorXd dw = ((target - (s.cwiseProduct(w)).array()) / s.array()).matrix() +
+                               w.cwiseQuotient(s).cwiseProduct(dx);
+    const double step = std::min({stepToBoundary(x, dx), stepToBoundary(s, -dx),
+                                  stepToBoundary(z, dz), stepToBoundary(w, dw)});
+    if (!(step > 0) || !dx.allFinite()) break;
+    x += step * dx;
+    z += step * dz;
+    w += step * dw;
   }
-  result.violation = boxQpViolation(B, c, upper, result.x);
-  result.converged = result.violation <= tolerance;
-  return result;
+  r.x = std::move(x);
+  r.lowerDual = std::move(z);
+  r.upperDual = std::move(w);
+  return r;
 }
 
 }  // namespace fastron

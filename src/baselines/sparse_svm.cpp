@@ -7,7 +7,6 @@
 #include "fastron/core/error.h"
 
 namespace fastron {
-
 SsvmClassifier::SsvmClassifier(JointLimits limits, Kernel kernel, SparseSvmParams params)
     : limits_(std::move(limits)), kernel_(kernel), params_(params) {
   validate(kernel_);
@@ -38,14 +37,11 @@ void SsvmClassifier::train(const Configurations& q, std::span<const std::int8_t>
   }
 
   Eigen::VectorXd alpha = Eigen::VectorXd::Ones(n + 1);
-  Eigen::VectorXd beta = Eigen::VectorXd::Zero(n);
-  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
   report_ = {};
   auto nonzeros = [](const Eigen::VectorXd& v) { return (v.array() != 0).count(); };
   bool shrinking = false;
   for (report_.iterations = 1; report_.iterations <= params_.maxIterations; ++report_.iterations) {
-    // H = Kbar^T A^2 Kbar = B^T B with B = A Kbar over the rows with nonzero alpha (the others
-    // contribute nothing); the QP works with the factor B.
+    // B = A Kbar over the rows with nonzero alpha (the others contribute nothing to H).
     std::vector<Eigen::Index> rows;
     for (Eigen::Index i = 0; i <= n; ++i) {
       if (alpha[i] != 0) rows.push_back(i);
@@ -53,15 +49,17 @@ void SsvmClassifier::train(const Configurations& q, std::span<const std::int8_t>
     Eigen::MatrixXd B(static_cast<Eigen::Index>(rows.size()), n);
     for (std::size_t r = 0; r < rows.size(); ++r)
       B.row(static_cast<Eigen::Index>(r)) = alpha[rows[r]] * kbar.row(rows[r]);
-    const BoxQpResult qp =
-        solveBoxQp(B, ones, params_.C, params_.qpTolerance, params_.qpMaxIterations, beta);
-    beta = qp.x;
+    const BoxQpResult qp = solveBoxQp(B, Eigen::VectorXd::Ones(n), params_.C, params_.qpTolerance);
     report_.qpIterations += qp.iterations;
-    report_.qpViolation = qp.violation;
     report_.qpConverged = report_.qpConverged && qp.converged;
+    report_.qpStationarity = qp.stationarity;
+    report_.qpComplementarity = qp.complementarity;
+    const Eigen::VectorXd w = B * qp.x;
 
     const Eigen::VectorXd previous = alpha;
-    alpha = alpha.cwiseAbs2().cwiseProduct(kbar * beta);
+    alpha.setZero();  // alpha = A w on the rows that took part
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      alpha[rows[r]] = previous[rows[r]] * w[static_cast<Eigen::Index>(r)];
     const double threshold = params_.zeroThreshold * alpha.cwiseAbs().maxCoeff();
     for (Eigen::Index i = 0; i <= n; ++i) {
       if (std::abs(alpha[i]) < threshold) alpha[i] = 0;

@@ -72,6 +72,11 @@ def main():
         fail("report.md has no table")
     if name == "static":
         check_static(rows)
+    elif name == "cspace":
+        rate_columns(rows, ["grid_accuracy"])
+        for row in rows:
+            if value(row, "grid_accuracy") < 0.8:
+                fail(f"{row['method']} grid accuracy {row['grid_accuracy']}")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:

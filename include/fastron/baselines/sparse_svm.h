@@ -1,8 +1,10 @@
 #pragma once
-// Sparse SVM (Huang et al. 2010) as the paper's Algorithm 4 states: an approximate L0-norm of the
-// weights by an iteratively reweighted L2 norm, each iteration solving the dual box-constrained
-// QP (solveBoxQp), and stopping when the number of support points stops falling (see
-// sparse_svm.cpp for how that rule is read).
+// Sparse SVM (Huang et al. 2010) as the paper's Algorithm 4 states: an approximate L0 norm of the
+// weights by an iteratively reweighted L2 norm.
+//
+// Each iteration solves the dual QP  min_b 1/2 b^T H b - 1^T b, 0 <= b <= C,  with
+// H = Kbar^T A^2 Kbar = B^T B for B = A Kbar over the nonzero weights (solveBoxQp, an
+// interior-point method), then sets alpha = A^2 Kbar b = A (B b).
 
 #include "fastron/baselines/classifier.h"
 #include "fastron/core/joint_limits.h"
@@ -14,14 +16,13 @@ struct SparseSvmParams {
   double C = 10;
   double zeroThreshold = 1e-4;  ///< epsilon: |alpha_i| < epsilon * max|alpha| counts as 0
   std::size_t maxIterations = 30;
-  double qpTolerance = 1e-3;
-  std::size_t qpMaxIterations = 500;
+  double qpTolerance = 1e-3;  ///< LIBLINEAR's stopping tolerance (projected gradient)
 };
 
 struct SparseSvmReport {
   std::size_t iterations = 0, qpIterations = 0;
-  double qpViolation = 0;  ///< KKT violation of the last QP solution
-  bool qpConverged = true;
+  bool qpConverged = true;                           ///< every QP met its KKT tolerance
+  double qpStationarity = 0, qpComplementarity = 0;  ///< of the last QP
 };
 
 class SsvmClassifier final : public Classifier {
@@ -32,6 +33,8 @@ class SsvmClassifier final : public Classifier {
   double score(const double* q) const override { return model_.score(q); }
   std::size_t supportCount() const override { return model_.supportCount(); }
   const SparseSvmReport& report() const { return report_; }
+  const KernelExpansion& expansion() const { return model_; }
+  const SparseSvmParams& params() const { return params_; }
 
  private:
   JointLimits limits_;
