@@ -131,6 +131,59 @@ def plot_cspace(out):
     fig.savefig(out / "cspace.png", dpi=100)
 
 
+def plot_changing(rows, out):
+    """The paper's Figs. 9 and 11: accuracy, TPR and TNR against FCL after every update, per case."""
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    methods = ["Fastron (FCL)", "Fastron (GJK)", "FK+GJK"]
+    fig, axes = plt.subplots(3, len(cases), figsize=(5 * len(cases), 9), squeeze=False, sharex=True)
+    for col, case in enumerate(cases):
+        for row_index, (key, label) in enumerate((("accuracy", "accuracy"), ("tpr", "TPR"), ("tnr", "TNR"))):
+            ax = axes[row_index][col]
+            for method, style in zip(methods, ("-", "--", ":")):
+                by_step = defaultdict(list)
+                for r in rows:
+                    if r["case"] == case and r["method"] == method:
+                        by_step[int(r["step"])].append(number(r[key]))
+                steps = sorted(by_step)
+                ax.plot(steps, [mean_std(by_step[s])[0] for s in steps], style, marker=".", label=method)
+            ax.set_ylim(0.5, 1.01)
+            ax.grid(alpha=0.3)
+            if col == 0:
+                ax.set_ylabel(f"{label} against FCL")
+            if row_index == 0:
+                ax.set_title(case)
+            if row_index == 2:
+                ax.set_xlabel("update (the boxes moved)")
+    axes[0][0].legend(loc="lower left")
+    fig.tight_layout()
+    fig.savefig(out / "changing.png", dpi=100)
+
+
+def plot_sweep_obstacles(rows, out):
+    """The paper's Fig. 12: query time against the number of obstacles and the share of C_obs."""
+    counts = sorted({int(r["obstacles"]) for r in rows})
+    fig, (by_count, by_cobs) = plt.subplots(1, 2, figsize=(13, 4.8))
+    for method, marker in (("Fastron", "o"), ("FK+GJK", "s"), ("FK+FCL", "^")):
+        stats = [mean_std([number(r["query_s"]) * 1e6 for r in rows if r["method"] == method and int(r["obstacles"]) == c])
+                 for c in counts]
+        cobs = [mean_std([number(r["cobs_fraction"]) for r in rows if r["method"] == method and int(r["obstacles"]) == c])[0]
+                for c in counts]
+        by_count.errorbar(counts, [s[0] for s in stats], yerr=[s[1] for s in stats], marker=marker, capsize=3, label=method)
+        by_cobs.plot(cobs, [s[0] for s in stats], marker=marker, label=method)
+    for ax in (by_count, by_cobs):
+        ax.set_yscale("log")
+        ax.set_ylabel("query time (µs)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend()
+    by_count.set_xscale("log")
+    by_count.set_xlabel("obstacles in the workspace")
+    by_cobs.set_xlabel("share of C-space in collision")
+    by_count.set_title("Query time against the number of obstacles")
+    by_cobs.set_title("... and against the share of C-space in collision")
+    fig.tight_layout()
+    fig.savefig(out / "sweep.png", dpi=110)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -142,6 +195,10 @@ def main():
         plot_sweep(rows, out, name.split("-")[1])
     elif name == "cspace":
         plot_cspace(out)
+    elif name == "changing":
+        plot_changing(rows, out)
+    elif name == "sweep":
+        plot_sweep_obstacles(rows, out)
     else:
         sys.exit(f"no plot for '{name}'")
 

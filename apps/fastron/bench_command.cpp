@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
+#include "fastron/experiments/changing_experiment.h"
 #include "fastron/experiments/cspace_experiment.h"
 #include "fastron/experiments/static_experiment.h"
 #include "plotting.h"
@@ -49,6 +50,23 @@ int runBench(const BenchOptions& o) {
     const std::string parameter = o.name.substr(7);
     results = runStaticSweep(options, parameter, progress);
     report = staticSweepReport(results, parameter, options);
+  } else if (o.name == "changing") {
+    ChangingOptions changing;
+    changing.trials = o.trials ? o.trials : (o.quick ? 1 : 3);
+    changing.steps = o.quick ? 3 : 50;
+    changing.seed = o.seed;
+    changing.quick = o.quick;
+    if (o.quick) changing.cases = {"4dof", "7dof-3boxes"};
+    results = runChanging(changing, progress);
+    report = changingReport(results, changing);
+  } else if (o.name == "sweep") {
+    SweepOptions sweep;
+    sweep.trials = o.trials ? o.trials : (o.quick ? 1 : 3);
+    sweep.seed = o.seed;
+    sweep.quick = o.quick;
+    if (o.quick) sweep.obstacles = {1, 10};
+    results = runObstacleSweep(sweep, progress);
+    report = sweepReport(results, sweep);
   } else if (o.name == "cspace") {
     const CspaceOptions cspace{o.trials ? o.trials : (o.quick ? 1u : 3u), o.seed, o.quick};
     const CspaceResults r = runCspace(cspace, progress);
@@ -78,9 +96,10 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Run one of the paper's experiments");
-  cmd->add_option("name", o->name, "static, static-beta, static-gamma, cspace")
+  cmd->add_option("name", o->name, "static, static-beta, static-gamma, cspace, changing, sweep")
       ->required()
-      ->check(CLI::IsMember({"static", "static-beta", "static-gamma", "cspace"}));
+      ->check(
+          CLI::IsMember({"static", "static-beta", "static-gamma", "cspace", "changing", "sweep"}));
   cmd->add_option("--trials", o->trials,
                   "trials (random environments); default: the experiment's own");
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();

@@ -72,6 +72,25 @@ def main():
         fail("report.md has no table")
     if name == "static":
         check_static(rows)
+    elif name == "changing":
+        rate_columns(rows, ["accuracy", "tpr", "tnr"])
+        for case in {r["case"] for r in rows}:
+            def mean(method, key):
+                values = [value(r, key) for r in rows if r["case"] == case and r["method"] == method]
+                return sum(values) / len(values)
+            if not mean("Fastron (FCL)", "query_s") < mean("FK+FCL", "query_s"):
+                fail(f"{case}: Fastron queried slower than FK+FCL")
+            if mean("Fastron (FCL)", "accuracy") < 0.6:
+                fail(f"{case}: Fastron accuracy {mean('Fastron (FCL)', 'accuracy')}")
+            if not all(value(r, "update_s") > 0 for r in rows if r["method"].startswith("Fastron")):
+                fail("an update took no time")
+    elif name == "sweep":
+        rate_columns(rows, ["cobs_fraction"])
+        counts = sorted({int(r["obstacles"]) for r in rows})
+        def gjk(count):
+            return [value(r, "query_s") for r in rows if r["method"] == "FK+GJK" and int(r["obstacles"]) == count][0]
+        if not gjk(counts[-1]) > gjk(counts[0]):
+            fail("GJK did not get slower with more obstacles")
     elif name == "cspace":
         rate_columns(rows, ["grid_accuracy"])
         for row in rows:

@@ -1,0 +1,39 @@
+#pragma once
+// The paper's changing-environment experiments (Sec. IV-B): Baxter's right arm with 4, 6 or 7
+// actuated joints and one 0.2 m box on a random walk, and 7 joints with three boxes. Fastron
+// learns from FCL labels and from GJK labels and is checked against FCL at every update, beside
+// FK + GJK and FK + FCL (Figs. 9 and 11 and the tables of Figs. 8 and 10); and the obstacle
+// sweep: query times against 1 to 100 obstacles and the share of C-space in collision (Fig. 12).
+
+#include <string>
+#include <vector>
+
+#include "fastron/experiments/common.h"
+
+namespace fastron {
+
+struct ChangingOptions {
+  std::size_t trials = 3;
+  std::size_t steps = 50;  ///< obstacle moves (model updates) per trial
+  std::uint64_t seed = 1;
+  bool quick = false;
+  std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
+};
+
+/// One row per (case, trial, step, method): accuracy, tpr, tnr against FCL, support, query_s,
+/// update_s (labelling + training).
+Table runChanging(const ChangingOptions& options, const Progress& progress);
+std::string changingReport(const Table& results, const ChangingOptions& options);
+
+struct SweepOptions {
+  std::size_t trials = 3;
+  std::uint64_t seed = 1;
+  bool quick = false;
+  std::vector<std::size_t> obstacles{1, 2, 5, 10, 20, 50, 100};
+};
+
+/// One row per (obstacles, trial, method): query_s, support, cobs_fraction.
+Table runObstacleSweep(const SweepOptions& options, const Progress& progress);
+std::string sweepReport(const Table& results, const SweepOptions& options);
+
+}  // namespace fastron
