@@ -61,9 +61,12 @@ BoxQpResult solveBoxQp(const Eigen::MatrixXd& B, const Eigen::VectorXd& c, doubl
       const Eigen::VectorXd t = dinv.cwiseProduct(rhs);
       dx = t - dinv.cwiseProduct(B.transpose() * small.llt().solve(B * t));
     } else {
+      // H squares the kernel's condition number; LDLT with a ridge at rounding level stays
+      // defined where a plain Cholesky factorisation breaks down near the solution.
       Eigen::MatrixXd system = H;
       system.diagonal() += d;
-      dx = system.llt().solve(rhs);
+      system.diagonal().array() += 1e-14 * system.diagonal().maxCoeff();
+      dx = system.ldlt().solve(rhs);
     }
     const Eigen::VectorXd dz = ((target - (x.cwiseProduct(z)).array()) / x.array()).matrix() -
                                z.cwiseQuotient(x).cwiseProduct(dx);

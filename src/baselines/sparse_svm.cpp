@@ -54,6 +54,12 @@ void SsvmClassifier::train(const Configurations& q, std::span<const std::int8_t>
     report_.qpConverged = report_.qpConverged && qp.converged;
     report_.qpStationarity = qp.stationarity;
     report_.qpComplementarity = qp.complementarity;
+    if (!qp.converged) {
+      // A QP answer that missed its tolerance would be amplified by the reweighting: keep the
+      // weights of the last converged iteration and stop.
+      report_.stoppedByQp = true;
+      break;
+    }
     const Eigen::VectorXd w = B * qp.x;
 
     const Eigen::VectorXd previous = alpha;

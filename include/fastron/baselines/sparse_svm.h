@@ -16,12 +16,15 @@ struct SparseSvmParams {
   double C = 10;
   double zeroThreshold = 1e-4;  ///< epsilon: |alpha_i| < epsilon * max|alpha| counts as 0
   std::size_t maxIterations = 30;
-  double qpTolerance = 1e-3;  ///< LIBLINEAR's stopping tolerance (projected gradient)
+  double qpTolerance = 1e-6;  ///< KKT tolerance of each QP
 };
 
 struct SparseSvmReport {
   std::size_t iterations = 0, qpIterations = 0;
-  bool qpConverged = true;                           ///< every QP met its KKT tolerance
+  bool qpConverged = true;  ///< every QP met its KKT tolerance
+  /// A QP missed its tolerance; the weights are those of the last converged iteration (the
+  /// interior-point solver loses accuracy late in runs with N in the thousands).
+  bool stoppedByQp = false;
   double qpStationarity = 0, qpComplementarity = 0;  ///< of the last QP
 };
 
