@@ -15,6 +15,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
+#include "fastron/experiments/common.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "plotting.h"
@@ -92,20 +93,6 @@ std::ofstream openOutput(const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!out) throw FileError(path.string() + ": cannot write");
   return out;
-}
-
-/// Mean time per call of `fn` over the rows of q, repeated to at least 0.1 s.
-template <class Fn>
-double meanCallTime(const Configurations& q, Fn fn) {
-  using Clock = std::chrono::steady_clock;
-  std::size_t calls = 0;
-  volatile bool sink = false;
-  const auto start = Clock::now();
-  while (Clock::now() - start < std::chrono::milliseconds(100)) {
-    for (Eigen::Index i = 0; i < q.rows(); ++i) sink = fn(q.row(i).data());
-    calls += static_cast<std::size_t>(q.rows());
-  }
-  return std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(calls);
 }
 
 void writeSnapshot(const std::filesystem::path& dir, const PlanarArmWorld& world,
@@ -192,10 +179,10 @@ int runDemo(const DemoOptions& o) {
 
   const auto model = proxy.model();
   const Configurations probe = uniformConfigurations(limits, 20000, testRng);
-  const double modelTime =
-      meanCallTime(probe, [&](const double* q) { return model->inCollision(q); });
-  const double oracleTime =
-      meanCallTime(probe, [&](const double* q) { return world.inCollision(q); });
+  const double modelTime = meanSecondsPerCall(
+      probe, [&](const double* q) { return model->inCollision(q); }, 0.1);
+  const double oracleTime = meanSecondsPerCall(
+      probe, [&](const double* q) { return world.inCollision(q); }, 0.1);
   std::cout << "\nquery time: Fastron " << duration(modelTime) << " (" << model->supportCount()
             << " support points), analytic oracle " << duration(oracleTime) << '\n';
   report << "\nQuery time: Fastron " << duration(modelTime) << " with " << model->supportCount()

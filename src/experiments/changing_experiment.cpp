@@ -82,7 +82,6 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
     const Case c = caseFor(name);
     const Robot robot = baxterWithJoints(c.joints);
     const JointLimits limits = robot.limits();
-    const std::size_t d = robot.dof();
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
       const std::uint64_t seed = o.seed * 1000 + trial;
       Scene scene = sceneForTrial(c.scene, seed);
@@ -125,21 +124,9 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         }
         const Labels gjkLabels = labelConfigurations(*gjk, test);
         row("FK+GJK", against(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }), std::nan(""),
-            meanSecondsPerCall(
-                test,
-                [&](const double* q) {
-                  return gjk->inCollision({q, d});
-                },
-                0.01),
-            std::nan(""));
+            meanSecondsPerCheck(test, *gjk, 0.01), std::nan(""));
         row("FK+FCL", against(truth, [&](std::size_t i) { return truth[i] > 0; }), std::nan(""),
-            meanSecondsPerCall(
-                test,
-                [&](const double* q) {
-                  return fcl->inCollision({q, d});
-                },
-                0.01),
-            std::nan(""));
+            meanSecondsPerCheck(test, *fcl, 0.01), std::nan(""));
       }
     }
   }
@@ -149,7 +136,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
 namespace {
 
 // The paper's tables (Figs. 8 and 10): |S|, query time, update time.
-const std::map<std::pair<std::string, std::string>, std::array<const char*, 3>> kPaperChanging{
+const std::map<std::pair<std::string, std::string>, std::array<std::string, 3>> kPaperChanging{
     {{"4dof", "Fastron (FCL)"}, {"638.6 ± 139.4", "2.1 ± 0.5 µs", "42.0 ± 5.8 ms"}},
     {{"4dof", "Fastron (GJK)"}, {"558.1 ± 151.1", "1.9 ± 0.5 µs", "15.8 ± 3.8 ms"}},
     {{"4dof", "FK+GJK"}, {"—", "9.1 ± 0.2 µs", "—"}},
@@ -186,17 +173,9 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
           "paper query | paper update |\n"
        << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string method : {"Fastron (FCL)", "Fastron (GJK)", "FK+GJK", "FK+FCL"}) {
-      const Table::Filter where{{"case", name}, {"method", method}};
-      auto stat = [&](const std::string& column) { return summarize(r.numbers(column, where)); };
       const auto paper = kPaperChanging.find({name, method});
-      const bool inPaper = paper != kPaperChanging.end();
-      md << "| " << method << " | " << (stat("support").count ? meanStd(stat("support"), 1) : "—")
-         << " | " << durationMeanStd(stat("query_s")) << " | "
-         << (stat("update_s").count ? durationMeanStd(stat("update_s")) : "—") << " | "
-         << meanStd(stat("accuracy"), 3) << " | " << meanStd(stat("tpr"), 3) << " | "
-         << meanStd(stat("tnr"), 3) << " | " << (inPaper ? paper->second[0] : "") << " | "
-         << (inPaper ? paper->second[1] : "") << " | " << (inPaper ? paper->second[2] : "")
-         << " |\n";
+      md << methodRow(r, method, {{"case", name}, {"method", method}}, "update_s",
+                      paper == kPaperChanging.end() ? std::array<std::string, 3>{} : paper->second);
     }
   }
   return md.str();
@@ -206,7 +185,6 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
   Table table{{"obstacles", "trial", "method", "query_s", "support", "cobs_fraction"}, {}};
   const Robot robot = baxterWithJoints(7);
   const JointLimits limits = robot.limits();
-  const std::size_t d = robot.dof();
   const Eigen::AlignedBox3d space(Eigen::Vector3d(0.25, -1.10, -0.30),
                                   Eigen::Vector3d(1.05, -0.15, 0.75));
   const Case c = caseFor("7dof");
@@ -243,22 +221,8 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
           meanSecondsPerCall(
               test, [&](const double* q) { return model->inCollision(q); }, 0.02),
           static_cast<double>(model->supportCount()));
-      row("FK+GJK",
-          meanSecondsPerCall(
-              test,
-              [&](const double* q) {
-                return gjk.inCollision({q, d});
-              },
-              0.02),
-          std::nan(""));
-      row("FK+FCL",
-          meanSecondsPerCall(
-              test,
-              [&](const double* q) {
-                return fcl->inCollision({q, d});
-              },
-              0.02),
-          std::nan(""));
+      row("FK+GJK", meanSecondsPerCheck(test, gjk, 0.02), std::nan(""));
+      row("FK+FCL", meanSecondsPerCheck(test, *fcl, 0.02), std::nan(""));
     }
   }
   return table;

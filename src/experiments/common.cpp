@@ -117,7 +117,7 @@ double meanSecondsPerCall(const Configurations& q, const std::function<bool(cons
                           double minSeconds) {
   using Clock = std::chrono::steady_clock;
   std::size_t calls = 0;
-  volatile bool sink = false;
+  [[maybe_unused]] volatile bool sink = false;  // keeps the calls from being optimised away
   const auto start = Clock::now();
   do {
     for (Eigen::Index i = 0; i < q.rows(); ++i) sink = fn(q.row(i).data());
@@ -127,6 +127,27 @@ double meanSecondsPerCall(const Configurations& q, const std::function<bool(cons
   return calls == 0 ? std::nan("")
                     : std::chrono::duration<double>(Clock::now() - start).count() /
                           static_cast<double>(calls);
+}
+
+double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& checker,
+                           double minSeconds) {
+  const auto d = static_cast<std::size_t>(q.cols());
+  return meanSecondsPerCall(
+      q,
+      [&](const double* x) {
+        return checker.inCollision({x, d});
+      },
+      minSeconds);
+}
+
+std::string methodRow(const Table& r, const std::string& method, const Table::Filter& where,
+                      const std::string& timeColumn, const std::array<std::string, 3>& paper) {
+  auto stat = [&](const std::string& column) { return summarize(r.numbers(column, where)); };
+  const Summary support = stat("support"), time = stat(timeColumn);
+  return "| " + method + " | " + (support.count ? meanStd(support, 1) : "—") + " | " +
+         durationMeanStd(stat("query_s")) + " | " + (time.count ? durationMeanStd(time) : "—") +
+         " | " + meanStd(stat("accuracy"), 3) + " | " + meanStd(stat("tpr"), 3) + " | " +
+         meanStd(stat("tnr"), 3) + " | " + paper[0] + " | " + paper[1] + " | " + paper[2] + " |\n";
 }
 
 Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double reach, Rng& rng) {

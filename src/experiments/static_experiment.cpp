@@ -146,23 +146,13 @@ Table runStatic(const StaticOptions& o, const Progress& progress) {
                                    [&](const double* x) {
                                      return gjk.inCollision({x, d});
                                    }),
-                         std::nan(""),
-                         meanSecondsPerCall(t.test,
-                                            [&](const double* x) {
-                                              return gjk.inCollision({x, d});
-                                            }),
-                         std::nan("")});
+                         std::nan(""), meanSecondsPerCheck(t.test, gjk), std::nan("")});
       results.push_back({"FK+FCL",
                          confusion(t,
                                    [&](const double* x) {
                                      return t.fcl->inCollision({x, d});
                                    }),
-                         std::nan(""),
-                         meanSecondsPerCall(t.test,
-                                            [&](const double* x) {
-                                              return t.fcl->inCollision({x, d});
-                                            }),
-                         std::nan("")});
+                         std::nan(""), meanSecondsPerCheck(t.test, *t.fcl), std::nan("")});
 
       for (const MethodResult& r : results) {
         table.add({std::to_string(dof), std::to_string(trial), r.method, cell(r.counts.accuracy()),
@@ -213,7 +203,7 @@ Table runStaticSweep(const StaticOptions& o, const std::string& parameter,
 namespace {
 
 // The paper's Fig. 5 tables: |S|, query time, training time.
-const std::map<std::pair<int, std::string>, std::array<const char*, 3>> kPaperStatic{
+const std::map<std::pair<int, std::string>, std::array<std::string, 3>> kPaperStatic{
     {{2, "Fastron"}, {"133.6 ± 32.4", "424 ± 90 ns", "231.4 ± 38.3 ms"}},
     {{2, "ISVM"}, {"349.1 ± 128.6", "1.78 ± 0.62 µs", "2.72 ± 1.60 s"}},
     {{2, "SSVM"}, {"52.4 ± 11.3", "220 ± 52 ns", "18.8 ± 2.69 s"}},
@@ -239,17 +229,9 @@ std::string staticReport(const Table& r, const StaticOptions& o) {
           "| paper query | paper training |\n"
        << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string method : {"Fastron", "ISVM", "SSVM", "LIBSVM", "FK+GJK", "FK+FCL"}) {
-      const Table::Filter where{{"dof", std::to_string(dof)}, {"method", method}};
-      auto stat = [&](const std::string& column) { return summarize(r.numbers(column, where)); };
       const auto paper = kPaperStatic.find({dof, method});
-      const bool inPaper = paper != kPaperStatic.end();
-      md << "| " << method << " | " << (stat("support").count ? meanStd(stat("support"), 1) : "—")
-         << " | " << durationMeanStd(stat("query_s")) << " | "
-         << (stat("train_s").count ? durationMeanStd(stat("train_s")) : "—") << " | "
-         << meanStd(stat("accuracy"), 3) << " | " << meanStd(stat("tpr"), 3) << " | "
-         << meanStd(stat("tnr"), 3) << " | " << (inPaper ? paper->second[0] : "") << " | "
-         << (inPaper ? paper->second[1] : "") << " | " << (inPaper ? paper->second[2] : "")
-         << " |\n";
+      md << methodRow(r, method, {{"dof", std::to_string(dof)}, {"method", method}}, "train_s",
+                      paper == kPaperStatic.end() ? std::array<std::string, 3>{} : paper->second);
     }
     md << "\nC-space in collision: "
        << meanStd(summarize(r.numbers("cobs_fraction", {{"dof", std::to_string(dof)}})), 3)

@@ -1,6 +1,7 @@
 #pragma once
 // What every experiment shares: progress reports, statistics, timing, tables, random scenes.
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -44,8 +45,18 @@ struct Table {
   void writeCsv(const std::filesystem::path& path) const;
 };
 
+/// A row of the paper's method tables in Markdown: method, |S|, query time, `timeColumn` (training
+/// or update time), accuracy, TPR, TNR as mean ± std over the rows matching `where`, then the
+/// paper's |S|, query time and training time (empty cells where the paper has none).
+std::string methodRow(const Table& results, const std::string& method, const Table::Filter& where,
+                      const std::string& timeColumn, const std::array<std::string, 3>& paper);
+
 /// Formats a number for a CSV cell (full precision, "nan" for NaN).
 std::string cell(double value);
+
+/// Mean seconds per exact check of each row of q (a checker's inCollision).
+double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& checker,
+                           double minSeconds = 0.05);
 
 /// Mean seconds per call of `fn` on each row of q, over at least `minSeconds` (whole passes).
 double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,
