@@ -169,7 +169,8 @@ def plot_sweep_obstacles(rows, out):
         cobs = [mean_std([number(r["cobs_fraction"]) for r in rows if r["method"] == method and int(r["obstacles"]) == c])[0]
                 for c in counts]
         by_count.errorbar(counts, [s[0] for s in stats], yerr=[s[1] for s in stats], marker=marker, capsize=3, label=method)
-        by_cobs.plot(cobs, [s[0] for s in stats], marker=marker, label=method)
+        order = np.argsort(cobs)
+        by_cobs.plot(np.array(cobs)[order], np.array([s[0] for s in stats])[order], marker=marker, label=method)
     for ax in (by_count, by_cobs):
         ax.set_yscale("log")
         ax.set_ylabel("query time (µs)")
