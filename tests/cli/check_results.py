@@ -36,6 +36,9 @@ def rate_columns(rows, keys):
 
 def check_static(rows):
     rate_columns(rows, ["accuracy", "tpr", "tnr", "cobs_fraction"])
+    for row in rows:
+        if row["qp_stopped"] not in ("0", "1") or (row["qp_stopped"] == "1" and row["method"] != "SSVM"):
+            fail(f"qp_stopped must be 0 or 1, and 1 only for SSVM: {row}")
     methods = {r["method"] for r in rows}
     expected = {"Fastron", "ISVM", "SSVM", "LIBSVM", "FK+GJK", "FK+FCL"}
     if methods != expected:
