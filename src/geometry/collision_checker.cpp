@@ -29,4 +29,14 @@ FunctionChecker::FunctionChecker(std::string name, std::size_t dof,
   if (!fn_) throw InvalidArgument("checker '" + name_ + "': no function given");
 }
 
+Shape paddedShape(const Robot& robot, std::size_t index, const CheckerOptions& options) {
+  const LinkShape& s = robot.shapes()[index];
+  try {
+    return inflate(s.shape, options.padding);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument("link '" + robot.links()[static_cast<std::size_t>(s.link)].name +
+                          "': " + e.what());
+  }
+}
+
 }  // namespace fastron

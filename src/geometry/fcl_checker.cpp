@@ -102,16 +102,8 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   if (robot_.dof() == 0)
     throw InvalidArgument("FclChecker: robot '" + robot_.name() + "' has no actuated joints");
   auto geometry = std::make_shared<Geometry>();
-  for (const LinkShape& s : robot_.shapes()) {
-    Shape shape = s.shape;
-    try {
-      shape = inflate(s.shape, options_.padding);
-    } catch (const InvalidArgument& e) {
-      throw InvalidArgument("FclChecker: link '" +
-                            robot_.links()[static_cast<std::size_t>(s.link)].name +
-                            "': " + e.what());
-    }
-    geometry->shapes.push_back(toFcl(shape));
+  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+    geometry->shapes.push_back(toFcl(paddedShape(robot_, s, options_)));
   }
   geometry_ = std::move(geometry);
   setScene(scene);

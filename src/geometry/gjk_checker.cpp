@@ -132,14 +132,9 @@ GjkChecker::GjkChecker(Robot robot, const Scene& scene, CheckerOptions options)
       }) {
   if (robot_.dof() == 0)
     throw InvalidArgument("GjkChecker: robot '" + robot_.name() + "' has no actuated joints");
-  for (const LinkShape& s : robot_.shapes()) {
-    const bool mesh = std::holds_alternative<Mesh>(s.shape);
-    ConvexBody body = ConvexBody::from(mesh ? s.shape : inflate(s.shape, options_.padding));
-    if (mesh && options_.padding > 0) {
-      throw InvalidArgument("GjkChecker: cannot pad the mesh of link '" +
-                            robot_.links()[static_cast<std::size_t>(s.link)].name + "'");
-    }
-    body.pose = s.origin;
+  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+    ConvexBody body = ConvexBody::from(paddedShape(robot_, s, options_));
+    body.pose = robot_.shapes()[s].origin;
     robotBodies_.push_back(std::move(body));
   }
   setScene(scene);

@@ -40,7 +40,8 @@ void checkWhileTheSceneChanges() {
       checker.setScene(ballAt(i % 2 == 0 ? 2.0 : 0.0));
     done = true;
   }
-  EXPECT_GE(hits + misses, 2000u);  // which scene each check saw depends on the scheduler
+  // What each check saw depends on the scheduler; the race-freedom is ThreadSanitizer's to
+  // judge (./dev.sh test), the final answer below the test's.
   checker.setScene(ballAt(2.0));
   EXPECT_FALSE(checker.inCollision(q));
 }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fastron/core/types.h"
+#include "fastron/geometry/robot.h"
 
 namespace fastron {
 
@@ -37,6 +38,16 @@ class CollisionChecker {
  private:
   mutable std::atomic<std::uint64_t> calls_{0};
 };
+
+/// Options of the robot-against-scene checkers (FclChecker, GjkChecker).
+struct CheckerOptions {
+  bool selfCollision = false;  ///< also check link pairs not allowed to touch
+  double padding = 0;          ///< grow every robot shape by this much (not meshes)
+};
+
+/// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it
+/// cannot be padded (a mesh) or the padding is invalid.
+Shape paddedShape(const Robot& robot, std::size_t index, const CheckerOptions& options);
 
 /// A CollisionChecker around a callable `bool(const double* q)`, e.g. an analytic oracle.
 /// The callable must itself be safe to call concurrently.

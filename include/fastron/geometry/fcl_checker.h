@@ -15,11 +15,6 @@
 
 namespace fastron {
 
-struct CheckerOptions {
-  bool selfCollision = false;  ///< also check link pairs not allowed to touch
-  double padding = 0;          ///< grow every robot shape by this much (not meshes)
-};
-
 /// What collided: a robot link and an obstacle, or two robot links (self-collision).
 struct Contact {
   std::string robotLink;

@@ -8,7 +8,6 @@
 #include <mutex>
 
 #include "fastron/geometry/collision_checker.h"
-#include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"

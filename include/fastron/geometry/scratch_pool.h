@@ -41,12 +41,6 @@ class ScratchPool {
     return {*this, make_()};
   }
 
-  /// Drops every idle scratch object (e.g. after what they were made from changed).
-  void clear() {
-    const std::lock_guard lock(mutex_);
-    free_.clear();
-  }
-
  private:
   void giveBack(std::unique_ptr<T> item) {
     const std::lock_guard lock(mutex_);
