@@ -13,6 +13,8 @@ packages=(
   libfcl-dev libccd-dev liboctomap-dev
   # baselines
   libsvm-dev
+  # planning (OMPL's CMake config names Boost libraries its package does not pull in)
+  libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   # command line, tests, benchmarks
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # plots (scripts/*.py run with /usr/bin/python3)

@@ -1,12 +1,17 @@
 #!/usr/bin/python3
 """Checks the results of `fastron bench NAME --quick` for shape and sane values.
 
-Usage: check_results.py NAME OUTPUT_DIR; exits non-zero with a message naming the problem.
+Usage: check_results.py NAME OUTPUT_DIR [--no-timing]; exits non-zero with a message naming the
+problem. --no-timing skips the speed comparisons, for sanitizer builds whose instrumentation slows
+the vectorised model far more than FCL's code, which is not instrumented.
 """
 import csv
 import math
 import sys
 from pathlib import Path
+
+
+TIMING = "--no-timing" not in sys.argv
 
 
 def fail(message):
@@ -49,9 +54,9 @@ def check_static(rows):
             return sum(values) / len(values)
         if mean("FK+FCL", "accuracy") != 1.0:
             fail("FCL disagrees with its own labels")
-        if not mean("Fastron", "train_s") < mean("SSVM", "train_s"):
+        if TIMING and not mean("Fastron", "train_s") < mean("SSVM", "train_s"):
             fail(f"{dof} DOF: Fastron trained slower than SSVM")
-        if not mean("Fastron", "query_s") < mean("FK+FCL", "query_s"):
+        if TIMING and not mean("Fastron", "query_s") < mean("FK+FCL", "query_s"):
             fail(f"{dof} DOF: Fastron queried slower than FK+FCL")
         if mean("Fastron", "accuracy") < 0.75:
             fail(f"{dof} DOF: Fastron accuracy {mean('Fastron', 'accuracy')}")
@@ -81,7 +86,7 @@ def main():
             def mean(method, key):
                 values = [value(r, key) for r in rows if r["case"] == case and r["method"] == method]
                 return sum(values) / len(values)
-            if not mean("Fastron (FCL)", "query_s") < mean("FK+FCL", "query_s"):
+            if TIMING and not mean("Fastron (FCL)", "query_s") < mean("FK+FCL", "query_s"):
                 fail(f"{case}: Fastron queried slower than FK+FCL")
             if mean("Fastron (FCL)", "accuracy") < 0.6:
                 fail(f"{case}: Fastron accuracy {mean('Fastron (FCL)', 'accuracy')}")
@@ -92,7 +97,7 @@ def main():
         counts = sorted({int(r["obstacles"]) for r in rows})
         def gjk(count):
             return [value(r, "query_s") for r in rows if r["method"] == "FK+GJK" and int(r["obstacles"]) == count][0]
-        if not gjk(counts[-1]) > gjk(counts[0]):
+        if TIMING and not gjk(counts[-1]) > gjk(counts[0]):
             fail("GJK did not get slower with more obstacles")
     elif name == "cspace":
         rate_columns(rows, ["grid_accuracy"])
