@@ -125,6 +125,13 @@ double Model::scoreExact(const double* q) const {
   return f;
 }
 
+std::size_t Model::firstInCollision(const double* q, std::size_t n) const {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (inCollision(q + i * dim())) return i;
+  }
+  return n;
+}
+
 void Model::scoreBatch(const double* q, std::size_t n, double* out) const {
   for (std::size_t i = 0; i < n; ++i) out[i] = score(q + i * dim());
 }

@@ -45,6 +45,11 @@ class Model {
   /// f(q) summed in double precision (the reference for the float path).
   double scoreExact(const double* q) const;
 
+  /// Index of the first of n configurations (row by row in `q`, n * dim() values) that the model
+  /// predicts in collision, or n when it predicts all free. Stops at the first hit, so callers
+  /// order the rows to find collisions early (e.g. bisection order along a motion).
+  std::size_t firstInCollision(const double* q, std::size_t n) const;
+
   /// f for n configurations stored row by row in `q` (n * dim() values), written to `out`.
   void scoreBatch(const double* q, std::size_t n, double* out) const;
   /// Scores of every row of `q`.

@@ -1,0 +1,43 @@
+#pragma once
+// Straight-line motions in joint space, paths of waypoints, and the exact check of a whole path:
+// the one discretisation every planner, verifier and test of Fastron shares.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "fastron/geometry/collision_checker.h"
+
+namespace fastron {
+
+/// A path of joint-space waypoints, joined by straight lines.
+using Path = std::vector<Eigen::VectorXd>;
+
+/// Number of equal segments a motion from a to b is checked in: ceil(|b - a| / resolution), at
+/// least 1, so no two consecutive checked states are more than `resolution` apart (Euclidean
+/// distance in joint units, as OMPL's RealVectorStateSpace measures it). Throws InvalidArgument
+/// when resolution is not positive.
+std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution);
+
+/// The states a + (b - a) i / n for i = 1..n (b included, a not: a motion starts at a state
+/// already known to be valid), in bisection order: the midpoint first, then the quarter points,
+/// and so on, because a collision is found soonest that way. Written row by row into `out`
+/// (n * dim values, resized).
+void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
+                  std::vector<double>& out);
+
+/// Sum of the Euclidean lengths of the path's edges.
+double pathLength(const Path& path);
+
+/// What the exact checker says about a path.
+struct PathCheck {
+  std::vector<std::size_t> invalidWaypoints;  ///< waypoints in collision
+  std::vector<std::size_t> invalidEdges;      ///< edge i joins waypoints i and i + 1
+  bool valid() const { return invalidWaypoints.empty() && invalidEdges.empty(); }
+};
+
+/// Checks every waypoint, and every edge at `resolution`, with `checker`. An empty path is
+/// invalid (waypoint 0 is reported). Throws InvalidArgument on waypoints of the wrong dimension.
+PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution);
+
+}  // namespace fastron

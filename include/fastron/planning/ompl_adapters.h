@@ -1,0 +1,63 @@
+#pragma once
+// OMPL adapters: a StateValidityChecker and a MotionValidator over an exact CollisionChecker or a
+// Fastron model snapshot, on a joint-space RealVectorStateSpace bounded by the joint limits.
+
+#include <memory>
+#include <variant>
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateValidityChecker.h>
+
+#include "fastron/core/joint_limits.h"
+#include "fastron/core/model.h"
+#include "fastron/geometry/collision_checker.h"
+
+namespace fastron {
+
+/// What decides whether a configuration collides: an exact checker (FK + FCL or GJK), or a
+/// snapshot of a Fastron model. A model snapshot never changes, so a planner sees one consistent
+/// C-space even while a ProxyCollisionDetector publishes newer models.
+using CollisionSource =
+    std::variant<std::shared_ptr<const CollisionChecker>, std::shared_ptr<const Model>>;
+
+/// The source's name for reports: the checker's name, or "Fastron".
+std::string sourceName(const CollisionSource& source);
+/// Its number of joints; throws InvalidArgument when the source is a null pointer.
+std::size_t sourceDof(const CollisionSource& source);
+
+/// A state is valid when the source says it is collision-free.
+class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
+ public:
+  CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si, CollisionSource source);
+  bool isValid(const ompl::base::State* state) const override;
+
+ private:
+  CollisionSource source_;
+};
+
+/// Checks a straight-line motion at a fixed resolution (see motionStates): with a model, all the
+/// states of the edge are evaluated as one batch that stops at the first predicted collision;
+/// with an exact checker, one state after the other in the same order.
+class ResolutionMotionValidator final : public ompl::base::MotionValidator {
+ public:
+  ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si, CollisionSource source,
+                            double resolution);
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  /// Also reports the last valid state before the first collision along the motion (in order
+  /// from s1) and its fraction of the way.
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+ private:
+  CollisionSource source_;
+  double resolution_;
+};
+
+/// A SpaceInformation for planning in the joint space of `limits` with `source` as collision
+/// checker and edges checked at `resolution` (joint units). Already set up. Throws
+/// InvalidArgument when the source's dof differs from the limits' dimension.
+ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& source,
+                                                     const JointLimits& limits, double resolution);
+
+}  // namespace fastron

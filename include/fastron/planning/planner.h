@@ -1,0 +1,66 @@
+#pragma once
+// The planners of the paper's experiments (RRT, RRT-Connect, RRT*, BIT*), each stopping at its
+// first solution, and one planning query from start to goal.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <ompl/base/Planner.h>
+
+#include "fastron/planning/motion.h"
+#include "fastron/planning/ompl_adapters.h"
+
+namespace fastron {
+
+enum class PlannerType { Rrt, RrtConnect, RrtStar, BitStar };
+
+/// "RRT", "RRTConnect", "RRT*", "BIT*".
+std::string plannerName(PlannerType type);
+/// Reads those names (case-insensitive; "rrtstar", "bitstar", "rrt-connect" also accepted);
+/// throws InvalidArgument naming the value and the choices.
+PlannerType parsePlannerType(std::string_view name);
+/// Every planner type, in the paper's order.
+std::vector<PlannerType> allPlannerTypes();
+
+struct PlannerOptions {
+  PlannerType type = PlannerType::RrtConnect;
+  double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
+  double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
+  double timeLimit = 10;     ///< seconds per planning query
+};
+
+/// Throws InvalidArgument naming the field when an option is out of range.
+void validate(const PlannerOptions& options);
+
+/// A planner of the given type on `si` that stops at its first solution: RRT* with the path-length
+/// objective's cost threshold at infinite cost (any solution satisfies it), BIT* with
+/// stop-on-solution-improvement. The planner still needs a problem definition.
+ompl::base::PlannerPtr makePlanner(const ompl::base::SpaceInformationPtr& si,
+                                   const PlannerOptions& options);
+
+enum class PlanStatus {
+  Solved,        ///< a path from start to goal
+  InvalidStart,  ///< the start configuration collides (under the checker used)
+  InvalidGoal,   ///< the goal configuration collides
+  Timeout,       ///< no solution within the time limit
+};
+std::string toString(PlanStatus status);
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::Timeout;
+  Path path;  ///< start to goal when solved, empty otherwise
+  std::chrono::nanoseconds time{0};
+  bool solved() const { return status == PlanStatus::Solved; }
+};
+
+/// Plans from start to goal with `source` deciding collisions. Only an exact solution counts
+/// (OMPL's approximate solutions are reported as Timeout). Throws InvalidArgument when start or
+/// goal has the wrong size, a non-finite value or a value outside the joint limits.
+PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
+                      const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                      const PlannerOptions& options);
+
+}  // namespace fastron

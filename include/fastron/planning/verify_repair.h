@@ -1,0 +1,45 @@
+#pragma once
+// Verify and repair (paper, Sec. IV-C "Performance in Motion Planning Application"): a plan made
+// with an approximate checker (Fastron, GJK) is checked with the exact one, and every stretch
+// that collides is cut out and replanned on the exact checker.
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "fastron/planning/planner.h"
+
+namespace fastron {
+
+/// A plan made with an approximate checker, after verify and repair.
+struct VerifiedPlan {
+  PlanStatus status =
+      PlanStatus::Timeout;  ///< Solved only when `path` is valid under the exact checker
+  Path path;
+  std::chrono::nanoseconds planTime{0};    ///< the approximate checker's plan
+  std::chrono::nanoseconds verifyTime{0};  ///< exact checks of the plan, and of the repaired path
+  std::chrono::nanoseconds repairTime{0};  ///< replanning of the invalid stretches
+  std::size_t invalidStretches = 0;        ///< stretches cut out and replanned
+  bool approximatePlanFailed = false;      ///< the whole path was planned on the exact checker
+  std::string failure;                     ///< why no valid path was found (empty when solved)
+  bool solved() const { return status == PlanStatus::Solved; }
+  std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
+};
+
+/// Checks `path` (start to goal) with `exact` at options.resolution; cuts out each invalid stretch
+/// (from the last valid waypoint before it to the first valid one after it), replans it with the
+/// same planner on `exact`, splices the pieces and checks the whole path again (up to three
+/// rounds). planTime is left 0.
+VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
+                             const JointLimits& limits, const PlannerOptions& options);
+
+/// Plans with `approximate` (e.g. a Fastron model), then verifies and repairs with `exact`. When
+/// the approximate plan fails (it thinks the start or goal collides, or it finds no path in time),
+/// the whole motion is planned on the exact checker and counted as repair. Start and goal must be
+/// free under `exact`, else the result is InvalidStart / InvalidGoal.
+VerifiedPlan planVerified(const CollisionSource& approximate,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options);
+
+}  // namespace fastron

@@ -1,0 +1,74 @@
+#include "fastron/planning/motion.h"
+
+#include <cmath>
+#include <string>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+
+std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution) {
+  if (!(resolution > 0) || !std::isfinite(resolution)) {
+    throw InvalidArgument("motion resolution must be positive, got " + std::to_string(resolution));
+  }
+  const double segments = std::ceil((b - a).norm() / resolution);
+  return segments < 1 ? 1 : static_cast<std::size_t>(segments);
+}
+
+void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
+                  std::vector<double>& out) {
+  out.resize(n * dim);
+  std::size_t row = 0;
+  auto put = [&](std::size_t i) {
+    const double t = static_cast<double>(i) / static_cast<double>(n);
+    for (std::size_t j = 0; j < dim; ++j) out[row * dim + j] = a[j] + t * (b[j] - a[j]);
+    ++row;
+  };
+  put(n);  // the end state: a motion into an obstacle is found with one check
+  // Bisection order over i = 1..n-1: odd multiples of the largest power of two first.
+  std::size_t step = 1;
+  while (step * 2 < n) step *= 2;
+  for (; step >= 1; step /= 2) {
+    for (std::size_t i = step; i < n; i += 2 * step) put(i);
+  }
+}
+
+double pathLength(const Path& path) {
+  double length = 0;
+  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  return length;
+}
+
+PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution) {
+  PathCheck check;
+  if (path.empty()) {
+    check.invalidWaypoints.push_back(0);
+    return check;
+  }
+  const std::size_t dim = checker.dof();
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (static_cast<std::size_t>(path[i].size()) != dim) {
+      throw InvalidArgument("path waypoint " + std::to_string(i) + " has " +
+                            std::to_string(path[i].size()) + " values, the checker expects " +
+                            std::to_string(dim));
+    }
+    if (checker.inCollision(std::span<const double>(path[i].data(), dim))) {
+      check.invalidWaypoints.push_back(i);
+    }
+  }
+  std::vector<double> states;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+    const std::size_t n = segmentCount(path[i], path[i + 1], resolution);
+    motionStates(path[i].data(), path[i + 1].data(), dim, n, states);
+    // The end state is waypoint i + 1, already checked: the interior states are rows 1..n-1.
+    for (std::size_t r = 1; r < n; ++r) {
+      if (checker.inCollision(std::span<const double>(states.data() + r * dim, dim))) {
+        check.invalidEdges.push_back(i);
+        break;
+      }
+    }
+  }
+  return check;
+}
+
+}  // namespace fastron

@@ -1,0 +1,133 @@
+#include "fastron/planning/ompl_adapters.h"
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fastron/core/error.h"
+#include "fastron/planning/motion.h"
+
+namespace fastron {
+namespace {
+
+const double* valuesOf(const ompl::base::State* state) {
+  return state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+}
+
+/// Index of the first of n states (row by row) that collides, or n.
+std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
+                           std::size_t dim) {
+  if (const auto* model = std::get_if<std::shared_ptr<const Model>>(&source)) {
+    return (*model)->firstInCollision(states, n);
+  }
+  const auto& checker = *std::get<std::shared_ptr<const CollisionChecker>>(source);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (checker.inCollision(std::span<const double>(states + i * dim, dim))) return i;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::string sourceName(const CollisionSource& source) {
+  if (std::holds_alternative<std::shared_ptr<const Model>>(source)) return "Fastron";
+  const auto& checker = std::get<std::shared_ptr<const CollisionChecker>>(source);
+  return checker ? checker->name() : "none";
+}
+
+std::size_t sourceDof(const CollisionSource& source) {
+  return std::visit(
+      [](const auto& pointer) -> std::size_t {
+        if (!pointer) throw InvalidArgument("the collision source is a null pointer");
+        if constexpr (std::is_same_v<std::decay_t<decltype(pointer)>,
+                                     std::shared_ptr<const Model>>) {
+          return pointer->dim();
+        } else {
+          return pointer->dof();
+        }
+      },
+      source);
+}
+
+CollisionValidityChecker::CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                                   CollisionSource source)
+    : ompl::base::StateValidityChecker(si), source_(std::move(source)) {}
+
+bool CollisionValidityChecker::isValid(const ompl::base::State* state) const {
+  return firstCollision(source_, valuesOf(state), 1, si_->getStateDimension()) == 1;
+}
+
+ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si,
+                                                     CollisionSource source, double resolution)
+    : ompl::base::MotionValidator(si), source_(std::move(source)), resolution_(resolution) {}
+
+bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
+                                            const ompl::base::State* s2) const {
+  const std::size_t dim = si_->getStateDimension();
+  const double* a = valuesOf(s1);
+  const double* b = valuesOf(s2);
+  const Eigen::Map<const Eigen::VectorXd> va(a, static_cast<Eigen::Index>(dim));
+  const Eigen::Map<const Eigen::VectorXd> vb(b, static_cast<Eigen::Index>(dim));
+  const std::size_t n = segmentCount(va, vb, resolution_);
+  thread_local std::vector<double> states;  // planners call this millions of times: no allocation
+  motionStates(a, b, dim, n, states);
+  const bool valid = firstCollision(source_, states.data(), n, dim) == n;
+  (valid ? valid_ : invalid_)++;
+  return valid;
+}
+
+bool ResolutionMotionValidator::checkMotion(
+    const ompl::base::State* s1, const ompl::base::State* s2,
+    std::pair<ompl::base::State*, double>& lastValid) const {
+  const std::size_t dim = si_->getStateDimension();
+  const double* a = valuesOf(s1);
+  const double* b = valuesOf(s2);
+  const Eigen::Map<const Eigen::VectorXd> va(a, static_cast<Eigen::Index>(dim));
+  const Eigen::Map<const Eigen::VectorXd> vb(b, static_cast<Eigen::Index>(dim));
+  const std::size_t n = segmentCount(va, vb, resolution_);
+  // In order from s1, so the first collision found is the first along the motion.
+  thread_local std::vector<double> state;
+  state.resize(dim);
+  for (std::size_t i = 1; i <= n; ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(n);
+    for (std::size_t j = 0; j < dim; ++j) state[j] = a[j] + t * (b[j] - a[j]);
+    if (firstCollision(source_, state.data(), 1, dim) == 0) {
+      lastValid.second = static_cast<double>(i - 1) / static_cast<double>(n);
+      if (lastValid.first != nullptr) {
+        si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
+      }
+      invalid_++;
+      return false;
+    }
+  }
+  valid_++;
+  return true;
+}
+
+ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& source,
+                                                     const JointLimits& limits, double resolution) {
+  const std::size_t dim = sourceDof(source);
+  if (dim != limits.dim()) {
+    throw InvalidArgument(sourceName(source) + " checks " + std::to_string(dim) +
+                          " joints but the joint limits have " + std::to_string(limits.dim()));
+  }
+  if (!(resolution > 0) || !std::isfinite(resolution)) {
+    throw InvalidArgument("motion resolution must be positive, got " + std::to_string(resolution));
+  }
+  auto space = std::make_shared<ompl::base::RealVectorStateSpace>(static_cast<unsigned>(dim));
+  ompl::base::RealVectorBounds bounds(static_cast<unsigned>(dim));
+  for (std::size_t j = 0; j < dim; ++j) {
+    bounds.setLow(static_cast<unsigned>(j), limits.lower()[static_cast<Eigen::Index>(j)]);
+    bounds.setHigh(static_cast<unsigned>(j), limits.upper()[static_cast<Eigen::Index>(j)]);
+  }
+  space->setBounds(bounds);
+  auto si = std::make_shared<ompl::base::SpaceInformation>(space);
+  si->setStateValidityChecker(std::make_shared<CollisionValidityChecker>(si, source));
+  si->setMotionValidator(std::make_shared<ResolutionMotionValidator>(si, source, resolution));
+  si->setup();
+  return si;
+}
+
+}  // namespace fastron

@@ -1,0 +1,183 @@
+#include "fastron/planning/planner.h"
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/planners/informedtrees/BITstar.h>
+#include <ompl/geometric/planners/rrt/RRT.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTstar.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+namespace og = ompl::geometric;
+namespace ob = ompl::base;
+
+std::string plannerName(PlannerType type) {
+  switch (type) {
+    case PlannerType::Rrt:
+      return "RRT";
+    case PlannerType::RrtConnect:
+      return "RRTConnect";
+    case PlannerType::RrtStar:
+      return "RRT*";
+    case PlannerType::BitStar:
+      return "BIT*";
+  }
+  return "?";
+}
+
+PlannerType parsePlannerType(std::string_view name) {
+  std::string key;
+  for (const char c : name) {
+    if (c != '-' && c != '_') key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (key == "rrt") return PlannerType::Rrt;
+  if (key == "rrtconnect") return PlannerType::RrtConnect;
+  if (key == "rrt*" || key == "rrtstar") return PlannerType::RrtStar;
+  if (key == "bit*" || key == "bitstar") return PlannerType::BitStar;
+  throw InvalidArgument("unknown planner '" + std::string(name) +
+                        "' (choose RRT, RRTConnect, RRT* or BIT*)");
+}
+
+std::vector<PlannerType> allPlannerTypes() {
+  return {PlannerType::Rrt, PlannerType::RrtConnect, PlannerType::RrtStar, PlannerType::BitStar};
+}
+
+void validate(const PlannerOptions& options) {
+  if (!(options.range >= 0) || !std::isfinite(options.range)) {
+    throw InvalidArgument("planner range must be 0 (OMPL's default) or positive, got " +
+                          std::to_string(options.range));
+  }
+  if (!(options.resolution > 0) || !std::isfinite(options.resolution)) {
+    throw InvalidArgument("motion resolution must be positive, got " +
+                          std::to_string(options.resolution));
+  }
+  if (!(options.timeLimit > 0) || !std::isfinite(options.timeLimit)) {
+    throw InvalidArgument("planning time limit must be positive, got " +
+                          std::to_string(options.timeLimit));
+  }
+}
+
+ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptions& options) {
+  validate(options);
+  switch (options.type) {
+    case PlannerType::Rrt: {
+      auto planner = std::make_shared<og::RRT>(si);
+      if (options.range > 0) planner->setRange(options.range);
+      return planner;
+    }
+    case PlannerType::RrtConnect: {
+      auto planner = std::make_shared<og::RRTConnect>(si);
+      if (options.range > 0) planner->setRange(options.range);
+      return planner;
+    }
+    case PlannerType::RrtStar: {
+      // RRT* stops at its first solution only through the objective's cost threshold; see
+      // problemFor().
+      auto planner = std::make_shared<og::RRTstar>(si);
+      if (options.range > 0) planner->setRange(options.range);
+      return planner;
+    }
+    case PlannerType::BitStar: {
+      auto planner = std::make_shared<og::BITstar>(si);
+      planner->setStopOnSolnImprovement(true);
+      return planner;
+    }
+  }
+  throw InvalidArgument("unknown planner type");
+}
+
+std::string toString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::Solved:
+      return "solved";
+    case PlanStatus::InvalidStart:
+      return "start in collision";
+    case PlanStatus::InvalidGoal:
+      return "goal in collision";
+    case PlanStatus::Timeout:
+      return "no path within the time limit";
+  }
+  return "?";
+}
+
+namespace {
+
+void checkEndpoint(const Eigen::VectorXd& q, const JointLimits& limits, const char* what) {
+  checkConfiguration(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())),
+                     limits.dim(), what);
+  for (Eigen::Index j = 0; j < q.size(); ++j) {
+    if (q[j] < limits.lower()[j] || q[j] > limits.upper()[j]) {
+      throw InvalidArgument(std::string(what) + " value [" + std::to_string(j) +
+                            "] = " + std::to_string(q[j]) + " is outside the joint limits [" +
+                            std::to_string(limits.lower()[j]) + ", " +
+                            std::to_string(limits.upper()[j]) + "]");
+    }
+  }
+}
+
+ob::ScopedState<> stateOf(const ob::SpaceInformationPtr& si, const Eigen::VectorXd& q) {
+  ob::ScopedState<> state(si->getStateSpace());
+  for (Eigen::Index j = 0; j < q.size(); ++j) state[static_cast<unsigned>(j)] = q[j];
+  return state;
+}
+
+ob::ProblemDefinitionPtr problemFor(const ob::SpaceInformationPtr& si, const Eigen::VectorXd& start,
+                                    const Eigen::VectorXd& goal, PlannerType type) {
+  auto problem = std::make_shared<ob::ProblemDefinition>(si);
+  problem->setStartAndGoalStates(stateOf(si, start), stateOf(si, goal));
+  if (type == PlannerType::RrtStar || type == PlannerType::BitStar) {
+    auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+    // Any path satisfies an infinite threshold, so RRT* ends its loop at the first solution.
+    objective->setCostThreshold(objective->infiniteCost());
+    problem->setOptimizationObjective(objective);
+  }
+  return problem;
+}
+
+}  // namespace
+
+PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
+                      const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                      const PlannerOptions& options) {
+  validate(options);
+  checkEndpoint(start, limits, "start");
+  checkEndpoint(goal, limits, "goal");
+  const auto began = std::chrono::steady_clock::now();
+  const auto si = makeSpaceInformation(source, limits, options.resolution);
+  PlanResult result;
+  const auto finish = [&](PlanStatus status) {
+    result.status = status;
+    result.time = std::chrono::steady_clock::now() - began;
+    return result;
+  };
+  const auto startState = stateOf(si, start);
+  const auto goalState = stateOf(si, goal);
+  if (!si->isValid(startState.get())) return finish(PlanStatus::InvalidStart);
+  if (!si->isValid(goalState.get())) return finish(PlanStatus::InvalidGoal);
+
+  const auto planner = makePlanner(si, options);
+  planner->setProblemDefinition(problemFor(si, start, goal, options.type));
+  planner->setup();
+  const ob::PlannerStatus status = planner->solve(options.timeLimit);
+  const auto problem = planner->getProblemDefinition();
+  if (status != ob::PlannerStatus::EXACT_SOLUTION || !problem->hasExactSolution()) {
+    return finish(PlanStatus::Timeout);
+  }
+  auto& path = *problem->getSolutionPath()->as<og::PathGeometric>();
+  const auto dim = static_cast<Eigen::Index>(limits.dim());
+  for (const ob::State* state : path.getStates()) {
+    const double* values = state->as<ob::RealVectorStateSpace::StateType>()->values;
+    result.path.emplace_back(Eigen::Map<const Eigen::VectorXd>(values, dim));
+  }
+  return finish(PlanStatus::Solved);
+}
+
+}  // namespace fastron

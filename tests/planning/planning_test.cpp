@@ -1,0 +1,282 @@
+// The planning layer: motion discretisation, planners on OMPL, and verify-and-repair, checked
+// against exact checkers with code independent of the planner's own checks.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <set>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/core/error.h"
+#include "fastron/core/trainer.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_file.h"
+#include "fastron/planning/motion.h"
+#include "fastron/planning/planner.h"
+#include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/labelling.h"
+#include "temp_dir.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+using ::testing::HasSubstr;
+using test::messageOf;
+
+// A point robot in [-1, 1]^2 and a wall x in [-0.1, 0.1], y < 0.5, with a gap above it.
+bool inWall(const double* q) {
+  return std::abs(q[0]) < 0.1 && q[1] < 0.5;
+}
+
+std::shared_ptr<const CollisionChecker> wallChecker() {
+  return std::make_shared<FunctionChecker>("wall", 2, inWall);
+}
+
+Eigen::VectorXd vec(std::initializer_list<double> values) {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(values.size()));
+  std::copy(values.begin(), values.end(), v.begin());
+  return v;
+}
+
+const Eigen::VectorXd kStart = vec({-0.8, -0.8});
+const Eigen::VectorXd kGoal = vec({0.8, -0.8});
+
+/// True when every waypoint of the path, and every state a + (b - a) i / n (n = ceil(|b - a| /
+/// resolution)) of every edge, is free under `collides`: written apart from checkPath on purpose.
+template <class Collides>
+bool pathIsFree(const Path& path, double resolution, const Collides& collides) {
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const double length = (path[k + 1] - path[k]).norm();
+    const auto n = std::max<long>(1, static_cast<long>(std::ceil(length / resolution)));
+    for (long i = 0; i <= n; ++i) {
+      const Eigen::VectorXd q =
+          path[k] + (path[k + 1] - path[k]) * (static_cast<double>(i) / static_cast<double>(n));
+      if (collides(q)) return false;
+    }
+  }
+  return !path.empty();
+}
+
+class Planning : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { ompl::msg::noOutputHandler(); }  // tests print nothing of OMPL's
+};
+
+TEST(Motion, SegmentCountKeepsEveryStepWithinTheResolution) {
+  EXPECT_EQ(segmentCount(vec({0, 0}), vec({0, 0}), 0.1), 1u);
+  EXPECT_EQ(segmentCount(vec({0, 0}), vec({0.3, 0.4}), 0.1), 5u);
+  EXPECT_EQ(segmentCount(vec({0, 0}), vec({0.3, 0.4}), 0.099), 6u);
+  EXPECT_THROW(segmentCount(vec({0}), vec({1}), 0), InvalidArgument);
+  EXPECT_THROW(segmentCount(vec({0}), vec({1}), std::nan("")), InvalidArgument);
+}
+
+TEST(Motion, StatesCoverTheMotionOnceInBisectionOrder) {
+  for (const std::size_t n : {1u, 2u, 3u, 7u, 8u, 13u, 64u}) {
+    std::vector<double> states;
+    const double a[] = {0.0};
+    const double b[] = {static_cast<double>(n)};
+    motionStates(a, b, 1, n, states);
+    ASSERT_EQ(states.size(), n);
+    EXPECT_EQ(states[0], static_cast<double>(n)) << "the end state comes first";
+    if (n >= 4) {  // then the largest power of two below n
+      EXPECT_EQ(states[1], std::exp2(std::floor(std::log2(static_cast<double>(n - 1)))));
+    }
+    const std::set<double> unique(states.begin(), states.end());
+    EXPECT_EQ(unique.size(), n);
+    EXPECT_EQ(*unique.begin(), 1.0);
+  }
+}
+
+TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
+  const auto wall = wallChecker();
+  const Path path{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
+  const PathCheck check = checkPath(*wall, path, 0.01);
+  EXPECT_THAT(check.invalidWaypoints, ::testing::ElementsAre(2u));
+  EXPECT_THAT(check.invalidEdges, ::testing::ElementsAre(1u, 2u));
+  EXPECT_FALSE(check.valid());
+  EXPECT_FALSE(checkPath(*wall, {}, 0.01).valid());
+  EXPECT_TRUE(checkPath(*wall, {kStart, vec({-0.5, 0.9}), vec({0.5, 0.9}), kGoal}, 0.01).valid());
+  EXPECT_THROW(checkPath(*wall, {vec({0, 0, 0})}, 0.01), InvalidArgument);
+}
+
+TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  for (const PlannerType type : allPlannerTypes()) {
+    // A generous limit: a planner that kept optimising after its first solution would use it all.
+    const PlannerOptions options{.type = type, .resolution = 0.01, .timeLimit = 30};
+    const PlanResult plan = planMotion(wall, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plannerName(type) << ": " << toString(plan.status);
+    EXPECT_LT(plan.time, std::chrono::seconds(5)) << plannerName(type) << " did not stop";
+    EXPECT_TRUE(plan.path.front().isApprox(kStart));
+    EXPECT_TRUE(plan.path.back().isApprox(kGoal));
+    EXPECT_TRUE(pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& q) {
+      return inWall(q.data());
+    })) << plannerName(type);
+    EXPECT_GT(pathLength(plan.path), 2.0) << "the path must go round the wall";
+  }
+}
+
+TEST_F(Planning, ReportsCollidingEndsAndTimeouts) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 0.2};
+  EXPECT_EQ(planMotion(wall, limits, vec({0, 0}), kGoal, options).status, PlanStatus::InvalidStart);
+  EXPECT_EQ(planMotion(wall, limits, kStart, vec({0, 0}), options).status, PlanStatus::InvalidGoal);
+  // A wall across the whole space: no path exists.
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const PlanResult none = planMotion(closed, limits, kStart, kGoal, options);
+  EXPECT_EQ(none.status, PlanStatus::Timeout);
+  EXPECT_TRUE(none.path.empty());
+}
+
+TEST_F(Planning, RefusesBadQueries) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{};
+  EXPECT_THAT(
+      messageOf<InvalidArgument>([&] { planMotion(wall, limits, vec({0.1}), kGoal, options); }),
+      HasSubstr("start"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                planMotion(wall, limits, kStart, vec({0.2, std::nan("")}), options);
+              }),
+              HasSubstr("goal value [1]"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                planMotion(wall, limits, kStart, vec({0.2, 1.5}), options);
+              }),
+              HasSubstr("outside the joint limits"));
+  EXPECT_THAT(messageOf<InvalidArgument>(
+                  [&] { planMotion(wall, JointLimits::unitBox(3), kStart, kGoal, options); }),
+              HasSubstr("start"));
+  EXPECT_THAT(messageOf<InvalidArgument>(
+                  [&] { planMotion(wall, limits, kStart, kGoal, {.resolution = -1}); }),
+              HasSubstr("resolution"));
+  EXPECT_THAT(messageOf<InvalidArgument>(
+                  [&] { planMotion(wall, limits, kStart, kGoal, {.timeLimit = 0}); }),
+              HasSubstr("time limit"));
+  EXPECT_THAT(messageOf<InvalidArgument>([] { parsePlannerType("PRM"); }), HasSubstr("'PRM'"));
+  EXPECT_EQ(parsePlannerType("rrt-connect"), PlannerType::RrtConnect);
+  EXPECT_EQ(parsePlannerType("BITstar"), PlannerType::BitStar);
+  EXPECT_EQ(parsePlannerType("RRT*"), PlannerType::RrtStar);
+  EXPECT_THROW(makeSpaceInformation(wall, JointLimits::unitBox(3), 0.01), InvalidArgument);
+  EXPECT_THROW(makeSpaceInformation(std::shared_ptr<const Model>(), limits, 0.01), InvalidArgument);
+}
+
+TEST_F(Planning, RepairsAWaypointInsideAnObstacle) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5};
+  const Path broken{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.0}), kGoal};
+  const VerifiedPlan repaired = verifyAndRepair(broken, wall, limits, options);
+  ASSERT_TRUE(repaired.solved()) << repaired.failure;
+  EXPECT_EQ(repaired.invalidStretches, 1u);
+  EXPECT_GT(repaired.repairTime.count(), 0);
+  EXPECT_GT(repaired.verifyTime.count(), 0);
+  EXPECT_TRUE(repaired.path.front().isApprox(kStart));
+  EXPECT_TRUE(repaired.path.back().isApprox(kGoal));
+  EXPECT_TRUE(
+      pathIsFree(repaired.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
+  // The valid parts are kept: the path still starts with the first two waypoints.
+  EXPECT_TRUE(repaired.path[1].isApprox(broken[1]));
+}
+
+TEST_F(Planning, RepairsAnEdgeThatCutsACorner) {
+  // Both waypoints are free, the straight line between them clips the wall's top corner.
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.005, .timeLimit = 5};
+  const Path cutting{kStart, vec({-0.15, 0.45}), vec({0.15, 0.55}), kGoal};
+  ASSERT_TRUE(checkPath(*wall, {cutting[1]}, 0.005).valid());
+  ASSERT_TRUE(checkPath(*wall, {cutting[2]}, 0.005).valid());
+  const VerifiedPlan repaired = verifyAndRepair(cutting, wall, limits, options);
+  ASSERT_TRUE(repaired.solved()) << repaired.failure;
+  EXPECT_EQ(repaired.invalidStretches, 1u);
+  EXPECT_TRUE(
+      pathIsFree(repaired.path, 0.005, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
+  // A valid path comes back unchanged, with no repair.
+  const VerifiedPlan same = verifyAndRepair(repaired.path, wall, limits, options);
+  EXPECT_EQ(same.invalidStretches, 0u);
+  EXPECT_EQ(same.path.size(), repaired.path.size());
+}
+
+TEST_F(Planning, SaysPlainlyWhenNoValidPathIsFound) {
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 0.2};
+  const VerifiedPlan none =
+      verifyAndRepair({kStart, vec({0, 0.9}), kGoal}, closed, limits, options);
+  EXPECT_FALSE(none.solved());
+  EXPECT_THAT(none.failure, HasSubstr("could not replan the stretch between waypoints 0 and 2"));
+  const VerifiedPlan badStart = verifyAndRepair({vec({0, 0}), kGoal}, closed, limits, options);
+  EXPECT_EQ(badStart.status, PlanStatus::InvalidStart);
+}
+
+/// A Fastron model of the wall world, trained on a grid of exact labels.
+std::shared_ptr<const Model> wallModel() {
+  const Configurations q = test::uniformPoints(3000, 2, 7);
+  Labels y(static_cast<std::size_t>(q.rows()));
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
+    y[static_cast<std::size_t>(i)] = inWall(q.row(i).data()) ? 1 : -1;
+  Trainer trainer(JointLimits::unitBox(2), {.kernel = {.gamma = 30}, .beta = 10});
+  trainer.addPoints(q, y);
+  trainer.update();
+  return trainer.model();
+}
+
+TEST_F(Planning, FastronPlansAreVerifiedAndRepairedIntoValidPaths) {
+  const auto wall = wallChecker();
+  const auto model = wallModel();
+  const JointLimits limits = JointLimits::unitBox(2);
+  for (const PlannerType type : allPlannerTypes()) {
+    const PlannerOptions options{.type = type, .resolution = 0.01, .timeLimit = 10};
+    const VerifiedPlan plan = planVerified(model, wall, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plannerName(type) << ": " << plan.failure;
+    EXPECT_GT(plan.planTime.count(), 0);
+    EXPECT_TRUE(pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& q) {
+      return inWall(q.data());
+    })) << plannerName(type);
+  }
+  // A model that thinks the start collides: the whole motion is planned on the exact checker.
+  const auto blocked = std::make_shared<FunctionChecker>(
+      "blocked", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
+  const VerifiedPlan fallback = planVerified(std::shared_ptr<const CollisionChecker>(blocked), wall,
+                                             limits, kStart, kGoal, {.resolution = 0.01});
+  EXPECT_TRUE(fallback.solved());
+  EXPECT_TRUE(fallback.approximatePlanFailed);
+}
+
+TEST_F(Planning, BaxterPathsAreFreeUnderFcl) {
+  Robot baxter = loadRobot("baxter");
+  const Scene scene = loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml");
+  const auto fcl = std::make_shared<const FclChecker>(baxter, scene);
+  const JointLimits limits = baxter.limits();
+  Rng rng(3);
+  const Configurations q = uniformConfigurations(limits, 400, rng);
+  std::vector<Eigen::VectorXd> free;
+  for (Eigen::Index i = 0; i < q.rows() && free.size() < 2; ++i) {
+    if (!fcl->inCollision(std::span<const double>(q.row(i).data(), limits.dim()))) {
+      free.emplace_back(q.row(i).transpose());
+    }
+  }
+  ASSERT_EQ(free.size(), 2u);
+  const PlannerOptions options{
+      .type = PlannerType::RrtConnect, .resolution = 0.05, .timeLimit = 20};
+  const PlanResult plan = planMotion(fcl, limits, free[0], free[1], options);
+  ASSERT_TRUE(plan.solved()) << toString(plan.status);
+  const FclChecker independent(baxter, scene);  // a checker the planner never used
+  EXPECT_TRUE(pathIsFree(plan.path, 0.05, [&](const Eigen::VectorXd& x) {
+    return independent.inCollision(std::span<const double>(x.data(), limits.dim()));
+  }));
+}
+
+}  // namespace
+}  // namespace fastron
