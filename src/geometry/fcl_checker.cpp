@@ -56,19 +56,28 @@ fcl::Transform3d toFcl(const Eigen::Isometry3d& pose) {
   return t;
 }
 
-// Broad-phase callback: stop at the first collision and remember the obstacle it was.
+// Broad-phase callback: stop at the first collision and remember the obstacle it was; skip the
+// obstacles this robot shape may touch.
 struct CollideData {
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   const fcl::CollisionObjectd* hit = nullptr;
+  const std::uint8_t* allowed = nullptr;  // one flag per obstacle, or none
 };
+
+// Obstacles carry their index + 1 as user data; robot objects carry none.
+std::size_t obstacleIndex(const fcl::CollisionObjectd* object) {
+  return reinterpret_cast<std::size_t>(object->getUserData()) - 1;
+}
 
 bool collideCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* raw) {
   auto* data = static_cast<CollideData*>(raw);
   if (data->hit != nullptr) return true;
+  const fcl::CollisionObjectd* obstacle = a->getUserData() != nullptr ? a : b;
+  if (data->allowed != nullptr && data->allowed[obstacleIndex(obstacle)] != 0) return false;
   data->result.clear();
   fcl::collide(a, b, data->request, data->result);
-  if (data->result.isCollision()) data->hit = a->getUserData() != nullptr ? a : b;
+  if (data->result.isCollision()) data->hit = obstacle;
   return data->hit != nullptr;
 }
 
@@ -84,6 +93,7 @@ struct FclChecker::Obstacles {
   fcl::DynamicAABBTreeCollisionManagerd manager;
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // robot shapes that must not touch
+  std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
 };
 
 struct FclChecker::Scratch {
@@ -119,7 +129,6 @@ void FclChecker::setScene(const Scene& scene) {
     const Obstacle& o = scene.obstacles()[i];
     auto object = std::make_unique<fcl::CollisionObjectd>(toFcl(o.shape), toFcl(o.pose));
     object->computeAABB();
-    // User data marks obstacles (robot objects have none); the value is the index + 1.
     object->setUserData(reinterpret_cast<void*>(i + 1));
     raw.push_back(object.get());
     next->objects.push_back(std::move(object));
@@ -128,6 +137,7 @@ void FclChecker::setScene(const Scene& scene) {
   next->manager.registerObjects(raw);
   next->manager.setup();
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
+  next->allowed = allowedObstacleContacts(robot_, scene);
   const std::lock_guard lock(obstaclesMutex_);
   obstacles_ = std::move(next);
 }
@@ -153,11 +163,11 @@ std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) co
 
   for (std::size_t s = 0; s < shapes.size(); ++s) {
     CollideData data;
+    if (!world->allowed.empty()) data.allowed = world->allowed.data() + s * world->objects.size();
     world->manager.collide(scratch->robotObjects[s].get(), &data, collideCallback);
     if (data.hit != nullptr) {
       if (!wantContact) return Contact{};
-      const auto index = reinterpret_cast<std::size_t>(data.hit->getUserData()) - 1;
-      return Contact{linkName(s), world->names[index], false};
+      return Contact{linkName(s), world->names[obstacleIndex(data.hit)], false};
     }
   }
   fcl::CollisionRequestd request;
@@ -193,9 +203,10 @@ double FclChecker::distance(std::span<const double> q) const {
     fcl::CollisionObjectd& object = *scratch->robotObjects[s];
     object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
     object.computeAABB();
-    for (const auto& obstacle : world->objects) {
+    for (std::size_t o = 0; o < world->objects.size(); ++o) {
+      if (!world->allowed.empty() && world->allowed[s * world->objects.size() + o] != 0) continue;
       fcl::DistanceResultd result;
-      fcl::distance(&object, obstacle.get(), request, result);
+      fcl::distance(&object, world->objects[o].get(), request, result);
       best = std::min(best, std::max(0.0, result.min_distance));
     }
   }

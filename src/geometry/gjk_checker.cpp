@@ -116,6 +116,7 @@ struct GjkChecker::World {
   std::vector<ConvexBody> obstacles;
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;
+  std::vector<std::uint8_t> allowed;  // see allowedObstacleContacts
 };
 
 struct GjkChecker::Scratch {
@@ -151,6 +152,7 @@ void GjkChecker::setScene(const Scene& scene) {
     next->obstacles.push_back(std::move(body));
   }
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
+  next->allowed = allowedObstacleContacts(robot_, scene);
   const std::lock_guard lock(worldMutex_);
   world_ = std::move(next);
 }
@@ -168,8 +170,10 @@ bool GjkChecker::check(const double* q) const {
   for (std::size_t s = 0; s < shapes.size(); ++s) {
     scratch->robot[s].pose =
         scratch->kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
-    for (const ConvexBody& obstacle : w->obstacles) {
-      if (gjkIntersect(scratch->robot[s], obstacle)) return true;
+    const std::size_t count = w->obstacles.size();
+    for (std::size_t o = 0; o < count; ++o) {
+      if (!w->allowed.empty() && w->allowed[s * count + o] != 0) continue;
+      if (gjkIntersect(scratch->robot[s], w->obstacles[o])) return true;
     }
   }
   for (const auto& [a, b] : w->selfPairs) {

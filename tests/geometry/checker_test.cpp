@@ -214,6 +214,29 @@ TEST(Checkers, DistanceAndPadding) {
   EXPECT_EQ(bare.distance(std::vector<double>{0, 0.5}) > 0.03, true);
 }
 
+TEST(Checkers, AllowedRobotObstaclePairsMayTouch) {
+  // A grasped object may touch the hand: the scene's allowed collision matrix names the pair.
+  const Robot rod = loadRobot("rod2");
+  const std::string link = rod.links()[static_cast<std::size_t>(rod.shapes()[0].link)].name;
+  Scene scene;
+  scene.add({"held", Sphere{0.1}, makePose({0.3, 0, 0}), std::nullopt});
+  scene.add({"far", Sphere{0.1}, makePose({-2, 0, 0}), std::nullopt});
+  const std::vector<double> q{0, 0};
+  EXPECT_TRUE(FclChecker(rod, scene).inCollision(q));
+  scene.allowedCollisions.allow("held", link);
+  const FclChecker fcl(rod, scene);
+  const GjkChecker gjk(rod, scene);
+  EXPECT_FALSE(fcl.inCollision(q));
+  EXPECT_FALSE(gjk.inCollision(q));
+  EXPECT_GT(fcl.distance(q), 1.0);  // to the other obstacle only
+  // Other obstacles still count.
+  scene.setPose("far", makePose({0.2, 0.05, 0}));
+  const FclChecker fclFar(rod, scene);
+  EXPECT_TRUE(fclFar.inCollision(q));
+  EXPECT_EQ(fclFar.firstContact(q)->other, "far");
+  EXPECT_TRUE(GjkChecker(rod, scene).inCollision(q));
+}
+
 TEST(Checkers, SetSceneMovesTheObstacles) {
   const Robot rod = loadRobot("rod2");
   Scene scene;

@@ -9,6 +9,7 @@
 
 #include "fastron/core/types.h"
 #include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
 
 namespace fastron {
 
@@ -48,6 +49,11 @@ struct CheckerOptions {
 /// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it
 /// cannot be padded (a mesh) or the padding is invalid.
 Shape paddedShape(const Robot& robot, std::size_t index, const CheckerOptions& options);
+
+/// Robot-obstacle pairs the scene allows to touch (its allowed collision matrix names a link and an
+/// obstacle, e.g. a grasped object and the hand): allowed[s * obstacles + o] = 1 when robot shape s
+/// may touch obstacle o. Empty when the scene allows no such pair.
+std::vector<std::uint8_t> allowedObstacleContacts(const Robot& robot, const Scene& scene);
 
 /// A CollisionChecker around a callable `bool(const double* q)`, e.g. an analytic oracle.
 /// The callable must itself be safe to call concurrently.
