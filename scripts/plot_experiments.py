@@ -185,6 +185,87 @@ def plot_sweep_obstacles(rows, out):
     fig.savefig(out / "sweep.png", dpi=110)
 
 
+PARTS = (("plan_s", "plan"), ("verify_s", "verify"), ("repair_s", "repair"))
+METHOD_COLOURS = {"Fastron": "tab:blue", "GJK": "tab:orange", "FCL": "tab:green"}
+
+
+def stacked_times(ax, rows, groups, group_key, title):
+    """Stacked bars of mean plan / verify / repair time over solved queries, one group per value
+    of group_key (a planner or a problem), one bar per method: the paper's Figs. 13 and 14."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    width = 0.8 / len(methods)
+    x = np.arange(len(groups))
+    hatches = {"plan_s": "", "verify_s": "//", "repair_s": ".."}
+    for k, method in enumerate(methods):
+        bottom = np.zeros(len(groups))
+        for key, part in PARTS:
+            heights = []
+            for g in groups:
+                values = [number(r[key]) * 1e3 for r in rows
+                          if r[group_key] == g and r["method"] == method and r["solved"] == "1"]
+                heights.append(mean_std(values)[0] if values else 0.0)
+            heights = np.nan_to_num(np.array(heights))
+            ax.bar(x + (k - (len(methods) - 1) / 2) * width, heights, width, bottom=bottom,
+                   color=METHOD_COLOURS.get(method, "grey"), hatch=hatches[key], edgecolor="black",
+                   linewidth=0.4, label=f"{method}: {part}" if heights.any() or key == "plan_s" else None)
+            bottom += heights
+    ax.set_xticks(x, groups)
+    ax.set_ylabel("mean time per query (ms)")
+    ax.set_title(title)
+    ax.grid(axis="y", alpha=0.3)
+
+
+def plot_plan(rows, out):
+    """Figs. 13 and 14: planning time split into plan / verify / repair, per planner and case."""
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    planners = list(dict.fromkeys(r["planner"] for r in rows))
+    fig, axes = plt.subplots(1, len(cases), figsize=(5.5 * len(cases), 4.6), squeeze=False)
+    for ax, case in zip(axes[0], cases):
+        stacked_times(ax, [r for r in rows if r["case"] == case], planners, "planner",
+                      f"Baxter, {case}")
+    axes[0][-1].legend(fontsize=7, loc="upper right")
+    fig.suptitle("Time to a valid plan (solved queries): plan / verify / repair")
+    fig.tight_layout()
+    fig.savefig(out / "plan.png", dpi=110)
+
+
+def plot_single_planner(rows, out, name, title, group_key):
+    groups = list(dict.fromkeys(r[group_key] for r in rows))
+    fig, ax = plt.subplots(figsize=(max(5.5, 0.9 * len(groups) + 3), 4.6))
+    stacked_times(ax, rows, groups, group_key, title)
+    ax.legend(fontsize=7, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(out / f"{name}.png", dpi=110)
+
+
+def plot_surgical(rows, out):
+    """Replanning rate of each method, and each tick's time to a valid plan."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6))
+    rates = []
+    for m in methods:
+        times = [number(r["total_s"]) for r in rows if r["method"] == m and r["solved"] == "1"]
+        rates.append(1.0 / mean_std(times)[0] if times else 0.0)
+    left.bar(methods, rates, color=[METHOD_COLOURS.get(m, "grey") for m in methods])
+    for i, rate in enumerate(rates):
+        left.text(i, rate, f"{rate:.0f} Hz", ha="center", va="bottom")
+    left.set_ylabel("replanning rate (Hz, 1 / mean time to a valid plan)")
+    left.set_title("PSM3 replanning an RRT every tick")
+    left.grid(axis="y", alpha=0.3)
+    for m in methods:
+        ticks = [int(r["tick"]) for r in rows if r["method"] == m and r["solved"] == "1"]
+        times = [number(r["total_s"]) * 1e3 for r in rows if r["method"] == m and r["solved"] == "1"]
+        right.plot(ticks, times, ".", color=METHOD_COLOURS.get(m, "grey"), label=m)
+    right.set_yscale("log")
+    right.set_xlabel("tick")
+    right.set_ylabel("plan + verify + repair (ms)")
+    right.set_title("time to a valid plan at each tick")
+    right.grid(alpha=0.3)
+    right.legend()
+    fig.tight_layout()
+    fig.savefig(out / "surgical.png", dpi=110)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -200,6 +281,14 @@ def main():
         plot_changing(rows, out)
     elif name == "sweep":
         plot_sweep_obstacles(rows, out)
+    elif name == "plan":
+        plot_plan(rows, out)
+    elif name == "shelf":
+        plot_single_planner(rows, out, "shelf", "UR3 shelf, RRT: time to a valid plan", "planner")
+    elif name == "surgical":
+        plot_surgical(rows, out)
+    elif name == "motion-bench":
+        plot_single_planner(rows, out, "motion-bench", "MoveIt problems, RRT-Connect: time to a valid plan", "problem")
     else:
         sys.exit(f"no plot for '{name}'")
 

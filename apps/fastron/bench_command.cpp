@@ -1,6 +1,7 @@
 // fastron bench NAME: one of the paper's experiments; raw results as CSV, the paper's tables as
 // Markdown with the paper's values beside ours, and the paper's figures as PNG.
 
+#include <ompl/util/RandomNumbers.h>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "fastron/core/error.h"
 #include "fastron/experiments/changing_experiment.h"
 #include "fastron/experiments/cspace_experiment.h"
+#include "fastron/experiments/planning_experiment.h"
 #include "fastron/experiments/static_experiment.h"
 #include "plotting.h"
 
@@ -18,8 +20,9 @@ namespace fastron::cli {
 namespace {
 
 struct BenchOptions {
-  std::string name, out;
-  std::size_t trials = 0;  // 0: the experiment's default
+  std::string name, out, problems;
+  std::size_t trials = 0;                // 0: the experiment's default
+  double timeLimit = 0, resolution = 0;  // 0: the experiment's default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
 };
@@ -34,6 +37,19 @@ int runBench(const BenchOptions& o) {
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "[" << static_cast<int>(s) << " s] " << line << std::endl;
+  };
+
+  // OMPL draws every planner's seeds from one global generator, which takes a seed only before
+  // its first use: planning experiments are repeatable in their queries, not in planning times.
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
+  const auto setPlanning = [&o](auto& options, std::size_t defaultTrials) {
+    options.seed = o.seed;
+    options.quick = o.quick;
+    if (o.timeLimit > 0) options.timeLimit = o.timeLimit;
+    if (o.resolution > 0) options.resolution = o.resolution;
+    if constexpr (requires { options.trials; }) {
+      options.trials = o.trials ? o.trials : (o.quick ? 1 : defaultTrials);
+    }
   };
 
   Table results;
@@ -75,6 +91,38 @@ int runBench(const BenchOptions& o) {
     r.support.writeCsv(dir / "support.csv");
     r.cubes.writeCsv(dir / "cubes.csv");
     report = cspaceReport(r, cspace);
+  } else if (o.name == "plan") {
+    PlanningOptions planning;
+    setPlanning(planning, planning.trials);
+    if (o.quick) {
+      planning.cases = {"4dof", "7dof-3boxes"};
+      planning.timeLimit = o.timeLimit > 0 ? o.timeLimit : 3;
+    }
+    results = runPlanning(planning, progress);
+    report = planningReport(results, planning);
+  } else if (o.name == "shelf") {
+    ShelfOptions shelf;
+    setPlanning(shelf, shelf.trials);
+    if (o.quick && o.timeLimit <= 0) shelf.timeLimit = 3;
+    results = runShelf(shelf, progress);
+    report = shelfReport(results, shelf);
+  } else if (o.name == "surgical") {
+    SurgicalOptions surgical;
+    setPlanning(surgical, 0);
+    if (o.trials) surgical.ticks = o.trials;
+    results = runSurgical(surgical, progress);
+    report = surgicalReport(results, surgical);
+  } else if (o.name == "motion-bench") {
+    if (o.problems.empty()) {
+      throw InvalidArgument(
+          "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
+          "requestNNNN.yaml files)");
+    }
+    MotionBenchOptions bench;
+    setPlanning(bench, 0);
+    bench.problems = o.problems;
+    results = runMotionBench(bench, progress);
+    report = motionBenchReport(results, bench);
   } else {
     throw InvalidArgument("unknown experiment '" + o.name + "'");
   }
@@ -96,12 +144,24 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Run one of the paper's experiments");
-  cmd->add_option("name", o->name, "static, static-beta, static-gamma, cspace, changing, sweep")
+  const std::vector<std::string> names{"static",   "static-beta", "static-gamma", "cspace",
+                                       "changing", "sweep",       "plan",         "shelf",
+                                       "surgical", "motion-bench"};
+  cmd->add_option("name", o->name,
+                  "static, static-beta, static-gamma, cspace, changing, sweep, plan, shelf, "
+                  "surgical, motion-bench")
       ->required()
-      ->check(
-          CLI::IsMember({"static", "static-beta", "static-gamma", "cspace", "changing", "sweep"}));
+      ->check(CLI::IsMember(names));
   cmd->add_option("--trials", o->trials,
-                  "trials (random environments); default: the experiment's own");
+                  "trials (random environments, planning queries; surgical: ticks); default: the "
+                  "experiment's own");
+  cmd->add_option("--problems", o->problems,
+                  "motion-bench: folder of MoveIt sceneNNNN.yaml / requestNNNN.yaml pairs");
+  cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--resolution", o->resolution,
+                  "planning experiments: joint-space step of edge checks")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
   cmd->add_flag("--quick", o->quick, "small sizes, for a fast check");

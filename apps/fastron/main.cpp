@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <ompl/util/Console.h>
 #include <exception>
 #include <iostream>
 
@@ -12,6 +13,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Fastron: learned proxy collision detection for motion planning", "fastron"};
   app.set_version_flag("--version", FASTRON_VERSION);
   app.require_subcommand(1);
+  // OMPL logs every planner's start and end on the console; the results carry what matters (a
+  // plan's status), so the command keeps its output to its own tables.
+  ompl::msg::noOutputHandler();
   int exitCode = 0;
   fastron::cli::addTrainCommand(app, exitCode);
   fastron::cli::addEvalCommand(app, exitCode);

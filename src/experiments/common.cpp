@@ -94,12 +94,24 @@ std::vector<std::string> Table::distinct(const std::string& column, const Filter
   return values;
 }
 
+namespace {
+
+// RFC 4180: a cell with a comma, quote or line break is quoted, its quotes doubled.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
 void Table::writeCsv(const std::filesystem::path& path) const {
   std::ofstream out(path);
-  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << csvField(columns[i]);
   out << '\n';
   for (const auto& row : rows) {
-    for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+    for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << csvField(row[i]);
     out << '\n';
   }
   out.close();

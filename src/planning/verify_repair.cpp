@@ -52,14 +52,25 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
       std::size_t j = i + 1;
       while (contains(check.invalidWaypoints, j)) ++j;
       ++result.invalidStretches;
-      const PlanResult bridge = planMotion(exact, limits, old[i], old[j], options);
+      // A stretch is short, so it gets a quarter of the time; a waypoint the approximate plan
+      // left in a pocket of free space may have no short way out, and then the whole motion is
+      // planned again on the exact checker.
+      PlannerOptions stretchOptions = options;
+      stretchOptions.timeLimit = options.timeLimit / 4;
+      const PlanResult bridge = planMotion(exact, limits, old[i], old[j], stretchOptions);
       if (!bridge.solved()) {
-        result.repairTime += Clock::now() - began;
-        result.status = PlanStatus::Timeout;
-        result.failure = "could not replan the stretch between waypoints " + std::to_string(i) +
-                         " and " + std::to_string(j) + " on " + exact->name() + " (" +
-                         toString(bridge.status) + ")";
-        return result;
+        const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);
+        if (!whole.solved()) {
+          result.repairTime += Clock::now() - began;
+          result.status = PlanStatus::Timeout;
+          result.failure = "could not replan the stretch between waypoints " + std::to_string(i) +
+                           " and " + std::to_string(j) + " on " + exact->name() +
+                           ", nor the whole path (" + toString(whole.status) + ")";
+          return result;
+        }
+        repaired = whole.path;
+        result.wholePathReplanned = true;
+        break;
       }
       repaired.insert(repaired.end(), bridge.path.begin() + 1, bridge.path.end());
       i = j;
@@ -96,7 +107,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   }
   result.planTime = plan.time;
   result.repairTime += repairTime;
-  result.approximatePlanFailed = true;
+  result.wholePathReplanned = true;
   return result;
 }
 

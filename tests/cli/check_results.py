@@ -72,6 +72,29 @@ def check_sweep(rows, parameter):
             fail(f"support_ratio out of (0, 1]: {row}")
 
 
+def check_plans(rows, methods):
+    """Planning experiments: every final path is free under FCL, each method solves something."""
+    found = {r["method"] for r in rows}
+    if found != set(methods):
+        fail(f"methods {sorted(found)}, expected {sorted(methods)}")
+    for row in rows:
+        if row["solved"] not in ("0", "1"):
+            fail(f"solved must be 0 or 1: {row}")
+        if row["solved"] == "1":
+            if value(row, "collides_fcl") != 0:
+                fail(f"a final path collides under FCL: {row}")
+            times = [value(row, k) for k in ("plan_s", "verify_s", "repair_s", "total_s")]
+            if any(t < 0 for t in times) or abs(sum(times[:3]) - times[3]) > 1e-6 * max(1.0, times[3]):
+                fail(f"plan + verify + repair != total: {row}")
+            if row["method"] == "FCL" and (value(row, "verify_s") != 0 or value(row, "repair_s") != 0):
+                fail(f"FCL plans need no verify or repair: {row}")
+        elif row["status"] == "solved":
+            fail(f"status 'solved' on an unsolved row: {row}")
+    for method in methods:
+        if not any(r["solved"] == "1" for r in rows if r["method"] == method):
+            fail(f"{method} solved no query")
+
+
 def main():
     name, out = sys.argv[1], Path(sys.argv[2])
     rows = rows_of(out)
@@ -104,6 +127,12 @@ def main():
         for row in rows:
             if value(row, "grid_accuracy") < 0.8:
                 fail(f"{row['method']} grid accuracy {row['grid_accuracy']}")
+    elif name in ("plan", "shelf", "surgical"):
+        check_plans(rows, ["Fastron", "GJK", "FCL"])
+        if name == "plan" and {r["planner"] for r in rows} != {"RRT", "RRTConnect", "RRT*", "BIT*"}:
+            fail(f"planners {sorted({r['planner'] for r in rows})}")
+    elif name == "motion-bench":
+        check_plans(rows, ["Fastron", "FCL"])
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:

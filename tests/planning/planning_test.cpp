@@ -27,8 +27,8 @@
 namespace fastron {
 namespace {
 
-using ::testing::HasSubstr;
 using test::messageOf;
+using ::testing::HasSubstr;
 
 // A point robot in [-1, 1]^2 and a wall x in [-0.1, 0.1], y < 0.5, with a gap above it.
 bool inWall(const double* q) {
@@ -207,6 +207,23 @@ TEST_F(Planning, RepairsAnEdgeThatCutsACorner) {
   EXPECT_EQ(same.path.size(), repaired.path.size());
 }
 
+TEST_F(Planning, ReplansTheWholeMotionWhenAStretchCannotBeBridged) {
+  // The middle waypoint is free but sealed in a ring of obstacle: no stretch reaches it.
+  const auto ringed = std::make_shared<FunctionChecker>("ringed", 2, [](const double* q) {
+    const double r = std::hypot(q[0] + 0.5, q[1] - 0.5);
+    return inWall(q) || (r > 0.1 && r < 0.15);
+  });
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 2};
+  const VerifiedPlan repaired =
+      verifyAndRepair({kStart, vec({-0.5, 0.5}), kGoal}, ringed, limits, options);
+  ASSERT_TRUE(repaired.solved()) << repaired.failure;
+  EXPECT_TRUE(repaired.wholePathReplanned);
+  EXPECT_TRUE(pathIsFree(repaired.path, 0.01, [&](const Eigen::VectorXd& q) {
+    return ringed->inCollision(std::span<const double>(q.data(), 2));
+  }));
+}
+
 TEST_F(Planning, SaysPlainlyWhenNoValidPathIsFound) {
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
@@ -215,7 +232,10 @@ TEST_F(Planning, SaysPlainlyWhenNoValidPathIsFound) {
   const VerifiedPlan none =
       verifyAndRepair({kStart, vec({0, 0.9}), kGoal}, closed, limits, options);
   EXPECT_FALSE(none.solved());
-  EXPECT_THAT(none.failure, HasSubstr("could not replan the stretch between waypoints 0 and 2"));
+  EXPECT_THAT(
+      none.failure,
+      HasSubstr(
+          "could not replan the stretch between waypoints 0 and 2 on closed, nor the whole path"));
   const VerifiedPlan badStart = verifyAndRepair({vec({0, 0}), kGoal}, closed, limits, options);
   EXPECT_EQ(badStart.status, PlanStatus::InvalidStart);
 }
@@ -251,7 +271,7 @@ TEST_F(Planning, FastronPlansAreVerifiedAndRepairedIntoValidPaths) {
   const VerifiedPlan fallback = planVerified(std::shared_ptr<const CollisionChecker>(blocked), wall,
                                              limits, kStart, kGoal, {.resolution = 0.01});
   EXPECT_TRUE(fallback.solved());
-  EXPECT_TRUE(fallback.approximatePlanFailed);
+  EXPECT_TRUE(fallback.wholePathReplanned);
 }
 
 TEST_F(Planning, BaxterPathsAreFreeUnderFcl) {

@@ -20,16 +20,19 @@ struct VerifiedPlan {
   std::chrono::nanoseconds verifyTime{0};  ///< exact checks of the plan, and of the repaired path
   std::chrono::nanoseconds repairTime{0};  ///< replanning of the invalid stretches
   std::size_t invalidStretches = 0;        ///< stretches cut out and replanned
-  bool approximatePlanFailed = false;      ///< the whole path was planned on the exact checker
-  std::string failure;                     ///< why no valid path was found (empty when solved)
+  /// The whole motion was planned on the exact checker: the approximate plan failed, or one of
+  /// its stretches could not be bridged.
+  bool wholePathReplanned = false;
+  std::string failure;  ///< why no valid path was found (empty when solved)
   bool solved() const { return status == PlanStatus::Solved; }
   std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
 };
 
 /// Checks `path` (start to goal) with `exact` at options.resolution; cuts out each invalid stretch
 /// (from the last valid waypoint before it to the first valid one after it), replans it with the
-/// same planner on `exact`, splices the pieces and checks the whole path again (up to three
-/// rounds). planTime is left 0.
+/// same planner on `exact` (a quarter of the time limit; when that fails, the whole motion with
+/// the full limit), splices the pieces and checks the whole path again (up to three rounds).
+/// planTime is left 0.
 VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
 

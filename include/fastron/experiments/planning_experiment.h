@@ -1,0 +1,77 @@
+#pragma once
+// The paper's planning experiments: Baxter with moving boxes and four planners (Sec. IV-C,
+// Figs. 13 and 14), the UR3 shelf (Sec. V-A), the surgical assistant (Sec. V-B), and MoveIt
+// benchmark problems for the Panda. Fastron and GJK plans are verified and repaired with FCL;
+// every final path is checked again with a separate FCL checker.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fastron/experiments/common.h"
+#include "fastron/planning/planner.h"
+
+namespace fastron {
+
+struct PlanningOptions {
+  std::size_t trials = 10;  ///< obstacle positions, each with its own start and goal
+  std::uint64_t seed = 1;
+  bool quick = false;
+  std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
+  std::vector<PlannerType> planners = allPlannerTypes();
+  double timeLimit = 10;     ///< seconds per planning query (and per repaired stretch)
+  double resolution = 0.03;  ///< joint-space step of edge checks (rad)
+};
+
+/// One row per (case, trial, planner, method): solved, status, plan_s, verify_s, repair_s,
+/// total_s, path_length, waypoints, stretches (replanned), fallback (the whole motion was planned on FCL),
+/// collides_fcl (the final path checked by an independent FCL checker).
+Table runPlanning(const PlanningOptions& options, const Progress& progress);
+std::string planningReport(const Table& results, const PlanningOptions& options);
+
+struct ShelfOptions {
+  std::size_t trials = 20;  ///< start/goal pairs
+  std::uint64_t seed = 1;
+  bool quick = false;
+  double timeLimit = 10;
+  double resolution = 0.03;
+};
+
+/// UR3 from the lower to the higher shelf with RRT: one row per (trial, method), columns as
+/// runPlanning's.
+Table runShelf(const ShelfOptions& options, const Progress& progress);
+std::string shelfReport(const Table& results, const ShelfOptions& options);
+
+struct SurgicalOptions {
+  std::size_t ticks = 200;  ///< simulation ticks; every method replans at each
+  std::uint64_t seed = 1;
+  bool quick = false;
+  double timeLimit = 1;
+  double resolution = 0.01;  ///< joint units (rad, and m for the insertion)
+  double padding = 0.005;    ///< PSM3 padding of the model's oracle (paper: a padded PSM3)
+};
+
+/// PSM3 replans an RRT every tick between home and a target among PSM1 and PSM2 moving on
+/// circles, with the model updated in the background: one row per (tick, method), columns as
+/// runPlanning's plus the model's support count.
+Table runSurgical(const SurgicalOptions& options, const Progress& progress);
+std::string surgicalReport(const Table& results, const SurgicalOptions& options);
+
+struct MotionBenchOptions {
+  std::filesystem::path problems;  ///< folder of sceneNNNN.yaml / requestNNNN.yaml pairs
+  std::string robot = "panda";
+  std::uint64_t seed = 1;
+  bool quick = false;
+  std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model
+  std::size_t updates = 3;            ///< active-learning updates after them
+  double timeLimit = 10;
+  double resolution = 0.03;
+};
+
+/// Each problem: Fastron trained on the scene, RRT-Connect with Fastron (verified and repaired)
+/// and with FCL. One row per (problem, method). A goal that touches one object with the hand only
+/// is a grasp: hand-object contacts are allowed (as MoveIt's touch links do), and `note` says so.
+Table runMotionBench(const MotionBenchOptions& options, const Progress& progress);
+std::string motionBenchReport(const Table& results, const MotionBenchOptions& options);
+
+}  // namespace fastron
