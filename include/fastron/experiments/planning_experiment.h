@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/dataset.h"
+#include "fastron/core/model.h"
 #include "fastron/experiments/common.h"
 #include "fastron/planning/planner.h"
 
@@ -24,8 +26,8 @@ struct PlanningOptions {
 };
 
 /// One row per (case, trial, planner, method): solved, status, plan_s, verify_s, repair_s,
-/// total_s, path_length, waypoints, stretches (replanned), fallback (the whole motion was planned on FCL),
-/// collides_fcl (the final path checked by an independent FCL checker).
+/// total_s, path_length, waypoints, stretches (replanned), fallback (the whole motion was planned
+/// on FCL), collides_fcl (the final path checked by an independent FCL checker).
 Table runPlanning(const PlanningOptions& options, const Progress& progress);
 std::string planningReport(const Table& results, const PlanningOptions& options);
 
@@ -73,5 +75,34 @@ struct MotionBenchOptions {
 /// is a grasp: hand-object contacts are allowed (as MoveIt's touch links do), and `note` says so.
 Table runMotionBench(const MotionBenchOptions& options, const Progress& progress);
 std::string motionBenchReport(const Table& results, const MotionBenchOptions& options);
+
+struct DemoOptions {
+  std::size_t ticks = 150;   ///< obstacle moves, each followed by a fresh planning query
+  double tickSeconds = 0.1;  ///< a tick lasts at least this long (sensing at 10 Hz)
+  std::uint64_t seed = 1;
+  std::size_t initialPoints = 3000;
+  std::size_t testPoints = 1000;  ///< fresh configurations scoring the model at each tick
+  double timeLimit = 5;
+  double resolution = 0.03;
+};
+
+/// `fastron demo`: the paper in one run.
+struct DemoResults {
+  /// One row per (tick, method): runPlanning's plan columns plus support, accuracy, tpr, tnr
+  /// (the current model against FCL) and updates (background model updates so far).
+  Table ticks;
+  std::shared_ptr<const Model> model;  ///< the last model
+  Dataset test;                        ///< the last tick's test configurations, FCL labels
+  double fastronQuerySeconds = 0, gjkQuerySeconds = 0, fclQuerySeconds = 0;
+  std::size_t updates = 0;       ///< background updates during the run
+  double meanUpdateSeconds = 0;  ///< labelling + training, per update
+  double elapsedSeconds = 0;     ///< of the planning loop
+};
+
+/// Baxter's 7-joint arm among three moving boxes: the model updates on a background thread from
+/// FCL labels while, at every tick, the boxes move and RRT-Connect plans a fresh query with
+/// Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL.
+DemoResults runDemo(const DemoOptions& options, const Progress& progress);
+std::string demoReport(const DemoResults& results, const DemoOptions& options);
 
 }  // namespace fastron
