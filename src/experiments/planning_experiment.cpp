@@ -327,8 +327,11 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
   for (int update = 0; update < (o.quick ? 2 : 5); ++update) proxy.step();
   const auto model = proxy.model();
 
-  // The end effector inside the shelf: above the lower board (start) or the upper one (goal).
+  // The end effector inside the shelf, above the lower board (start) or the upper one (goal),
+  // reached through the open side: the wrist stays in front of the shelf, as a reach to pick or
+  // place would (configurations threaded deeper in are pockets no planner gets out of in time).
   const int ee = ur3.linkIndex("ee_link");
+  const int wrist = ur3.linkIndex("wrist_1_link");
   KinematicsData data = makeKinematicsData(ur3);
   Rng rng(o.seed);
   auto inShelf = [&](double zLow, double zHigh) {
@@ -337,8 +340,9 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
           [&](const Eigen::VectorXd& q) {
             forwardKinematics(ur3, q.data(), data, scene.robotBase);
             const Eigen::Vector3d p = data.linkPoses[static_cast<std::size_t>(ee)].translation();
+            const Eigen::Vector3d w = data.linkPoses[static_cast<std::size_t>(wrist)].translation();
             return p.x() > 0.28 && p.x() < 0.44 && std::abs(p.y()) < 0.17 && p.z() > zLow &&
-                   p.z() < zHigh;
+                   p.z() < zHigh && w.x() < 0.24;
           },
           limits, rng, "the shelf");
     };

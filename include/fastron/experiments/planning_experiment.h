@@ -32,7 +32,7 @@ Table runPlanning(const PlanningOptions& options, const Progress& progress);
 std::string planningReport(const Table& results, const PlanningOptions& options);
 
 struct ShelfOptions {
-  std::size_t trials = 20;  ///< start/goal pairs
+  std::size_t trials = 10;  ///< start/goal pairs
   std::uint64_t seed = 1;
   bool quick = false;
   double timeLimit = 10;
