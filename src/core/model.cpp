@@ -1,5 +1,6 @@
 #include "fastron/core/model.h"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -14,6 +15,16 @@ constexpr std::size_t kLanes = 16;
 using Lanes = Eigen::Array<float, kLanes, 1>;
 
 template <KernelType type>
+Lanes kernelOf(const Lanes& r2, float gamma) {
+  if constexpr (type == KernelType::RationalQuadratic) {
+    const Lanes t = 1.0f + (0.5f * gamma) * r2;
+    return (t * t).inverse();
+  } else {
+    return (-gamma * r2).exp();
+  }
+}
+
+template <KernelType type>
 float kernelSum(const float* soa, const float* weights, std::size_t padded, std::size_t dim,
                 const float* x, float gamma) {
   Lanes sum = Lanes::Zero();
@@ -23,16 +34,33 @@ float kernelSum(const float* soa, const float* weights, std::size_t padded, std:
       const Lanes diff = Eigen::Map<const Lanes>(soa + j * padded + b) - x[j];
       r2 += diff.square();
     }
-    Lanes k;
-    if constexpr (type == KernelType::RationalQuadratic) {
-      const Lanes t = 1.0f + (0.5f * gamma) * r2;
-      k = (t * t).inverse();
-    } else {
-      k = (-gamma * r2).exp();
-    }
-    sum += Eigen::Map<const Lanes>(weights + b) * k;
+    sum += Eigen::Map<const Lanes>(weights + b) * kernelOf<type>(r2, gamma);
   }
   return sum.sum();
+}
+
+// kQueries kernel sums in one pass over the support set: each block of support coordinates is
+// loaded once for all of them (the batch and edge queries of motion planning).
+constexpr std::size_t kQueries = 4;
+
+template <KernelType type>
+std::array<float, kQueries> kernelSums(const float* soa, const float* weights, std::size_t padded,
+                                       std::size_t dim, const float* xs, float gamma) {
+  std::array<Lanes, kQueries> sums;
+  for (Lanes& s : sums) s.setZero();
+  for (std::size_t b = 0; b < padded; b += kLanes) {
+    std::array<Lanes, kQueries> r2;
+    for (Lanes& r : r2) r.setZero();
+    for (std::size_t j = 0; j < dim; ++j) {
+      const Lanes coordinate = Eigen::Map<const Lanes>(soa + j * padded + b);
+      for (std::size_t q = 0; q < kQueries; ++q) r2[q] += (coordinate - xs[q * dim + j]).square();
+    }
+    const Lanes w = Eigen::Map<const Lanes>(weights + b);
+    for (std::size_t q = 0; q < kQueries; ++q) sums[q] += w * kernelOf<type>(r2[q], gamma);
+  }
+  std::array<float, kQueries> out;
+  for (std::size_t q = 0; q < kQueries; ++q) out[q] = sums[q].sum();
+  return out;
 }
 
 }  // namespace
@@ -125,15 +153,43 @@ double Model::scoreExact(const double* q) const {
   return f;
 }
 
+void Model::scoreGroup(const double* q, std::size_t count, float* out) const {
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled below
+  std::array<float, kQueries * kMaxDimension> xs;
+  const std::size_t d = dim();
+  for (std::size_t k = 0; k < kQueries; ++k) {
+    // A short group repeats its last query: the lanes are computed anyway.
+    scaleToInput(q + std::min(k, count - 1) * d, xs.data() + k * d);
+  }
+  const auto gamma = static_cast<float>(kernel_.gamma);
+  const auto sums =
+      kernel_.type == KernelType::RationalQuadratic
+          ? kernelSums<KernelType::RationalQuadratic>(supportSoa_.data(), weightsF_.data(),
+                                                      paddedCount_, d, xs.data(), gamma)
+          : kernelSums<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_, d,
+                                             xs.data(), gamma);
+  std::copy_n(sums.begin(), count, out);
+}
+
 std::size_t Model::firstInCollision(const double* q, std::size_t n) const {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (inCollision(q + i * dim())) return i;
+  std::array<float, kQueries> f;
+  for (std::size_t i = 0; i < n; i += kQueries) {
+    const std::size_t count = std::min(kQueries, n - i);
+    scoreGroup(q + i * dim(), count, f.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      if (f[k] > 0) return i + k;
+    }
   }
   return n;
 }
 
 void Model::scoreBatch(const double* q, std::size_t n, double* out) const {
-  for (std::size_t i = 0; i < n; ++i) out[i] = score(q + i * dim());
+  std::array<float, kQueries> f;
+  for (std::size_t i = 0; i < n; i += kQueries) {
+    const std::size_t count = std::min(kQueries, n - i);
+    scoreGroup(q + i * dim(), count, f.data());
+    std::copy_n(f.begin(), count, out + i);
+  }
 }
 
 Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {

@@ -752,7 +752,7 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
      << meanStd(summarize(t.numbers("tpr", {{"method", "FCL"}})), 3) << ", TNR "
      << meanStd(summarize(t.numbers("tnr", {{"method", "FCL"}})), 3) << "\n";
   std::snprintf(line, sizeof line,
-                "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (Fastron %.1fx faster than FCL)\n",
+                "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
                 durationMeanStd({r.fastronQuerySeconds, 0, 1}).c_str(),
                 durationMeanStd({r.gjkQuerySeconds, 0, 1}).c_str(),
                 durationMeanStd({r.fclQuerySeconds, 0, 1}).c_str(),

@@ -87,6 +87,23 @@ TEST(Model, BatchScoresEqualSingleScores) {
   for (Eigen::Index i = 0; i < q.rows(); ++i) EXPECT_EQ(batch[i], model->score(q.row(i).data()));
 }
 
+TEST(Model, FirstInCollisionIsTheFirstRowPredictedInCollision) {
+  const auto model = trainedModel(3, 1000, KernelType::RationalQuadratic, 10, 1);
+  const Configurations q = test::uniformPoints(300, 3, 105);
+  for (const std::size_t n : {0u, 1u, 3u, 4u, 5u, 9u, 300u}) {
+    for (std::size_t offset = 0; offset + n <= 300; offset += 37) {
+      std::size_t expected = n;
+      for (std::size_t i = 0; i < n && expected == n; ++i) {
+        if (model->inCollision(q.row(static_cast<Eigen::Index>(offset + i)).data())) expected = i;
+      }
+      EXPECT_EQ(model->firstInCollision(q.row(static_cast<Eigen::Index>(offset)).data(), n),
+                expected)
+          << "n " << n << ", offset " << offset;
+      if (n == 0) break;
+    }
+  }
+}
+
 TEST(Model, RejectsBadConstructionAndQueries) {
   const JointLimits limits = JointLimits::unitBox(2);
   const Kernel kernel{};

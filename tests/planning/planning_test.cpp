@@ -21,6 +21,7 @@
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
+#include "fastron/proxy/proxy_collision_detector.h"
 #include "temp_dir.h"
 #include "test_worlds.h"
 
@@ -274,28 +275,44 @@ TEST_F(Planning, FastronPlansAreVerifiedAndRepairedIntoValidPaths) {
   EXPECT_TRUE(fallback.wholePathReplanned);
 }
 
-TEST_F(Planning, BaxterPathsAreFreeUnderFcl) {
+TEST_F(Planning, BaxterPathsAreFreeUnderFclAtATenTimesFinerResolution) {
+  // Planning checks states 0.01 rad apart (Euclidean) with Baxter padded by 3 cm. Between two
+  // checked states no point of the arm is farther than 2 cm from where it was at one of them
+  // (|dp| <= |dq|_1 r <= sqrt(7) |dq| r, every point within r = 1.5 m of every joint axis), so the
+  // bare arm never reaches an obstacle: the final paths, Fastron's verified and repaired among
+  // them, must be free under the unpadded FCL checked every 0.001 rad, by code independent of the
+  // planners' own checks.
   Robot baxter = loadRobot("baxter");
   const Scene scene = loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml");
-  const auto fcl = std::make_shared<const FclChecker>(baxter, scene);
+  const auto padded =
+      std::make_shared<const FclChecker>(baxter, scene, CheckerOptions{.padding = 0.03});
+  const FclChecker bare(baxter, scene);
   const JointLimits limits = baxter.limits();
   Rng rng(3);
   const Configurations q = uniformConfigurations(limits, 400, rng);
   std::vector<Eigen::VectorXd> free;
-  for (Eigen::Index i = 0; i < q.rows() && free.size() < 2; ++i) {
-    if (!fcl->inCollision(std::span<const double>(q.row(i).data(), limits.dim()))) {
+  for (Eigen::Index i = 0; i < q.rows() && free.size() < 4; ++i) {
+    if (!padded->inCollision(std::span<const double>(q.row(i).data(), limits.dim()))) {
       free.emplace_back(q.row(i).transpose());
     }
   }
-  ASSERT_EQ(free.size(), 2u);
-  const PlannerOptions options{
-      .type = PlannerType::RrtConnect, .resolution = 0.05, .timeLimit = 20};
-  const PlanResult plan = planMotion(fcl, limits, free[0], free[1], options);
-  ASSERT_TRUE(plan.solved()) << toString(plan.status);
-  const FclChecker independent(baxter, scene);  // a checker the planner never used
-  EXPECT_TRUE(pathIsFree(plan.path, 0.05, [&](const Eigen::VectorXd& x) {
-    return independent.inCollision(std::span<const double>(x.data(), limits.dim()));
-  }));
+  ASSERT_EQ(free.size(), 4u);
+  ProxyCollisionDetector proxy(padded, limits,
+                               {.train = {.kernel = {.gamma = 5}, .beta = 500}, .seed = 2});
+  proxy.initialize(1500);
+  const auto collidesUnderFcl = [&](const Eigen::VectorXd& x) {
+    return bare.inCollision(std::span<const double>(x.data(), limits.dim()));
+  };
+  for (const PlannerType type : {PlannerType::RrtConnect, PlannerType::BitStar}) {
+    const PlannerOptions options{.type = type, .resolution = 0.01, .timeLimit = 20};
+    const PlanResult exact = planMotion(padded, limits, free[0], free[1], options);
+    ASSERT_TRUE(exact.solved()) << plannerName(type) << ": " << toString(exact.status);
+    EXPECT_TRUE(pathIsFree(exact.path, 0.001, collidesUnderFcl)) << plannerName(type);
+    const VerifiedPlan verified =
+        planVerified(proxy.model(), padded, limits, free[2], free[3], options);
+    ASSERT_TRUE(verified.solved()) << plannerName(type) << ": " << verified.failure;
+    EXPECT_TRUE(pathIsFree(verified.path, 0.001, collidesUnderFcl)) << plannerName(type);
+  }
 }
 
 }  // namespace

@@ -46,17 +46,21 @@ class Model {
   double scoreExact(const double* q) const;
 
   /// Index of the first of n configurations (row by row in `q`, n * dim() values) that the model
-  /// predicts in collision, or n when it predicts all free. Stops at the first hit, so callers
-  /// order the rows to find collisions early (e.g. bisection order along a motion).
+  /// predicts in collision, or n when it predicts all free. Scores four configurations per pass
+  /// over the support set and stops after the pass with the first hit, so callers order the rows
+  /// to find collisions early (e.g. bisection order along a motion).
   std::size_t firstInCollision(const double* q, std::size_t n) const;
 
-  /// f for n configurations stored row by row in `q` (n * dim() values), written to `out`.
+  /// f for n configurations stored row by row in `q` (n * dim() values), written to `out`; four
+  /// per pass over the support set, each support block loaded once for all four.
   void scoreBatch(const double* q, std::size_t n, double* out) const;
   /// Scores of every row of `q`.
   Eigen::VectorXd scoreBatch(const Configurations& q) const;
 
  private:
   float scoreInputFloat(const float* x) const;
+  /// f of `count` (1 to 4) consecutive configurations of q, in one pass over the support set.
+  void scoreGroup(const double* q, std::size_t count, float* out) const;
   void scaleToInput(const double* q, float* x) const;
 
   JointLimits limits_;
