@@ -33,7 +33,7 @@ using CheckerPtr = std::shared_ptr<const CollisionChecker>;
 
 const std::vector<std::string> kPlanColumns{"solved",    "status",   "plan_s",      "verify_s",
                                             "repair_s",  "total_s",  "path_length", "waypoints",
-                                            "stretches", "fallback", "collides_fcl"};
+                                            "stretches", "fallback", "exact_ends",  "collides_fcl"};
 
 double seconds(std::chrono::nanoseconds d) {
   return std::chrono::duration<double>(d).count();
@@ -62,6 +62,7 @@ std::vector<std::string> planCells(const VerifiedPlan& plan, const CollisionChec
           std::to_string(plan.path.size()),
           std::to_string(plan.invalidStretches),
           plan.wholePathReplanned ? "1" : "0",
+          plan.substituteEnds ? "1" : "0",
           cell(collides)};
 }
 

@@ -7,12 +7,22 @@
 
 namespace fastron {
 
-std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution) {
+std::size_t segmentCount(const double* a, const double* b, std::size_t dim, double resolution) {
   if (!(resolution > 0) || !std::isfinite(resolution)) {
     throw InvalidArgument("motion resolution must be positive, got " + std::to_string(resolution));
   }
-  const double segments = std::ceil((b - a).norm() / resolution);
+  double squared = 0;
+  for (std::size_t j = 0; j < dim; ++j) squared += (b[j] - a[j]) * (b[j] - a[j]);
+  const double segments = std::ceil(std::sqrt(squared) / resolution);
   return segments < 1 ? 1 : static_cast<std::size_t>(segments);
+}
+
+std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution) {
+  if (a.size() != b.size()) {
+    throw InvalidArgument("motion between configurations of " + std::to_string(a.size()) + " and " +
+                          std::to_string(b.size()) + " values");
+  }
+  return segmentCount(a.data(), b.data(), static_cast<std::size_t>(a.size()), resolution);
 }
 
 void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,

@@ -68,9 +68,7 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
   const std::size_t dim = si_->getStateDimension();
   const double* a = valuesOf(s1);
   const double* b = valuesOf(s2);
-  const Eigen::Map<const Eigen::VectorXd> va(a, static_cast<Eigen::Index>(dim));
-  const Eigen::Map<const Eigen::VectorXd> vb(b, static_cast<Eigen::Index>(dim));
-  const std::size_t n = segmentCount(va, vb, resolution_);
+  const std::size_t n = segmentCount(a, b, dim, resolution_);
   thread_local std::vector<double> states;  // planners call this millions of times: no allocation
   motionStates(a, b, dim, n, states);
   const bool valid = firstCollision(source_, states.data(), n, dim) == n;
@@ -84,9 +82,7 @@ bool ResolutionMotionValidator::checkMotion(
   const std::size_t dim = si_->getStateDimension();
   const double* a = valuesOf(s1);
   const double* b = valuesOf(s2);
-  const Eigen::Map<const Eigen::VectorXd> va(a, static_cast<Eigen::Index>(dim));
-  const Eigen::Map<const Eigen::VectorXd> vb(b, static_cast<Eigen::Index>(dim));
-  const std::size_t n = segmentCount(va, vb, resolution_);
+  const std::size_t n = segmentCount(a, b, dim, resolution_);
   // In order from s1, so the first collision found is the first along the motion.
   thread_local std::vector<double> state;
   state.resize(dim);

@@ -1,6 +1,9 @@
 #include "fastron/planning/verify_repair.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
 #include <string>
 
 namespace fastron {
@@ -8,8 +11,45 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q) {
+  return !checker.inCollision(
+      std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
+}
+
 bool contains(const std::vector<std::size_t>& sorted, std::size_t i) {
   return std::binary_search(sorted.begin(), sorted.end(), i);
+}
+
+bool freeUnder(const CollisionSource& source, const Eigen::VectorXd& q) {
+  if (const auto* model = std::get_if<std::shared_ptr<const Model>>(&source)) {
+    return !(*model)->inCollision(q.data());
+  }
+  return freeUnder(*std::get<std::shared_ptr<const CollisionChecker>>(source), q);
+}
+
+/// `end` itself when `approximate` finds it free; else the first of up to 64 uniform samples in
+/// balls of growing radius (0.05 to 1.6 joint units) around it, within the limits, that both
+/// checkers find free; std::nullopt when there is none.
+std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
+                                             const CollisionSource& approximate,
+                                             const CollisionChecker& exact,
+                                             const JointLimits& limits) {
+  if (freeUnder(approximate, end)) return end;
+  Rng rng(1);  // fixed: the same query gets the same substitute
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> unit;
+  const auto dim = end.size();
+  for (double radius = 0.05; radius <= 1.6; radius *= 2) {
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      Eigen::VectorXd direction(dim);
+      for (auto& v : direction) v = gauss(rng);
+      const double r = radius * std::pow(unit(rng), 1.0 / static_cast<double>(dim));
+      const Eigen::VectorXd q =
+          (end + r * direction.normalized()).cwiseMax(limits.lower()).cwiseMin(limits.upper());
+      if (freeUnder(approximate, q) && freeUnder(exact, q)) return q;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -87,10 +127,31 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
-  const PlanResult plan = planMotion(approximate, limits, start, goal, options);
+  PlanResult plan = planMotion(approximate, limits, start, goal, options);
+  bool substituteEnds = false;
+  if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&
+      freeUnder(*exact, start) && freeUnder(*exact, goal)) {
+    // The approximate checker is wrong about an end (a conservative model often is where the
+    // robot touches an obstacle on purpose, as in a grasp). Plan on it between free
+    // configurations near the ends; the stretches from the true ends to them are then bridged on
+    // the exact checker by the repair, like any other invalid stretch.
+    const auto startNear = substituteFor(start, approximate, *exact, limits);
+    const auto goalNear = substituteFor(goal, approximate, *exact, limits);
+    if (startNear && goalNear) {
+      const auto spent = plan.time;
+      plan = planMotion(approximate, limits, *startNear, *goalNear, options);
+      plan.time += spent;
+      if (plan.solved()) {
+        if (!startNear->isApprox(start)) plan.path.insert(plan.path.begin(), start);
+        if (!goalNear->isApprox(goal)) plan.path.push_back(goal);
+      }
+      substituteEnds = true;
+    }
+  }
   if (plan.solved()) {
     VerifiedPlan result = verifyAndRepair(plan.path, exact, limits, options);
     result.planTime = plan.time;
+    result.substituteEnds = substituteEnds;
     return result;
   }
   // The approximate checker found no path (or thinks an end collides): plan it all exactly.
@@ -108,6 +169,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   result.planTime = plan.time;
   result.repairTime += repairTime;
   result.wholePathReplanned = true;
+  result.substituteEnds = substituteEnds;
   return result;
 }
 

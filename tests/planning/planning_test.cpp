@@ -266,13 +266,41 @@ TEST_F(Planning, FastronPlansAreVerifiedAndRepairedIntoValidPaths) {
       return inWall(q.data());
     })) << plannerName(type);
   }
-  // A model that thinks the start collides: the whole motion is planned on the exact checker.
-  const auto blocked = std::make_shared<FunctionChecker>(
-      "blocked", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
-  const VerifiedPlan fallback = planVerified(std::shared_ptr<const CollisionChecker>(blocked), wall,
-                                             limits, kStart, kGoal, {.resolution = 0.01});
-  EXPECT_TRUE(fallback.solved());
+}
+
+TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 0.5};
+  // It thinks the start collides, but a step away from it is free: the plan is made on it from
+  // there, and the step from the true start is bridged on the exact checker.
+  const auto nearStart = std::make_shared<const FunctionChecker>(
+      "near-start", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
+  const VerifiedPlan substituted = planVerified(nearStart, wall, limits, kStart, kGoal, options);
+  ASSERT_TRUE(substituted.solved()) << substituted.failure;
+  EXPECT_TRUE(substituted.substituteEnds);
+  EXPECT_FALSE(substituted.wholePathReplanned);
+  EXPECT_TRUE(pathIsFree(substituted.path, 0.01,
+                         [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
+  // It thinks everything left of x = 0.85 collides, farther from the start than the substitute
+  // search reaches (1.6): the whole motion is planned on the exact checker.
+  const auto wide = std::make_shared<const FunctionChecker>(
+      "wide", 2, [](const double* q) { return q[0] < 0.85 || inWall(q); });
+  const VerifiedPlan fallback = planVerified(wide, wall, limits, kStart, kGoal, options);
+  ASSERT_TRUE(fallback.solved()) << fallback.failure;
   EXPECT_TRUE(fallback.wholePathReplanned);
+  EXPECT_TRUE(
+      pathIsFree(fallback.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
+  // A model, trained on the wall, that predicts a collision at a start just beside it.
+  const auto model = wallModel();
+  Eigen::VectorXd beside = vec({-0.2, -0.8});
+  while (beside[0] < -0.1 && !model->inCollision(beside.data())) beside[0] += 0.001;
+  ASSERT_LT(beside[0], -0.1) << "the model predicts no collision beside the wall";
+  const VerifiedPlan fromModel = planVerified(model, wall, limits, beside, kGoal, options);
+  ASSERT_TRUE(fromModel.solved()) << fromModel.failure;
+  EXPECT_TRUE(fromModel.substituteEnds);
+  EXPECT_TRUE(
+      pathIsFree(fromModel.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
 }
 
 TEST_F(Planning, BaxterPathsAreFreeUnderFclAtATenTimesFinerResolution) {

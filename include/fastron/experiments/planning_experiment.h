@@ -27,7 +27,8 @@ struct PlanningOptions {
 
 /// One row per (case, trial, planner, method): solved, status, plan_s, verify_s, repair_s,
 /// total_s, path_length, waypoints, stretches (replanned), fallback (the whole motion was planned
-/// on FCL), collides_fcl (the final path checked by an independent FCL checker).
+/// on FCL), exact_ends (the approximate checker wrongly thought an end collided: see
+/// planVerified), collides_fcl (the final path checked by an independent FCL checker).
 Table runPlanning(const PlanningOptions& options, const Progress& progress);
 std::string planningReport(const Table& results, const PlanningOptions& options);
 

@@ -18,6 +18,8 @@ using Path = std::vector<Eigen::VectorXd>;
 /// distance in joint units, as OMPL's RealVectorStateSpace measures it). Throws InvalidArgument
 /// when resolution is not positive.
 std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution);
+/// The same for two configurations of `dim` values.
+std::size_t segmentCount(const double* a, const double* b, std::size_t dim, double resolution);
 
 /// The states a + (b - a) i / n for i = 1..n (b included, a not: a motion starts at a state
 /// already known to be valid), in bisection order: the midpoint first, then the quarter points,

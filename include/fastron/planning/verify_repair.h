@@ -23,6 +23,10 @@ struct VerifiedPlan {
   /// The whole motion was planned on the exact checker: the approximate plan failed, or one of
   /// its stretches could not be bridged.
   bool wholePathReplanned = false;
+  /// The approximate checker thought the start or goal collided while the exact one found them
+  /// free: it planned between free configurations near them, and the stretches from the true ends
+  /// were planned on the exact checker.
+  bool substituteEnds = false;
   std::string failure;  ///< why no valid path was found (empty when solved)
   bool solved() const { return status == PlanStatus::Solved; }
   std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
@@ -37,9 +41,11 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
                              const JointLimits& limits, const PlannerOptions& options);
 
 /// Plans with `approximate` (e.g. a Fastron model), then verifies and repairs with `exact`. When
-/// the approximate plan fails (it thinks the start or goal collides, or it finds no path in time),
-/// the whole motion is planned on the exact checker and counted as repair. Start and goal must be
-/// free under `exact`, else the result is InvalidStart / InvalidGoal.
+/// the approximate checker thinks the start or goal collides but the exact one finds both free, it
+/// plans between configurations near them that both find free, and the repair bridges the true
+/// ends on the exact checker (`substituteEnds`). When the approximate plan fails, the whole motion
+/// is planned on the exact checker and counted as repair. Start and goal must be free under
+/// `exact`, else the result is InvalidStart / InvalidGoal.
 VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
