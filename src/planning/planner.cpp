@@ -1,5 +1,6 @@
 #include "fastron/planning/planner.h"
 
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -166,7 +167,9 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   const auto planner = makePlanner(si, options);
   planner->setProblemDefinition(problemFor(si, start, goal, options.type));
   planner->setup();
-  const ob::PlannerStatus status = planner->solve(options.timeLimit);
+  // Not solve(double): that checks the time on a helper thread, started and joined per query.
+  const ob::PlannerStatus status =
+      planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
   const auto problem = planner->getProblemDefinition();
   if (status != ob::PlannerStatus::EXACT_SOLUTION || !problem->hasExactSolution()) {
     return finish(PlanStatus::Timeout);
