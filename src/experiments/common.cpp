@@ -18,12 +18,20 @@ Summary summarize(const std::vector<double>& values) {
     sum += v;
     ++s.count;
   }
-  if (s.count == 0) return {std::nan(""), std::nan(""), 0};
+  if (s.count == 0) return {std::nan(""), std::nan(""), 0, std::nan("")};
   s.mean = sum / static_cast<double>(s.count);
   for (const double v : values) {
     if (!std::isnan(v)) squares += (v - s.mean) * (v - s.mean);
   }
   s.stddev = s.count > 1 ? std::sqrt(squares / static_cast<double>(s.count - 1)) : 0.0;
+  std::vector<double> sorted;
+  sorted.reserve(s.count);
+  for (const double v : values) {
+    if (!std::isnan(v)) sorted.push_back(v);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t middle = sorted.size() / 2;
+  s.median = sorted.size() % 2 ? sorted[middle] : 0.5 * (sorted[middle - 1] + sorted[middle]);
   return s;
 }
 

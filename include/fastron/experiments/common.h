@@ -21,8 +21,9 @@ using Progress = std::function<void(std::string_view)>;
 struct Summary {
   double mean = 0, stddev = 0;
   std::size_t count = 0;
+  double median = 0;
 };
-/// Mean and sample standard deviation, ignoring NaN values.
+/// Mean, sample standard deviation and median, ignoring NaN values.
 Summary summarize(const std::vector<double>& values);
 /// "12.3 ± 4.5" with `digits` decimals.
 std::string meanStd(const Summary& s, int digits);
