@@ -158,10 +158,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--problems", o->problems,
                   "motion-bench: folder of MoveIt sceneNNNN.yaml / requestNNNN.yaml pairs");
   cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--resolution", o->resolution,
                   "planning experiments: joint-space step of edge checks")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
   cmd->add_flag("--quick", o->quick, "small sizes, for a fast check");

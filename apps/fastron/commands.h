@@ -3,7 +3,26 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <string>
+
 namespace fastron::cli {
+
+/// Accepts a number above `minimum` (or equal to it when `inclusive`). CLI11's PositiveNumber
+/// prints the whole range of double in its message.
+inline CLI::Validator numberAbove(double minimum, bool inclusive = false) {
+  char bound[32];
+  std::snprintf(bound, sizeof bound, "%g", minimum);
+  const std::string what = std::string(inclusive ? "at least " : "above ") + bound;
+  return CLI::Validator(
+      [=](const std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "'" + text + "' is not a number";
+        const bool ok = inclusive ? value >= minimum : value > minimum;
+        return ok ? std::string() : "must be " + what + ", got " + text;
+      },
+      inclusive ? "NONNEGATIVE" : "POSITIVE");
+}
 
 void addTrainCommand(CLI::App& app, int& exitCode);
 void addEvalCommand(CLI::App& app, int& exitCode);

@@ -68,22 +68,22 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--out", o->out, "output folder")->capture_default_str();
   cmd->add_option("--ticks", o->demo.ticks, "obstacle moves, each with a fresh planning query")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--tick", o->demo.tickSeconds, "shortest tick (s): the pace of the boxes")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberAbove(0, true));
   cmd->add_option("--initial", o->demo.initialPoints, "samples of the first model")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--test", o->demo.testPoints, "fresh configurations scoring the model per tick")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--time-limit", o->demo.timeLimit, "seconds per planning query")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--resolution", o->demo.resolution, "joint-space step of edge checks (rad)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--seed", o->demo.seed, "seed of every random choice")->capture_default_str();
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");
   cmd->callback([o, &exitCode] { exitCode = runDemoCommand(*o); });
