@@ -12,6 +12,15 @@
 namespace fastron {
 namespace {
 
+// Joint space without projections: none of our planners projects states, and OMPL's default for
+// more than two dimensions is a random projection whose bounds it estimates by sampling states,
+// most of the cost of setting up a space for every query.
+class JointSpace final : public ompl::base::RealVectorStateSpace {
+ public:
+  using RealVectorStateSpace::RealVectorStateSpace;
+  void registerProjections() override {}
+};
+
 const double* valuesOf(const ompl::base::State* state) {
   return state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
 }
@@ -112,7 +121,7 @@ ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& sour
   if (!(resolution > 0) || !std::isfinite(resolution)) {
     throw InvalidArgument("motion resolution must be positive, got " + std::to_string(resolution));
   }
-  auto space = std::make_shared<ompl::base::RealVectorStateSpace>(static_cast<unsigned>(dim));
+  auto space = std::make_shared<JointSpace>(static_cast<unsigned>(dim));
   ompl::base::RealVectorBounds bounds(static_cast<unsigned>(dim));
   for (std::size_t j = 0; j < dim; ++j) {
     bounds.setLow(static_cast<unsigned>(j), limits.lower()[static_cast<Eigen::Index>(j)]);
