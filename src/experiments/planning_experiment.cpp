@@ -398,7 +398,8 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
   params.train.beta = 100;
   params.activeLearning.maxSamples = 300;
   params.seed = o.seed;
-  params.labelThreads = 1;  // the other core plans
+  params.labelThreads = 1;              // the other core plans
+  std::atomic<std::size_t> updates{0};  // before the proxy: its thread counts here until joined
   ProxyCollisionDetector proxy(padded, limits, params);
   if (progress) progress("surgical: training the model");
   proxy.initialize(o.quick ? 1000 : 3000);
@@ -429,55 +430,49 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
       },
       "target configuration");
 
-  std::atomic<std::size_t> updates{0};
   proxy.startBackground([&](const StepReport&) { updates.fetch_add(1); });
   Eigen::VectorXd current = home;
   bool towardTarget = true;
   const std::size_t ticks = o.quick ? 20 : o.ticks;
   const double stepLength = 0.05;  // joint units PSM3 moves along its plan per tick
-  try {
-    for (std::size_t tick = 0; tick < ticks; ++tick) {
-      if (progress && tick % 20 == 0) progress("surgical: " + progressLine("tick", tick, ticks));
-      scene.step();
-      fcl->setScene(scene);
-      gjk->setScene(scene);
-      padded->setScene(scene);
-      audit.setScene(scene);
-      const Eigen::VectorXd goal = towardTarget ? target : home;
-      const PlannerOptions options{
-          .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
-      const auto span = [](const Eigen::VectorXd& q) {
-        return std::span<const double>(q.data(), static_cast<std::size_t>(q.size()));
-      };
-      if (fcl->inCollision(span(current)) || fcl->inCollision(span(goal))) continue;  // blocked
-      const auto model = proxy.model();
-      const auto plans = planWithEachChecker(model, gjk, fcl, limits, current, goal, options);
-      for (const auto& [method, plan] : plans) {
-        table.add(joined(
-            {std::to_string(tick), "RRT", method},
-            joined(planCells(plan, audit, o.resolution),
-                   {std::to_string(model->supportCount()), std::to_string(updates.load())})));
-      }
-      // PSM3 follows the Fastron plan for one tick; at the goal it turns back.
-      const VerifiedPlan& followed = plans.front().plan;
-      if (!followed.solved()) continue;
-      double left = stepLength;
-      for (std::size_t k = 1; k < followed.path.size() && left > 0; ++k) {
-        const Eigen::VectorXd delta = followed.path[k] - current;
-        const double length = delta.norm();
-        if (length <= left) {
-          current = followed.path[k];
-          left -= length;
-        } else {
-          current += delta * (left / length);
-          left = 0;
-        }
-      }
-      if ((current - goal).norm() < 1e-9) towardTarget = !towardTarget;
+  for (std::size_t tick = 0; tick < ticks; ++tick) {
+    if (progress && tick % 20 == 0) progress("surgical: " + progressLine("tick", tick, ticks));
+    scene.step();
+    fcl->setScene(scene);
+    gjk->setScene(scene);
+    padded->setScene(scene);
+    audit.setScene(scene);
+    const Eigen::VectorXd goal = towardTarget ? target : home;
+    const PlannerOptions options{
+        .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
+    const auto span = [](const Eigen::VectorXd& q) {
+      return std::span<const double>(q.data(), static_cast<std::size_t>(q.size()));
+    };
+    if (fcl->inCollision(span(current)) || fcl->inCollision(span(goal))) continue;  // blocked
+    const auto model = proxy.model();
+    const auto plans = planWithEachChecker(model, gjk, fcl, limits, current, goal, options);
+    for (const auto& [method, plan] : plans) {
+      table.add(
+          joined({std::to_string(tick), "RRT", method},
+                 joined(planCells(plan, audit, o.resolution),
+                        {std::to_string(model->supportCount()), std::to_string(updates.load())})));
     }
-  } catch (...) {
-    proxy.stopBackground();
-    throw;
+    // PSM3 follows the Fastron plan for one tick; at the goal it turns back.
+    const VerifiedPlan& followed = plans.front().plan;
+    if (!followed.solved()) continue;
+    double left = stepLength;
+    for (std::size_t k = 1; k < followed.path.size() && left > 0; ++k) {
+      const Eigen::VectorXd delta = followed.path[k] - current;
+      const double length = delta.norm();
+      if (length <= left) {
+        current = followed.path[k];
+        left -= length;
+      } else {
+        current += delta * (left / length);
+        left = 0;
+      }
+    }
+    if ((current - goal).norm() < 1e-9) towardTarget = !towardTarget;
   }
   proxy.stopBackground();
   return table;
@@ -656,6 +651,10 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   FclChecker audit(robot, scene);
   ProxyParams params = proxyParams(c, o.seed);
   params.labelThreads = 1;  // the other core plans
+  // Before the proxy: its thread updates these until it is joined.
+  std::mutex updateMutex;
+  std::size_t updates = 0;
+  double updateSeconds = 0;
   ProxyCollisionDetector proxy(fcl, limits, params);
   if (progress)
     progress("training the first model on " + std::to_string(o.initialPoints) +
@@ -666,9 +665,6 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   results.ticks = Table{
       columnsWith({"tick", "planner", "method"}, {"support", "accuracy", "tpr", "tnr", "updates"}),
       {}};
-  std::mutex updateMutex;
-  std::size_t updates = 0;
-  double updateSeconds = 0;
   proxy.startBackground([&](const StepReport& report) {
     const std::lock_guard lock(updateMutex);
     ++updates;
@@ -676,47 +672,42 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   });
   Rng rng(o.seed);
   const auto began = std::chrono::steady_clock::now();
-  try {
-    for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
-      // Obstacles move at the pace of sensing, not of planning, so the model can follow them.
-      std::this_thread::sleep_until(
-          began + std::chrono::duration<double>(static_cast<double>(tick - 1) * o.tickSeconds));
-      scene.step();
-      fcl->setScene(scene);
-      gjk->setScene(scene);
-      audit.setScene(scene);
-      const auto model = proxy.model();
-      results.test.points = uniformConfigurations(limits, o.testPoints, rng);
-      results.test.labels = labelConfigurations(audit, results.test.points, 1);
-      const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
-      const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
-      const PlannerOptions options{
-          .type = PlannerType::RrtConnect, .resolution = o.resolution, .timeLimit = o.timeLimit};
-      std::size_t updatesSoFar = 0;
-      {
-        const std::lock_guard lock(updateMutex);
-        updatesSoFar = updates;
-      }
-      std::string line = "tick " + std::to_string(tick) + "/" + std::to_string(o.ticks) + ": |S| " +
-                         std::to_string(model->supportCount()) + ", accuracy " +
-                         cell(counts.accuracy()).substr(0, 5) + ", plans";
-      for (const auto& [method, plan] :
-           planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
-        results.ticks.add(
-            joined({std::to_string(tick), "RRTConnect", method},
-                   joined(planCells(plan, audit, o.resolution),
-                          {std::to_string(model->supportCount()), cell(counts.accuracy()),
-                           cell(counts.tpr()), cell(counts.tnr()), std::to_string(updatesSoFar)})));
-        char part[64];
-        std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
-                      seconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
-        line += part;
-      }
-      if (progress && (tick % 10 == 0 || tick == 1)) progress(line);
+  for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
+    // Obstacles move at the pace of sensing, not of planning, so the model can follow them.
+    std::this_thread::sleep_until(
+        began + std::chrono::duration<double>(static_cast<double>(tick - 1) * o.tickSeconds));
+    scene.step();
+    fcl->setScene(scene);
+    gjk->setScene(scene);
+    audit.setScene(scene);
+    const auto model = proxy.model();
+    results.test.points = uniformConfigurations(limits, o.testPoints, rng);
+    results.test.labels = labelConfigurations(audit, results.test.points, 1);
+    const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
+    const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
+    const PlannerOptions options{
+        .type = PlannerType::RrtConnect, .resolution = o.resolution, .timeLimit = o.timeLimit};
+    std::size_t updatesSoFar = 0;
+    {
+      const std::lock_guard lock(updateMutex);
+      updatesSoFar = updates;
     }
-  } catch (...) {
-    proxy.stopBackground();
-    throw;
+    std::string line = "tick " + std::to_string(tick) + "/" + std::to_string(o.ticks) + ": |S| " +
+                       std::to_string(model->supportCount()) + ", accuracy " +
+                       cell(counts.accuracy()).substr(0, 5) + ", plans";
+    for (const auto& [method, plan] :
+         planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
+      results.ticks.add(
+          joined({std::to_string(tick), "RRTConnect", method},
+                 joined(planCells(plan, audit, o.resolution),
+                        {std::to_string(model->supportCount()), cell(counts.accuracy()),
+                         cell(counts.tpr()), cell(counts.tnr()), std::to_string(updatesSoFar)})));
+      char part[64];
+      std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
+                    seconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
+      line += part;
+    }
+    if (progress && (tick % 10 == 0 || tick == 1)) progress(line);
   }
   proxy.stopBackground();
   results.elapsedSeconds =

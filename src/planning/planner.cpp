@@ -81,7 +81,7 @@ ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptio
     }
     case PlannerType::RrtStar: {
       // RRT* stops at its first solution only through the objective's cost threshold; see
-      // problemFor().
+      // makeProblemDefinition().
       auto planner = std::make_shared<og::RRTstar>(si);
       if (options.range > 0) planner->setRange(options.range);
       return planner;
@@ -130,8 +130,11 @@ ob::ScopedState<> stateOf(const ob::SpaceInformationPtr& si, const Eigen::Vector
   return state;
 }
 
-ob::ProblemDefinitionPtr problemFor(const ob::SpaceInformationPtr& si, const Eigen::VectorXd& start,
-                                    const Eigen::VectorXd& goal, PlannerType type) {
+}  // namespace
+
+ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si,
+                                               const Eigen::VectorXd& start,
+                                               const Eigen::VectorXd& goal, PlannerType type) {
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
   problem->setStartAndGoalStates(stateOf(si, start), stateOf(si, goal));
   if (type == PlannerType::RrtStar || type == PlannerType::BitStar) {
@@ -142,8 +145,6 @@ ob::ProblemDefinitionPtr problemFor(const ob::SpaceInformationPtr& si, const Eig
   }
   return problem;
 }
-
-}  // namespace
 
 PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
                       const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
@@ -165,7 +166,7 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   if (!si->isValid(goalState.get())) return finish(PlanStatus::InvalidGoal);
 
   const auto planner = makePlanner(si, options);
-  planner->setProblemDefinition(problemFor(si, start, goal, options.type));
+  planner->setProblemDefinition(makeProblemDefinition(si, start, goal, options.type));
   planner->setup();
   // Not solve(double): that checks the time on a helper thread, started and joined per query.
   const ob::PlannerStatus status =

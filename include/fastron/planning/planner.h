@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <ompl/base/Planner.h>
+#include <ompl/base/ProblemDefinition.h>
 
 #include "fastron/planning/motion.h"
 #include "fastron/planning/ompl_adapters.h"
@@ -35,11 +36,18 @@ struct PlannerOptions {
 /// Throws InvalidArgument naming the field when an option is out of range.
 void validate(const PlannerOptions& options);
 
-/// A planner of the given type on `si` that stops at its first solution: RRT* with the path-length
-/// objective's cost threshold at infinite cost (any solution satisfies it), BIT* with
-/// stop-on-solution-improvement. The planner still needs a problem definition.
+/// A planner of the given type on `si`; with a problem from makeProblemDefinition it stops at its
+/// first solution (BIT*: stop-on-solution-improvement is set here).
 ompl::base::PlannerPtr makePlanner(const ompl::base::SpaceInformationPtr& si,
                                    const PlannerOptions& options);
+
+/// The query from start to goal for a planner of `type`. RRT* and BIT* get the path-length
+/// objective with its cost threshold at infinite cost: any solution satisfies it, so RRT* ends its
+/// loop at the first one (OMPL's exactSolnPlannerTerminationCondition does not stop it).
+ompl::base::ProblemDefinitionPtr makeProblemDefinition(const ompl::base::SpaceInformationPtr& si,
+                                                       const Eigen::VectorXd& start,
+                                                       const Eigen::VectorXd& goal,
+                                                       PlannerType type);
 
 enum class PlanStatus {
   Solved,        ///< a path from start to goal
