@@ -6,6 +6,8 @@
 #include <random>
 #include <string>
 
+#include "fastron/core/error.h"
+
 namespace fastron {
 namespace {
 
@@ -52,11 +54,22 @@ std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
   return std::nullopt;
 }
 
+void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const JointLimits& limits) {
+  if (!exact) throw InvalidArgument("verify and repair: the exact checker is a null pointer");
+  if (exact->dof() != limits.dim()) {
+    throw InvalidArgument("verify and repair: " + exact->name() + " checks " +
+                          std::to_string(exact->dof()) + " joints but the joint limits have " +
+                          std::to_string(limits.dim()));
+  }
+}
+
 }  // namespace
 
 VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options) {
   constexpr int kRounds = 3;  // a repaired stretch is planned on the exact checker, so one suffices
+  checkExact(exact, limits);
+  validate(options);
   VerifiedPlan result;
   result.path = path;
   for (int round = 0; round < kRounds; ++round) {
@@ -127,6 +140,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  checkExact(exact, limits);
   PlanResult plan = planMotion(approximate, limits, start, goal, options);
   bool substituteEnds = false;
   if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&

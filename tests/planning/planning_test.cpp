@@ -168,6 +168,13 @@ TEST_F(Planning, RefusesBadQueries) {
   EXPECT_EQ(parsePlannerType("BITstar"), PlannerType::BitStar);
   EXPECT_EQ(parsePlannerType("RRT*"), PlannerType::RrtStar);
   EXPECT_THROW(makeSpaceInformation(wall, JointLimits::unitBox(3), 0.01), InvalidArgument);
+  EXPECT_THAT(messageOf<InvalidArgument>(
+                  [&] { planVerified(wall, nullptr, limits, kStart, kGoal, options); }),
+              HasSubstr("exact checker is a null pointer"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                verifyAndRepair({kStart, kGoal}, wall, JointLimits::unitBox(3), options);
+              }),
+              HasSubstr("wall checks 2 joints but the joint limits have 3"));
   EXPECT_THROW(makeSpaceInformation(std::shared_ptr<const Model>(), limits, 0.01), InvalidArgument);
 }
 
