@@ -173,7 +173,8 @@ std::string progressLine(const std::string& what, std::size_t i, std::size_t n) 
 std::string planTable(const Table& r, const Table::Filter& where,
                       const std::vector<std::string>& planners) {
   std::ostringstream md;
-  md << "| Planner | Method | Success | Plan | Verify | Repair | Total | Path length (rad) | "
+  md << "| Planner | Method | Success | Plan | Verify | Repair | Total | Path length (joint space) "
+        "| "
         "Repaired "
         "stretches | Final paths colliding (FCL) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
