@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   fastron::cli::addDemoCommand(app, exitCode);
   fastron::cli::addCheckCommand(app, exitCode);
   fastron::cli::addRobotsCommand(app, exitCode);
+  fastron::cli::addPlanCommand(app, exitCode);
   fastron::cli::addBenchCommand(app, exitCode);
 
   try {

@@ -1,0 +1,217 @@
+// fastron plan: one planning query from the command line, on a shipped robot or a URDF among a
+// scene, with Fastron (verified and repaired with FCL), GJK (verified and repaired) or FCL.
+// Exit 0 with a valid path, 1 without one, 2 on an error.
+
+#include <ompl/util/RandomNumbers.h>
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "fastron/core/error.h"
+#include "fastron/core/model_file.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/scene_file.h"
+#include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+#include "report_format.h"
+#include "robot_options.h"
+
+namespace fastron::cli {
+namespace {
+
+struct PlanOptions {
+  RobotOptions robot;
+  std::string scene, request, model, out, checker = "fastron", planner = "RRTConnect";
+  std::vector<double> start, goal;
+  std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
+  std::size_t samples = 5000, updates = 3;
+  double gamma = 5, beta = 500, resolution = 0.03, timeLimit = 10, padding = 0;
+  std::uint64_t seed = 1;
+  bool selfCollision = false;
+};
+
+Eigen::VectorXd configuration(const std::vector<double>& values, const Robot& robot,
+                              const char* option) {
+  if (values.size() != robot.dof()) {
+    std::string names;
+    for (const auto& n : robot.actuatedJointNames()) names += (names.empty() ? "" : ", ") + n;
+    throw InvalidArgument(std::string(option) + " has " + std::to_string(values.size()) +
+                          " values but " + robot.name() + " has " + std::to_string(robot.dof()) +
+                          " actuated joints (" + names + ")");
+  }
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+/// Why `q` is not free under FCL, e.g. "right_hand touches box", or "" when it is free.
+std::string contactAt(const FclChecker& fcl, const Eigen::VectorXd& q) {
+  const auto contact =
+      fcl.firstContact(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
+  if (!contact) return "";
+  return contact->robotLink + (contact->selfCollision ? " touches link " : " touches ") +
+         contact->other;
+}
+
+void writePath(const Path& path, const Robot& robot, const std::string& file) {
+  std::ofstream out(file);
+  const auto names = robot.actuatedJointNames();
+  for (std::size_t j = 0; j < names.size(); ++j) out << (j ? "," : "") << names[j];
+  out << '\n' << std::setprecision(17);
+  for (const Eigen::VectorXd& q : path) {
+    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j ? "," : "") << q[j];
+    out << '\n';
+  }
+  out.close();
+  if (!out) throw FileError(file + ": cannot write");
+}
+
+int runPlan(const PlanOptions& o) {
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
+  const Robot robot = loadRobotFromOptions(o.robot);
+  const JointLimits limits = robot.limits();
+  Eigen::VectorXd start, goal;
+  if (!o.request.empty()) {
+    if (!o.start.empty() || !o.goal.empty())
+      throw InvalidArgument("give either --request or --start and --goal, not both");
+    const PlanRequest request = loadMoveItRequest(o.request);
+    const auto vector = [](const std::vector<double>& v) {
+      return Eigen::VectorXd(
+          Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
+    };
+    start = vector(actuatedConfiguration(robot, request.start, o.request + ": start"));
+    goal = vector(actuatedConfiguration(robot, request.goal, o.request + ": goal"));
+  } else {
+    if (o.start.empty() || o.goal.empty())
+      throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
+    start = configuration(o.start, robot, "--start");
+    goal = configuration(o.goal, robot, "--goal");
+  }
+  Scene scene = loadScene(o.scene);
+  for (const std::string& pair : o.allow) {
+    const auto colon = pair.find(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size()) {
+      throw InvalidArgument("--allow '" + pair + "' is not LINK:OBSTACLE");
+    }
+    scene.allowedCollisions.allow(pair.substr(0, colon), pair.substr(colon + 1));
+  }
+  const CheckerOptions checkerOptions{o.selfCollision, o.padding};
+  const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
+  const PlannerOptions options{
+      .type = parsePlannerType(o.planner), .resolution = o.resolution, .timeLimit = o.timeLimit};
+  validate(options);
+
+  std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
+            << "scene    " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+  for (const auto& [what, q] : {std::pair{"start", &start}, std::pair{"goal", &goal}}) {
+    if (const std::string contact = contactAt(*fcl, *q); !contact.empty()) {
+      std::cout << what << " in collision under FCL: " << contact << '\n';
+      return 1;
+    }
+  }
+
+  VerifiedPlan plan;
+  if (o.checker == "fcl") {
+    const PlanResult exact = planMotion(fcl, limits, start, goal, options);
+    plan.status = exact.status;
+    plan.path = exact.path;
+    plan.planTime = exact.time;
+    if (!exact.solved()) plan.failure = toString(exact.status);
+  } else if (o.checker == "gjk") {
+    const auto gjk = std::make_shared<const GjkChecker>(robot, scene, checkerOptions);
+    plan = planVerified(gjk, fcl, limits, start, goal, options);
+  } else {
+    std::shared_ptr<const Model> model;
+    if (!o.model.empty()) {
+      model = std::make_shared<const Model>(loadModel(o.model, robot.dof()));
+      std::cout << "model    " << o.model << ", " << model->supportCount() << " support points\n";
+    } else {
+      ProxyParams params;
+      params.train.kernel.gamma = o.gamma;
+      params.train.beta = o.beta;
+      params.train.maxIterations = 20000;
+      params.train.maxSupportPoints = 5000;
+      params.seed = o.seed;
+      ProxyCollisionDetector proxy(fcl, limits, params);
+      const auto began = std::chrono::steady_clock::now();
+      proxy.initialize(o.samples);
+      for (std::size_t u = 0; u < o.updates; ++u) proxy.step();
+      model = proxy.model();
+      std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
+                << " active-learning updates in "
+                << duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
+                                .count())
+                << ", " << model->supportCount() << " support points\n";
+    }
+    plan = planVerified(model, fcl, limits, start, goal, options);
+  }
+
+  std::cout << "planner  " << plannerName(options.type) << " on " << o.checker
+            << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
+            << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
+            << "time     plan " << duration(seconds(plan.planTime)) << ", verify "
+            << duration(seconds(plan.verifyTime)) << ", repair "
+            << duration(seconds(plan.repairTime)) << ", total "
+            << duration(seconds(plan.totalTime())) << '\n';
+  if (!plan.solved()) return 1;
+  std::cout << "path     " << plan.path.size() << " waypoints, length " << std::setprecision(4)
+            << pathLength(plan.path) << " (joint space), " << plan.invalidStretches
+            << " stretch(es) repaired\n";
+  if (!o.out.empty()) {
+    writePath(plan.path, robot, o.out);
+    std::cout << "written  " << o.out << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+void addPlanCommand(CLI::App& app, int& exitCode) {
+  auto o = std::make_shared<PlanOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "plan", "Plan one motion with Fastron, GJK or FCL (exit 0: valid path, 1: none, 2: error)");
+  addRobotOptions(*cmd, o->robot);
+  cmd->add_option("--scene", o->scene, "scene file: the project's YAML or a MoveIt PlanningScene")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--start", o->start, "start joint values, comma-separated")->delimiter(',');
+  cmd->add_option("--goal", o->goal, "goal joint values, comma-separated")->delimiter(',');
+  cmd->add_option("--request", o->request, "MoveIt MotionPlanRequest YAML with start and goal")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--checker", o->checker, "fastron, gjk or fcl")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fastron", "gjk", "fcl"}));
+  cmd->add_option("--planner", o->planner, "RRT, RRTConnect, RRT* or BIT*")->capture_default_str();
+  cmd->add_option("--model", o->model, "a model file to plan on (default: train one on the scene)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--samples", o->samples, "training samples when no --model is given")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--updates", o->updates, "active-learning updates after them")
+      ->capture_default_str();
+  cmd->add_option("--gamma", o->gamma, "kernel width of the trained model")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--beta", o->beta, "conditional bias of the trained model")
+      ->capture_default_str()
+      ->check(numberAbove(1, true));
+  cmd->add_option("--resolution", o->resolution, "joint-space step of edge checks")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--time-limit", o->timeLimit, "seconds per planning query")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
+  cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
+  cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");
+  cmd->add_option("--allow", o->allow,
+                  "LINK:OBSTACLE pairs that may touch (e.g. a grasped object and the hand)")
+      ->delimiter(',');
+  cmd->add_option("--out", o->out,
+                  "write the path as CSV (a header of joint names, a waypoint per row)");
+  cmd->callback([o, &exitCode] { exitCode = runPlan(*o); });
+}
+
+}  // namespace fastron::cli
