@@ -39,7 +39,7 @@ case "$command" in
     build build/sanitize Release -DFASTRON_SANITIZE=ON -DFASTRON_NATIVE=OFF -DFASTRON_BUILD_BENCH=OFF \
       -DCMAKE_CXX_FLAGS_RELEASE=-O1
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
-    build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 --target proxy_tests
+    build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 --target proxy_tests planning_concurrency_tests
     ctest --test-dir build/tsan --output-on-failure -j "$jobs" -L concurrency
     ;;
   build)
