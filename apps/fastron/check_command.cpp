@@ -26,13 +26,7 @@ struct CheckOptions {
 
 int runCheck(const CheckOptions& o) {
   const Robot robot = loadRobotFromOptions(o.robot);
-  if (o.config.size() != robot.dof()) {
-    std::string names;
-    for (const auto& n : robot.actuatedJointNames()) names += (names.empty() ? "" : ", ") + n;
-    throw InvalidArgument("--config has " + std::to_string(o.config.size()) + " values but " +
-                          robot.name() + " has " + std::to_string(robot.dof()) +
-                          " actuated joints (" + names + ")");
-  }
+  configurationFromOption(o.config, robot, "--config");
   const JointLimits limits = robot.limits();
   for (std::size_t j = 0; j < robot.dof(); ++j) {
     const auto jj = static_cast<Eigen::Index>(j);

@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "fastron/core/error.h"
 #include "fastron/core/model_file.h"
+#include "fastron/experiments/common.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/scene_file.h"
@@ -33,18 +34,6 @@ struct PlanOptions {
   std::uint64_t seed = 1;
   bool selfCollision = false;
 };
-
-Eigen::VectorXd configuration(const std::vector<double>& values, const Robot& robot,
-                              const char* option) {
-  if (values.size() != robot.dof()) {
-    std::string names;
-    for (const auto& n : robot.actuatedJointNames()) names += (names.empty() ? "" : ", ") + n;
-    throw InvalidArgument(std::string(option) + " has " + std::to_string(values.size()) +
-                          " values but " + robot.name() + " has " + std::to_string(robot.dof()) +
-                          " actuated joints (" + names + ")");
-  }
-  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
-}
 
 /// Why `q` is not free under FCL, e.g. "right_hand touches box", or "" when it is free.
 std::string contactAt(const FclChecker& fcl, const Eigen::VectorXd& q) {
@@ -86,8 +75,8 @@ int runPlan(const PlanOptions& o) {
   } else {
     if (o.start.empty() || o.goal.empty())
       throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
-    start = configuration(o.start, robot, "--start");
-    goal = configuration(o.goal, robot, "--goal");
+    start = configurationFromOption(o.start, robot, "--start");
+    goal = configurationFromOption(o.goal, robot, "--goal");
   }
   Scene scene = loadScene(o.scene);
   for (const std::string& pair : o.allow) {
@@ -114,11 +103,7 @@ int runPlan(const PlanOptions& o) {
 
   VerifiedPlan plan;
   if (o.checker == "fcl") {
-    const PlanResult exact = planMotion(fcl, limits, start, goal, options);
-    plan.status = exact.status;
-    plan.path = exact.path;
-    plan.planTime = exact.time;
-    if (!exact.solved()) plan.failure = toString(exact.status);
+    plan = planExactly(fcl, limits, start, goal, options);
   } else if (o.checker == "gjk") {
     const auto gjk = std::make_shared<const GjkChecker>(robot, scene, checkerOptions);
     plan = planVerified(gjk, fcl, limits, start, goal, options);
@@ -128,13 +113,7 @@ int runPlan(const PlanOptions& o) {
       model = std::make_shared<const Model>(loadModel(o.model, robot.dof()));
       std::cout << "model    " << o.model << ", " << model->supportCount() << " support points\n";
     } else {
-      ProxyParams params;
-      params.train.kernel.gamma = o.gamma;
-      params.train.beta = o.beta;
-      params.train.maxIterations = 20000;
-      params.train.maxSupportPoints = 5000;
-      params.seed = o.seed;
-      ProxyCollisionDetector proxy(fcl, limits, params);
+      ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(o.gamma, o.beta, o.seed));
       const auto began = std::chrono::steady_clock::now();
       proxy.initialize(o.samples);
       for (std::size_t u = 0; u < o.updates; ++u) proxy.step();

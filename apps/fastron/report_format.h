@@ -1,10 +1,11 @@
 #pragma once
 // Number formatting shared by the subcommands' printed tables.
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
+
+#include "fastron/experiments/common.h"  // seconds()
 
 namespace fastron::cli {
 
@@ -29,10 +30,6 @@ inline std::string duration(double seconds) {
     std::snprintf(buffer, sizeof buffer, "%.2f s", seconds);
   }
   return buffer;
-}
-
-inline double seconds(std::chrono::nanoseconds d) {
-  return std::chrono::duration<double>(d).count();
 }
 
 }  // namespace fastron::cli

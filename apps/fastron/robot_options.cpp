@@ -1,5 +1,6 @@
 #include "robot_options.h"
 
+#include "fastron/core/error.h"
 #include "fastron/geometry/robot_library.h"
 
 namespace fastron::cli {
@@ -21,6 +22,18 @@ Robot loadRobotFromOptions(const RobotOptions& options) {
   Robot robot = loadRobot(options.robot, urdf);
   if (!options.joints.empty()) robot.setActuatedJoints(options.joints);
   return robot;
+}
+
+Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const Robot& robot,
+                                        const char* option) {
+  if (values.size() != robot.dof()) {
+    std::string names;
+    for (const auto& n : robot.actuatedJointNames()) names += (names.empty() ? "" : ", ") + n;
+    throw InvalidArgument(std::string(option) + " has " + std::to_string(values.size()) +
+                          " values but " + robot.name() + " has " + std::to_string(robot.dof()) +
+                          " actuated joints (" + names + ")");
+  }
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
 }  // namespace fastron::cli

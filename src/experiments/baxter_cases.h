@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
+#include "fastron/experiments/common.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene.h"
@@ -53,14 +54,7 @@ inline Scene sceneForTrial(const std::string& file, std::uint64_t seed) {
 }
 
 inline ProxyParams proxyParams(const Case& c, std::uint64_t seed) {
-  ProxyParams p;
-  p.train.kernel = {KernelType::RationalQuadratic, c.gamma};
-  p.train.beta = c.beta;
-  p.train.maxIterations = 20000;
-  p.train.maxSupportPoints = 5000;
-  p.activeLearning.maxSamples = 500;
-  p.seed = seed;
-  return p;
+  return experimentProxyParams(c.gamma, c.beta, seed);
 }
 
 }  // namespace fastron::experiments

@@ -42,19 +42,39 @@ std::string meanStd(const Summary& s, int digits) {
   return buffer;
 }
 
+namespace {
+
+struct Unit {
+  double scale;
+  const char* name;
+  int digits;  // decimals: 2 below 10 units, 1 above
+};
+
+Unit unitFor(double seconds) {
+  const auto unit = [&](double scale, const char* name) {
+    return Unit{scale, name, seconds * scale < 10 ? 2 : 1};
+  };
+  return seconds < 1e-6   ? unit(1e9, "ns")
+         : seconds < 1e-3 ? unit(1e6, "µs")
+         : seconds < 1    ? unit(1e3, "ms")
+                          : unit(1, "s");
+}
+
+}  // namespace
+
 std::string durationMeanStd(const Summary& seconds) {
   if (seconds.count == 0) return "n/a";
-  struct Unit {
-    double scale;
-    const char* name;
-  };
-  const Unit unit = seconds.mean < 1e-6   ? Unit{1e9, "ns"}
-                    : seconds.mean < 1e-3 ? Unit{1e6, "µs"}
-                    : seconds.mean < 1    ? Unit{1e3, "ms"}
-                                          : Unit{1, "s"};
-  const int digits = seconds.mean * unit.scale < 10 ? 2 : 1;
-  return meanStd({seconds.mean * unit.scale, seconds.stddev * unit.scale, seconds.count}, digits) +
+  const Unit unit = unitFor(seconds.mean);
+  return meanStd({seconds.mean * unit.scale, seconds.stddev * unit.scale, seconds.count},
+                 unit.digits) +
          " " + unit.name;
+}
+
+std::string durationText(double seconds) {
+  const Unit unit = unitFor(seconds);
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*f %s", unit.digits, seconds * unit.scale, unit.name);
+  return buffer;
 }
 
 void Table::add(std::vector<std::string> row) {
@@ -185,6 +205,17 @@ Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double r
                makePose(c, {0, 0, yaw(rng)}), std::nullopt});
   }
   return scene;
+}
+
+ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed) {
+  ProxyParams p;
+  p.train.kernel = {KernelType::RationalQuadratic, gamma};
+  p.train.beta = beta;
+  p.train.maxIterations = 20000;
+  p.train.maxSupportPoints = 5000;
+  p.activeLearning.maxSamples = 500;
+  p.seed = seed;
+  return p;
 }
 
 }  // namespace fastron

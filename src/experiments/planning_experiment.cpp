@@ -35,10 +35,6 @@ const std::vector<std::string> kPlanColumns{"solved",    "status",   "plan_s",  
                                             "repair_s",  "total_s",  "path_length", "waypoints",
                                             "stretches", "fallback", "exact_ends",  "collides_fcl"};
 
-double seconds(std::chrono::nanoseconds d) {
-  return std::chrono::duration<double>(d).count();
-}
-
 std::vector<std::string> columnsWith(std::vector<std::string> first,
                                      const std::vector<std::string>& last = {}) {
   first.insert(first.end(), kPlanColumns.begin(), kPlanColumns.end());
@@ -72,19 +68,6 @@ std::vector<std::string> joined(std::vector<std::string> first,
   return first;
 }
 
-/// A plan on the exact checker, which needs no verification.
-VerifiedPlan planExactly(const CheckerPtr& exact, const JointLimits& limits,
-                         const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                         const PlannerOptions& options) {
-  const PlanResult plan = planMotion(exact, limits, start, goal, options);
-  VerifiedPlan result;
-  result.status = plan.status;
-  result.path = plan.path;
-  result.planTime = plan.time;
-  if (!plan.solved()) result.failure = toString(plan.status);
-  return result;
-}
-
 struct MethodPlan {
   std::string method;
   VerifiedPlan plan;
@@ -103,28 +86,25 @@ std::vector<MethodPlan> planWithEachChecker(const std::shared_ptr<const Model>& 
   return plans;
 }
 
+bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q) {
+  return !checker.inCollision(
+      std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
+}
+
 /// A configuration free under `checker` drawn by `sample`; throws Error after `attempts` tries.
 template <class Sample>
 Eigen::VectorXd sampleFree(const CollisionChecker& checker, Sample&& sample, const char* what,
                            std::size_t attempts = 200000) {
   for (std::size_t i = 0; i < attempts; ++i) {
     const Eigen::VectorXd q = sample();
-    if (!checker.inCollision(
-            std::span<const double>(q.data(), static_cast<std::size_t>(q.size())))) {
-      return q;
-    }
+    if (freeUnder(checker, q)) return q;
   }
   throw Error(std::string("found no collision-free ") + what + " in " + std::to_string(attempts) +
               " samples");
 }
 
 Eigen::VectorXd uniformIn(const JointLimits& limits, Rng& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  Eigen::VectorXd q(static_cast<Eigen::Index>(limits.dim()));
-  for (Eigen::Index j = 0; j < q.size(); ++j) {
-    q[j] = limits.lower()[j] + u(rng) * (limits.upper()[j] - limits.lower()[j]);
-  }
-  return q;
+  return uniformConfigurations(limits, 1, rng).row(0).transpose();
 }
 
 /// A uniform configuration for which `reaches` holds; throws Error naming `where` after 10^7 tries.
@@ -175,8 +155,8 @@ std::string planTable(const Table& r, const Table::Filter& where,
   std::ostringstream md;
   md << "| Planner | Method | Success | Plan | Verify | Repair | Total | Path length (joint space) "
         "| "
-        "Repaired "
-        "stretches | Final paths colliding (FCL) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        "Repaired stretches | Final paths colliding (FCL) |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
     for (const std::string& method : r.distinct("method", where)) {
       Table::Filter all = where;
@@ -187,15 +167,15 @@ std::string planTable(const Table& r, const Table::Filter& where,
       Table::Filter ok = all;
       ok.emplace_back("solved", "1");
       const auto stat = [&](const char* column) { return summarize(r.numbers(column, ok)); };
-      const Summary success = summarize(solved);
+      const auto solvedCount =
+          static_cast<std::size_t>(std::count(solved.begin(), solved.end(), 1.0));
       const std::vector<double> collides = r.numbers("collides_fcl", ok);
       const auto colliding =
           static_cast<std::size_t>(std::count(collides.begin(), collides.end(), 1.0));
       char rate[64];
-      std::snprintf(
-          rate, sizeof rate, "%.2f (%zu/%zu)", success.mean,
-          static_cast<std::size_t>(std::lround(success.mean * static_cast<double>(solved.size()))),
-          solved.size());
+      std::snprintf(rate, sizeof rate, "%.2f (%zu/%zu)",
+                    static_cast<double>(solvedCount) / static_cast<double>(solved.size()),
+                    solvedCount, solved.size());
       md << "| " << planner << " | " << method << " | " << rate << " | "
          << durationMeanStd(stat("plan_s")) << " | " << durationMeanStd(stat("verify_s")) << " | "
          << durationMeanStd(stat("repair_s")) << " | " << durationMeanStd(stat("total_s")) << " | "
@@ -206,7 +186,8 @@ std::string planTable(const Table& r, const Table::Filter& where,
   return md.str();
 }
 
-/// "Fastron total time is N x faster than FCL's" per planner, from means over solved plans.
+/// Per planner, FCL's total time over each other method's, from means and from medians over
+/// solved plans.
 std::string speedups(const Table& r, const Table::Filter& where,
                      const std::vector<std::string>& planners) {
   std::ostringstream md;
@@ -320,13 +301,7 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
   auto fcl = std::make_shared<FclChecker>(ur3, scene);
   auto gjk = std::make_shared<GjkChecker>(ur3, scene);
   const FclChecker audit(ur3, scene);
-  ProxyParams params;
-  params.train.kernel = {KernelType::RationalQuadratic, 10};
-  params.train.beta = 100;
-  params.train.maxIterations = 20000;
-  params.train.maxSupportPoints = 5000;
-  params.seed = o.seed;
-  ProxyCollisionDetector proxy(fcl, limits, params);
+  ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(10, 100, o.seed));
   if (progress) progress("shelf: training the model");
   proxy.initialize(o.quick ? 2000 : 8000);
   for (int update = 0; update < (o.quick ? 2 : 5); ++update) proxy.step();
@@ -339,24 +314,24 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
   const int wrist = ur3.linkIndex("wrist_1_link");
   KinematicsData data = makeKinematicsData(ur3);
   Rng rng(o.seed);
-  auto inShelf = [&](double zLow, double zHigh) {
-    return [&, zLow, zHigh] {
-      return sampleReaching(
-          [&](const Eigen::VectorXd& q) {
-            forwardKinematics(ur3, q.data(), data, scene.robotBase);
-            const Eigen::Vector3d p = data.linkPoses[static_cast<std::size_t>(ee)].translation();
-            const Eigen::Vector3d w = data.linkPoses[static_cast<std::size_t>(wrist)].translation();
-            return p.x() > 0.28 && p.x() < 0.44 && std::abs(p.y()) < 0.17 && p.z() > zLow &&
-                   p.z() < zHigh && w.x() < 0.24;
-          },
-          limits, rng, "the shelf");
+  // Both checks in one predicate: the draws are those of drawing in the shelf, then rejecting
+  // a colliding one.
+  const auto inShelf = [&](double zLow, double zHigh) {
+    return [&, zLow, zHigh](const Eigen::VectorXd& q) {
+      forwardKinematics(ur3, q.data(), data, scene.robotBase);
+      const Eigen::Vector3d p = data.linkPoses[static_cast<std::size_t>(ee)].translation();
+      const Eigen::Vector3d w = data.linkPoses[static_cast<std::size_t>(wrist)].translation();
+      return p.x() > 0.28 && p.x() < 0.44 && std::abs(p.y()) < 0.17 && p.z() > zLow &&
+             p.z() < zHigh && w.x() < 0.24 && freeUnder(*fcl, q);
     };
   };
   const std::size_t trials = o.trials;
   for (std::size_t trial = 0; trial < trials; ++trial) {
     if (progress) progress("shelf: " + progressLine("query", trial, trials));
-    const Eigen::VectorXd start = sampleFree(*fcl, inShelf(0.14, 0.26), "start on the lower shelf");
-    const Eigen::VectorXd goal = sampleFree(*fcl, inShelf(0.34, 0.46), "goal on the higher shelf");
+    const Eigen::VectorXd start =
+        sampleReaching(inShelf(0.14, 0.26), limits, rng, "the lower shelf, collision-free");
+    const Eigen::VectorXd goal =
+        sampleReaching(inShelf(0.34, 0.46), limits, rng, "the higher shelf, collision-free");
     const PlannerOptions options{
         .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
     for (const auto& [method, plan] :
@@ -418,24 +393,22 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
         return q;
       },
       "home configuration");
-  const Eigen::VectorXd target = sampleFree(
-      *fcl,
-      [&] {
-        return sampleReaching(
-            [&](const Eigen::VectorXd& q) {
-              forwardKinematics(psm, q.data(), data, scene.robotBase);
-              return (data.linkPoses[static_cast<std::size_t>(tip)].translation() - targetPoint)
-                         .norm() < 0.015;
-            },
-            limits, rng, "the target point");
+  const Eigen::VectorXd target = sampleReaching(
+      [&](const Eigen::VectorXd& q) {
+        forwardKinematics(psm, q.data(), data, scene.robotBase);
+        return (data.linkPoses[static_cast<std::size_t>(tip)].translation() - targetPoint).norm() <
+                   0.015 &&
+               freeUnder(*fcl, q);
       },
-      "target configuration");
+      limits, rng, "the target point, collision-free");
 
   proxy.startBackground([&](const StepReport&) { updates.fetch_add(1); });
   Eigen::VectorXd current = home;
   bool towardTarget = true;
   const std::size_t ticks = o.quick ? 20 : o.ticks;
   const double stepLength = 0.05;  // joint units PSM3 moves along its plan per tick
+  const PlannerOptions options{
+      .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
   for (std::size_t tick = 0; tick < ticks; ++tick) {
     if (progress && tick % 20 == 0) progress("surgical: " + progressLine("tick", tick, ticks));
     scene.step();
@@ -444,12 +417,7 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
     padded->setScene(scene);
     audit.setScene(scene);
     const Eigen::VectorXd goal = towardTarget ? target : home;
-    const PlannerOptions options{
-        .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
-    const auto span = [](const Eigen::VectorXd& q) {
-      return std::span<const double>(q.data(), static_cast<std::size_t>(q.size()));
-    };
-    if (fcl->inCollision(span(current)) || fcl->inCollision(span(goal))) continue;  // blocked
+    if (!freeUnder(*fcl, current) || !freeUnder(*fcl, goal)) continue;  // blocked
     const auto model = proxy.model();
     const auto plans = planWithEachChecker(model, gjk, fcl, limits, current, goal, options);
     for (const auto& [method, plan] : plans) {
@@ -584,13 +552,7 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene);
     const FclChecker audit(robot, scene);
 
-    ProxyParams params;
-    params.train.kernel = {KernelType::RationalQuadratic, 5};
-    params.train.beta = 500;
-    params.train.maxIterations = 20000;
-    params.train.maxSupportPoints = 5000;
-    params.seed = o.seed + p;
-    ProxyCollisionDetector proxy(fcl, limits, params);
+    ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(5, 500, o.seed + p));
     const auto began = std::chrono::steady_clock::now();
     proxy.initialize(o.quick ? 1500 : o.trainingPoints);
     for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) proxy.step();
@@ -747,12 +709,10 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
      << meanStd(summarize(t.numbers("accuracy", {{"method", "FCL"}})), 3) << ", TPR "
      << meanStd(summarize(t.numbers("tpr", {{"method", "FCL"}})), 3) << ", TNR "
      << meanStd(summarize(t.numbers("tnr", {{"method", "FCL"}})), 3) << "\n";
-  std::snprintf(line, sizeof line,
-                "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
-                durationMeanStd({r.fastronQuerySeconds, 0, 1}).c_str(),
-                durationMeanStd({r.gjkQuerySeconds, 0, 1}).c_str(),
-                durationMeanStd({r.fclQuerySeconds, 0, 1}).c_str(),
-                r.fclQuerySeconds / r.fastronQuerySeconds);
+  std::snprintf(
+      line, sizeof line, "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
+      durationText(r.fastronQuerySeconds).c_str(), durationText(r.gjkQuerySeconds).c_str(),
+      durationText(r.fclQuerySeconds).c_str(), r.fclQuerySeconds / r.fastronQuerySeconds);
   md << line << "\n## Planning (RRT-Connect)\n\n"
      << planTable(t, {}, {"RRTConnect"}) << speedups(t, {}, {"RRTConnect"});
   return md.str();

@@ -25,7 +25,8 @@ const double* valuesOf(const ompl::base::State* state) {
   return state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
 }
 
-/// Index of the first of n states (row by row) that collides, or n.
+}  // namespace
+
 std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
                            std::size_t dim) {
   if (const auto* model = std::get_if<std::shared_ptr<const Model>>(&source)) {
@@ -37,8 +38,6 @@ std::size_t firstCollision(const CollisionSource& source, const double* states, 
   }
   return n;
 }
-
-}  // namespace
 
 std::string sourceName(const CollisionSource& source) {
   if (std::holds_alternative<std::shared_ptr<const Model>>(source)) return "Fastron";

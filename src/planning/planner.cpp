@@ -160,10 +160,12 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
     result.time = std::chrono::steady_clock::now() - began;
     return result;
   };
-  const auto startState = stateOf(si, start);
-  const auto goalState = stateOf(si, goal);
-  if (!si->isValid(startState.get())) return finish(PlanStatus::InvalidStart);
-  if (!si->isValid(goalState.get())) return finish(PlanStatus::InvalidGoal);
+  if (firstCollision(source, start.data(), 1, limits.dim()) == 0) {
+    return finish(PlanStatus::InvalidStart);
+  }
+  if (firstCollision(source, goal.data(), 1, limits.dim()) == 0) {
+    return finish(PlanStatus::InvalidGoal);
+  }
 
   const auto planner = makePlanner(si, options);
   planner->setProblemDefinition(makeProblemDefinition(si, start, goal, options.type));

@@ -13,20 +13,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q) {
-  return !checker.inCollision(
-      std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
-}
-
 bool contains(const std::vector<std::size_t>& sorted, std::size_t i) {
   return std::binary_search(sorted.begin(), sorted.end(), i);
 }
 
 bool freeUnder(const CollisionSource& source, const Eigen::VectorXd& q) {
-  if (const auto* model = std::get_if<std::shared_ptr<const Model>>(&source)) {
-    return !(*model)->inCollision(q.data());
-  }
-  return freeUnder(*std::get<std::shared_ptr<const CollisionChecker>>(source), q);
+  return firstCollision(source, q.data(), 1, static_cast<std::size_t>(q.size())) == 1;
 }
 
 /// `end` itself when `approximate` finds it free; else the first of up to 64 uniform samples in
@@ -34,7 +26,7 @@ bool freeUnder(const CollisionSource& source, const Eigen::VectorXd& q) {
 /// checkers find free; std::nullopt when there is none.
 std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
                                              const CollisionSource& approximate,
-                                             const CollisionChecker& exact,
+                                             const CollisionSource& exact,
                                              const JointLimits& limits) {
   if (freeUnder(approximate, end)) return end;
   Rng rng(1);  // fixed: the same query gets the same substitute
@@ -144,13 +136,13 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   PlanResult plan = planMotion(approximate, limits, start, goal, options);
   bool substituteEnds = false;
   if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&
-      freeUnder(*exact, start) && freeUnder(*exact, goal)) {
+      freeUnder(exact, start) && freeUnder(exact, goal)) {
     // The approximate checker is wrong about an end (a conservative model often is where the
     // robot touches an obstacle on purpose, as in a grasp). Plan on it between free
     // configurations near the ends; the stretches from the true ends to them are then bridged on
     // the exact checker by the repair, like any other invalid stretch.
-    const auto startNear = substituteFor(start, approximate, *exact, limits);
-    const auto goalNear = substituteFor(goal, approximate, *exact, limits);
+    const auto startNear = substituteFor(start, approximate, exact, limits);
+    const auto goalNear = substituteFor(goal, approximate, exact, limits);
     if (startNear && goalNear) {
       const auto spent = plan.time;
       plan = planMotion(approximate, limits, *startNear, *goalNear, options);
@@ -184,6 +176,19 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   result.repairTime += repairTime;
   result.wholePathReplanned = true;
   result.substituteEnds = substituteEnds;
+  return result;
+}
+
+VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
+                         const JointLimits& limits, const Eigen::VectorXd& start,
+                         const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  checkExact(exact, limits);
+  const PlanResult plan = planMotion(exact, limits, start, goal, options);
+  VerifiedPlan result;
+  result.status = plan.status;
+  result.path = plan.path;
+  result.planTime = plan.time;
+  if (!plan.solved()) result.failure = toString(plan.status);
   return result;
 }
 

@@ -125,6 +125,22 @@ TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
   }
 }
 
+TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5};
+  const VerifiedPlan plan = planExactly(wall, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_GT(plan.planTime.count(), 0);
+  EXPECT_EQ(plan.verifyTime.count(), 0);
+  EXPECT_EQ(plan.repairTime.count(), 0);
+  EXPECT_TRUE(checkPath(*wall, plan.path, 0.01).valid());
+  const VerifiedPlan blocked = planExactly(wall, limits, vec({0, 0}), kGoal, options);
+  EXPECT_EQ(blocked.status, PlanStatus::InvalidStart);
+  EXPECT_EQ(blocked.failure, "start in collision");
+  EXPECT_THROW(planExactly(nullptr, limits, kStart, kGoal, options), InvalidArgument);
+}
+
 TEST_F(Planning, ReportsCollidingEndsAndTimeouts) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

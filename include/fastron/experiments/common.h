@@ -2,6 +2,7 @@
 // What every experiment shares: progress reports, statistics, timing, tables, random scenes.
 
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "fastron/geometry/collision_checker.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
+#include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron {
 
@@ -29,6 +31,12 @@ Summary summarize(const std::vector<double>& values);
 std::string meanStd(const Summary& s, int digits);
 /// A duration in seconds as "mean ± std unit" with a unit chosen for the mean (ns, µs, ms, s).
 std::string durationMeanStd(const Summary& seconds);
+/// One duration in seconds with the unit durationMeanStd would choose, e.g. "2.14 µs".
+std::string durationText(double seconds);
+/// A duration in seconds.
+inline double seconds(std::chrono::nanoseconds d) {
+  return std::chrono::duration<double>(d).count();
+}
 
 /// A table of text cells with a header: written as CSV, read back by the plot scripts.
 struct Table {
@@ -62,6 +70,11 @@ double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& chec
 /// Mean seconds per call of `fn` on each row of q, over at least `minSeconds` (whole passes).
 double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,
                           double minSeconds = 0.05);
+
+/// The pipeline settings the Baxter, UR3 and Panda experiments share: the rational-quadratic
+/// kernel of width `gamma`, conditional bias `beta`, 20000 iterations per update, at most 5000
+/// support points, 500 active-learning points per update (paper, Sec. IV-B).
+ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed);
 
 /// Up to `maxCubes` cubes (at least one) of random size in [minSide, maxSide], centred in the
 /// upper half of the ball of radius `reach` around the robot's base, and clear of the base.

@@ -26,6 +26,12 @@ std::string sourceName(const CollisionSource& source);
 /// Its number of joints; throws InvalidArgument when the source is a null pointer.
 std::size_t sourceDof(const CollisionSource& source);
 
+/// Index of the first of n configurations of `dim` values (row by row in `states`) that the
+/// source finds in collision, or n: one batch through Model::firstInCollision for a model, one
+/// configuration after the other for a checker. The source must not be null.
+std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
+                           std::size_t dim);
+
 /// A state is valid when the source says it is collision-free.
 class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
  public:

@@ -51,4 +51,10 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options);
 
+/// A plan made on the exact checker itself, as a VerifiedPlan whose verify and repair times are
+/// 0 (there is nothing to verify), so that it compares with planVerified's results.
+VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
+                         const JointLimits& limits, const Eigen::VectorXd& start,
+                         const Eigen::VectorXd& goal, const PlannerOptions& options);
+
 }  // namespace fastron
