@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "fastron/core/dataset.h"
+#include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
 #include "report_format.h"
@@ -19,7 +20,12 @@ struct EvalOptions {
 
 int runEval(const EvalOptions& o) {
   const Dataset data = readDataset(o.data);
-  const Model model = loadModel(o.model, data.dim());
+  const Model model = loadModel(o.model);
+  if (model.dim() != data.dim()) {
+    throw InvalidArgument(o.data + " has " + std::to_string(data.dim()) +
+                          " configuration columns, but the model " + o.model + " has dimension " +
+                          std::to_string(model.dim()));
+  }
   const ConfusionCounts c = evaluate(model, data.points, data.labels);
 
   // Query time: the dataset's configurations, one at a time, repeated to at least 0.2 s.

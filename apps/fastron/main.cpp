@@ -5,6 +5,8 @@
 #include <ompl/util/Console.h>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "fastron/core/error.h"
@@ -29,6 +31,16 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // CLI11 checks required options before it complains about arguments it did not expect, so
+    // `fastron trian` or `fastron train --dta x` would be told about a missing option; the
+    // argument the user got wrong is the better message.
+    const std::vector<std::string> unexpected = app.remaining(true);
+    if (!unexpected.empty() && dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      const bool command = app.get_subcommands().empty();
+      std::cerr << "fastron: error: unknown " << (command ? "command" : "argument") << " '"
+                << unexpected.front() << "' (see fastron --help)\n";
+      return 2;
+    }
     std::cerr << "fastron: error: " << e.what() << " (see fastron --help)\n";
     return 2;
   } catch (const fastron::Error& e) {
