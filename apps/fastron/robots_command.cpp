@@ -1,11 +1,15 @@
-// fastron robots: the shipped robots with their joints and limits.
+// fastron robots: the shipped robots with their joints and limits, and a survey of a robot's
+// self-collisions.
 
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 
 #include "commands.h"
+#include "fastron/core/error.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/self_collision_survey.h"
 
 namespace fastron::cli {
 namespace {
@@ -33,14 +37,77 @@ int runRobots(const std::string& only) {
   return 0;
 }
 
+std::string percent(std::size_t count, std::size_t of) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1f%%",
+                100.0 * static_cast<double>(count) / static_cast<double>(of));
+  return text;
+}
+
+int runSurvey(const std::string& nameOrPath, const SelfCollisionOptions& options) {
+  const Robot robot = loadRobot(nameOrPath);
+  std::cerr << "sampling " << options.samples << " configurations of " << robot.name() << "...\n";
+  const SelfCollisionSurvey survey = surveySelfCollisions(robot, options);
+  std::cout << robot.name() << ": self-collisions over " << survey.samples
+            << " uniform configurations (FCL; adjacent and already allowed pairs skipped)\n"
+            << "  configurations with any pair touching      "
+            << percent(survey.configurationsBefore, survey.samples) << '\n'
+            << "  ... with an enabled pair touching          "
+            << percent(survey.configurationsInCollision, survey.samples) << "\n\n";
+  if (survey.pairs.empty()) {
+    std::cout << "  no link pairs to check: every pair is adjacent or allowed\n";
+    return 0;
+  }
+  std::size_t never = 0;
+  std::cout << "  " << std::left << std::setw(52) << "link pair" << std::setw(10) << "collides"
+            << std::setw(9) << "at home"
+            << "verdict\n";
+  for (const LinkPairSurvey& p : survey.pairs) {
+    if (p.verdict == PairVerdict::Never) {
+      ++never;
+      continue;
+    }
+    std::cout << "  " << std::setw(52) << (p.linkA + " / " + p.linkB) << std::setw(10)
+              << percent(p.collisions, survey.samples) << std::setw(9) << (p.atHome ? "yes" : "no")
+              << toString(p.verdict) << '\n';
+  }
+  if (never > 0) std::cout << "  ... and " << never << " pairs that never collided (never)\n";
+
+  std::cout << "\nPairs MoveIt Setup Assistant would disable (default: touching at the home "
+               "configuration; always: in at least "
+            << options.alwaysShare * 100
+            << "% of the samples), for robots.yaml's allowed_collisions:\n";
+  std::size_t listed = 0;
+  for (const LinkPairSurvey& p : survey.pairs) {
+    if (p.verdict != PairVerdict::Default && p.verdict != PairVerdict::Always) continue;
+    std::cout << "  - [" << p.linkA << ", " << p.linkB << "]  # " << toString(p.verdict) << '\n';
+    ++listed;
+  }
+  if (listed == 0) std::cout << "  (none)\n";
+  return 0;
+}
+
 }  // namespace
 
 void addRobotsCommand(CLI::App& app, int& exitCode) {
   auto only = std::make_shared<std::string>();
+  auto survey = std::make_shared<bool>(false);
+  auto options = std::make_shared<SelfCollisionOptions>();
   CLI::App* cmd =
       app.add_subcommand("robots", "List the shipped robots with their joints and limits");
-  cmd->add_option("name", *only, "show only this robot");
-  cmd->callback([only, &exitCode] {
+  cmd->add_option("name", *only, "show only this robot (with --self-collisions: or a URDF file)");
+  cmd->add_flag("--self-collisions", *survey,
+                "survey which link pairs collide, as MoveIt Setup Assistant does");
+  cmd->add_option("--samples", options->samples, "configurations sampled by the survey")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed, "random seed of the survey")->capture_default_str();
+  cmd->callback([only, survey, options, &exitCode] {
+    if (*survey) {
+      if (only->empty()) throw InvalidArgument("--self-collisions needs a robot name or URDF file");
+      exitCode = runSurvey(*only, *options);
+      return;
+    }
     if (!only->empty()) loadRobot(*only);  // a clear error for an unknown name
     exitCode = runRobots(*only);
   });

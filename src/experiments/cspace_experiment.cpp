@@ -1,5 +1,6 @@
 #include "fastron/experiments/cspace_experiment.h"
 
+#include <cstdio>
 #include <sstream>
 
 #include "fastron/baselines/fastron_classifier.h"
@@ -102,8 +103,11 @@ std::string cspaceReport(const CspaceResults& r, const CspaceOptions& o) {
      << ". Each model is trained as in the static experiment (N = " << (o.quick ? 300 : 2000)
      << ", gamma = 30); accuracy on the whole grid of `cspace.png` against FCL.\n\n"
      << "| environment | method | grid accuracy | support points |\n|---|---|---|---|\n";
-  for (const auto& row : r.summary.rows)
-    md << "| " << row[0] << " | " << row[1] << " | " << row[2] << " | " << row[3] << " |\n";
+  for (const auto& row : r.summary.rows) {
+    char accuracy[32];
+    std::snprintf(accuracy, sizeof accuracy, "%.3f", std::stod(row[2]));
+    md << "| " << row[0] << " | " << row[1] << " | " << accuracy << " | " << row[3] << " |\n";
+  }
   return md.str();
 }
 

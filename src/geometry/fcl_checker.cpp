@@ -9,6 +9,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "fastron/core/error.h"
@@ -79,6 +80,15 @@ bool collideCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* r
   fcl::collide(a, b, data->request, data->result);
   if (data->result.isCollision()) data->hit = obstacle;
   return data->hit != nullptr;
+}
+
+// Two robot shapes, placed and with their AABBs computed.
+bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
+  if (!a.getAABB().overlap(b.getAABB())) return false;
+  const fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  fcl::collide(&a, &b, request, result);
+  return result.isCollision();
 }
 
 }  // namespace
@@ -170,16 +180,34 @@ std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) co
       return Contact{linkName(s), world->names[obstacleIndex(data.hit)], false};
     }
   }
-  fcl::CollisionRequestd request;
   for (const auto& [a, b] : world->selfPairs) {
-    const auto& oa = *scratch->robotObjects[a];
-    const auto& ob = *scratch->robotObjects[b];
-    if (!oa.getAABB().overlap(ob.getAABB())) continue;
-    fcl::CollisionResultd result;
-    fcl::collide(&oa, &ob, request, result);
-    if (result.isCollision()) return Contact{linkName(a), linkName(b), true};
+    if (shapesTouch(*scratch->robotObjects[a], *scratch->robotObjects[b]))
+      return Contact{linkName(a), linkName(b), true};
   }
   return std::nullopt;
+}
+
+std::vector<Contact> FclChecker::selfContacts(std::span<const double> q) const {
+  checkConfiguration(q, dof());
+  const std::shared_ptr<const Obstacles> world = obstacles();
+  auto scratch = scratch_.lease();
+  forwardKinematics(robot_, q.data(), scratch->kinematics, world->robotBase);
+  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
+    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
+    object.computeAABB();
+  }
+  std::vector<Contact> contacts;
+  std::vector<std::pair<int, int>> linkPairs;  // a link with several shapes counts once
+  for (const auto& [a, b] : world->selfPairs) {
+    const std::pair<int, int> links = std::minmax(robot_.shapes()[a].link, robot_.shapes()[b].link);
+    if (std::find(linkPairs.begin(), linkPairs.end(), links) != linkPairs.end()) continue;
+    if (!shapesTouch(*scratch->robotObjects[a], *scratch->robotObjects[b])) continue;
+    linkPairs.push_back(links);
+    contacts.push_back({robot_.links()[static_cast<std::size_t>(links.first)].name,
+                        robot_.links()[static_cast<std::size_t>(links.second)].name, true});
+  }
+  return contacts;
 }
 
 bool FclChecker::check(const double* q) const {

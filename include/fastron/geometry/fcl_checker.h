@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fastron/geometry/collision_checker.h"
 #include "fastron/geometry/robot.h"
@@ -37,6 +38,11 @@ class FclChecker final : public CollisionChecker {
 
   /// The first contact found, or nothing when q is free.
   std::optional<Contact> firstContact(std::span<const double> q) const;
+
+  /// Every pair of robot links in contact at q, each pair once (the link that comes first in
+  /// robot().links() first). Empty unless the checker was built with options.selfCollision;
+  /// obstacles are not looked at.
+  std::vector<Contact> selfContacts(std::span<const double> q) const;
 
   /// Smallest distance between the robot and any obstacle; 0 when in collision.
   double distance(std::span<const double> q) const;
