@@ -101,12 +101,6 @@ Model::Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints,
     }
     weightsF_[i] = static_cast<float>(weights_[row]);
   }
-  scaleF_.resize(d);
-  offsetF_.resize(d);
-  for (std::size_t j = 0; j < d; ++j) {
-    scaleF_[j] = static_cast<float>(limits_.scale()[static_cast<Eigen::Index>(j)]);
-    offsetF_[j] = static_cast<float>(limits_.offset()[static_cast<Eigen::Index>(j)]);
-  }
 }
 
 void Model::scaleToInput(const double* q, float* x) const {

@@ -73,7 +73,6 @@ class Model {
   std::size_t paddedCount_ = 0;
   std::vector<float> supportSoa_;  // dim() blocks of paddedCount_ values
   std::vector<float> weightsF_;    // paddedCount_ values
-  std::vector<float> scaleF_, offsetF_;
 };
 
 }  // namespace fastron
