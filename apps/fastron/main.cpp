@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <ompl/util/Console.h>
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -10,6 +11,17 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
+
+namespace {
+
+// An error is one line, even when it quotes a file's text that holds line breaks.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Fastron: learned proxy collision detection for motion planning", "fastron"};
@@ -44,10 +56,10 @@ int main(int argc, char** argv) {
     std::cerr << "fastron: error: " << e.what() << " (see fastron --help)\n";
     return 2;
   } catch (const fastron::Error& e) {
-    std::cerr << "fastron: error: " << e.what() << '\n';
+    std::cerr << "fastron: error: " << oneLine(e.what()) << '\n';
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "fastron: internal error: " << e.what() << '\n';
+    std::cerr << "fastron: internal error: " << oneLine(e.what()) << '\n';
     return 3;
   }
   return exitCode;

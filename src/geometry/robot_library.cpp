@@ -23,18 +23,29 @@ std::vector<RobotEntry> shippedRobots() {
     throw FileError(catalogue.string() + ": " + e.what());
   }
   std::vector<RobotEntry> robots;
-  for (const auto& entry : root) {
-    RobotEntry r;
-    r.name = entry.first.as<std::string>();
-    r.description = entry.second["description"].as<std::string>("");
-    r.urdf = catalogue.parent_path() / entry.second["urdf"].as<std::string>();
-    for (const auto& j : entry.second["joints"]) r.joints.push_back(j.as<std::string>());
-    for (const auto& h : entry.second["held"])
-      r.held.emplace_back(h.first.as<std::string>(), h.second.as<double>());
-    for (const auto& p : entry.second["allowed_collisions"]) {
-      r.allowedCollisions.emplace_back(p[0].as<std::string>(), p[1].as<std::string>());
+  YAML::Mark where;  // of the entry being read, for errors that carry no position
+  try {
+    for (const auto& entry : root) {
+      where = entry.first.Mark();
+      RobotEntry r;
+      r.name = entry.first.as<std::string>();
+      r.description = entry.second["description"].as<std::string>("");
+      if (!entry.second["urdf"])
+        throw FileError(catalogue.string() + ": robot '" + r.name + "' has no 'urdf'");
+      r.urdf = catalogue.parent_path() / entry.second["urdf"].as<std::string>();
+      for (const auto& j : entry.second["joints"]) r.joints.push_back(j.as<std::string>());
+      for (const auto& h : entry.second["held"])
+        r.held.emplace_back(h.first.as<std::string>(), h.second.as<double>());
+      for (const auto& p : entry.second["allowed_collisions"]) {
+        if (!p.IsSequence() || p.size() != 2)
+          throw YAML::Exception(p.Mark(), "allowed_collisions entries are [link, link] pairs");
+        r.allowedCollisions.emplace_back(p[0].as<std::string>(), p[1].as<std::string>());
+      }
+      robots.push_back(std::move(r));
     }
-    robots.push_back(std::move(r));
+  } catch (const YAML::Exception& e) {
+    const YAML::Mark mark = e.mark.is_null() ? where : e.mark;
+    throw FileError(catalogue.string() + ":" + std::to_string(mark.line + 1) + ": " + e.msg);
   }
   return robots;
 }

@@ -39,6 +39,33 @@ class Reader {
     return v;
   }
 
+  /// The node itself, after checking that it is a list.
+  const YAML::Node& list(const YAML::Node& node, const std::string& what) const {
+    if (!node.IsSequence()) fail(node, what + " must be a list");
+    return node;
+  }
+
+  std::string text(const YAML::Node& node, const std::string& what) const {
+    if (!node.IsScalar()) fail(node, what + " must be a string");
+    return node.Scalar();
+  }
+
+  bool flag(const YAML::Node& node, const std::string& what) const {
+    try {
+      return node.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + " must be true or false");
+    }
+  }
+
+  std::uint64_t count(const YAML::Node& node, const std::string& what) const {
+    try {
+      return node.as<std::uint64_t>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + " must be a non-negative integer");
+    }
+  }
+
   std::vector<double> numbers(const YAML::Node& node, std::size_t count,
                               const std::string& what) const {
     if (!node.IsSequence() || (count > 0 && node.size() != count)) {
@@ -77,7 +104,7 @@ class Reader {
                 const std::string& what) const {
     if (!map.IsMap()) fail(map, what + " must be a map");
     for (const auto& entry : map) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = text(entry.first, what + " key");
       if (!allowed.count(key)) {
         std::string list;
         for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
@@ -110,7 +137,7 @@ std::string readText(const std::filesystem::path& path, const char* what) {
 
 Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
                 const std::filesystem::path& base) {
-  const std::string type = r.required(o, "shape", what).as<std::string>();
+  const std::string type = r.text(r.required(o, "shape", what), what + " shape");
   Shape shape = Sphere{1};
   if (type == "box") {
     shape = Box{r.vector3(r.required(o, "size", what), what + " size")};
@@ -123,7 +150,7 @@ Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
     shape = Capsule{r.number(r.required(o, "radius", what), what + " radius"),
                     r.number(r.required(o, "length", what), what + " length")};
   } else if (type == "mesh") {
-    const std::filesystem::path file = base / r.required(o, "file", what).as<std::string>();
+    const std::filesystem::path file = base / r.text(r.required(o, "file", what), what + " file");
     const Eigen::Vector3d scale =
         o["scale"] ? r.vector3(o["scale"], what + " scale") : Eigen::Vector3d::Ones();
     try {
@@ -144,7 +171,7 @@ Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
 }
 
 Motion readMotion(const Reader& r, const YAML::Node& m, const std::string& what) {
-  const std::string type = r.required(m, "type", what).as<std::string>();
+  const std::string type = r.text(r.required(m, "type", what), what + " type");
   if (type == "random_walk") {
     r.onlyKeys(m, {"type", "step", "bounds", "seed"}, what);
     RandomWalk w;
@@ -156,7 +183,7 @@ Motion readMotion(const Reader& r, const YAML::Node& m, const std::string& what)
       r.fail(bounds, what + " bounds must be [[min x, y, z], [max x, y, z]]");
     w.bounds = Eigen::AlignedBox3d(r.vector3(bounds[0], what + " bounds"),
                                    r.vector3(bounds[1], what + " bounds"));
-    w.seed = m["seed"] ? m["seed"].as<std::uint64_t>() : 1;
+    w.seed = m["seed"] ? r.count(m["seed"], what + " seed") : 1;
     return w;
   }
   if (type == "circle") {
@@ -193,18 +220,19 @@ void readAllowedPairs(const Reader& r, const YAML::Node& pairs, Scene& scene) {
   for (const auto& p : pairs) {
     if (!p.IsSequence() || p.size() != 2)
       r.fail(p, "allowed_collisions entries are [link, link] pairs");
-    scene.allowedCollisions.allow(p[0].as<std::string>(), p[1].as<std::string>());
+    scene.allowedCollisions.allow(r.text(p[0], "allowed_collisions link"),
+                                  r.text(p[1], "allowed_collisions link"));
   }
 }
 
-}  // namespace
+Scene parseMoveItSceneText(const std::string& yaml, const std::string& source);
 
-Scene parseScene(const std::string& yaml, const std::string& source,
-                 const std::filesystem::path& baseDirectory) {
+Scene parseSceneText(const std::string& yaml, const std::string& source,
+                     const std::filesystem::path& baseDirectory) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
   if (!root.IsMap()) throw FileError(source + ": a scene file is a YAML map");
-  if (root["world"] && !root["obstacles"]) return parseMoveItScene(yaml, source);
+  if (root["world"] && !root["obstacles"]) return parseMoveItSceneText(yaml, source);
   r.onlyKeys(root, {"obstacles", "robot_base", "allowed_collisions", "description"}, "scene");
   Scene scene;
   if (root["robot_base"]) {
@@ -218,7 +246,7 @@ Scene parseScene(const std::string& yaml, const std::string& source,
   std::size_t index = 0;
   for (const auto& o : obstacles) {
     const std::string name =
-        o["name"] ? o["name"].as<std::string>() : "obstacle" + std::to_string(index);
+        o["name"] ? r.text(o["name"], "obstacle name") : "obstacle" + std::to_string(index);
     const std::string what = "obstacle '" + name + "'";
     r.onlyKeys(o,
                {"name", "shape", "size", "radius", "length", "file", "scale", "position", "rpy",
@@ -236,7 +264,7 @@ Scene parseScene(const std::string& yaml, const std::string& source,
   return scene;
 }
 
-Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
+Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
   Scene scene;
@@ -245,7 +273,8 @@ Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
   const YAML::Node objects = world["collision_objects"];
   if (objects && !objects.IsSequence()) r.fail(objects, "world.collision_objects must be a list");
   for (const auto& object : objects) {
-    const std::string id = r.required(object, "id", "a collision object").as<std::string>();
+    const std::string id =
+        r.text(r.required(object, "id", "a collision object"), "collision object id");
     const std::string what = "collision object '" + id + "'";
     const Eigen::Isometry3d objectPose =
         object["pose"] ? r.pose(object["pose"], what + " pose") : Eigen::Isometry3d::Identity();
@@ -253,11 +282,14 @@ Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
     const YAML::Node primitives = object["primitives"];
     const YAML::Node poses = object["primitive_poses"];
     if (primitives) {
-      if (!poses || poses.size() != primitives.size())
-        r.fail(object, what + ": one primitive_pose per primitive is needed");
+      r.list(primitives, what + " primitives");
+      if (!poses) r.fail(object, what + ": one primitive_pose per primitive is needed");
+      if (r.list(poses, what + " primitive_poses").size() != primitives.size())
+        r.fail(poses, what + ": one primitive_pose per primitive is needed");
       for (std::size_t i = 0; i < primitives.size(); ++i) {
         const YAML::Node p = primitives[i];
-        const std::string type = r.required(p, "type", what + " primitive").as<std::string>();
+        const std::string type =
+            r.text(r.required(p, "type", what + " primitive"), what + " primitive type");
         const YAML::Node dims = r.required(p, "dimensions", what + " primitive");
         Shape shape = Sphere{1};
         if (type == "box") {
@@ -275,15 +307,19 @@ Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
       }
     }
     if (const YAML::Node meshes = object["meshes"]) {
+      r.list(meshes, what + " meshes");
       const YAML::Node meshPoses = object["mesh_poses"];
-      if (!meshPoses || meshPoses.size() != meshes.size())
-        r.fail(object, what + ": one mesh_pose per mesh is needed");
+      if (!meshPoses) r.fail(object, what + ": one mesh_pose per mesh is needed");
+      if (r.list(meshPoses, what + " mesh_poses").size() != meshes.size())
+        r.fail(meshPoses, what + ": one mesh_pose per mesh is needed");
       for (std::size_t i = 0; i < meshes.size(); ++i) {
         auto mesh = std::make_shared<TriangleMesh>();
         mesh->source = source + " (" + id + ")";
-        for (const auto& v : r.required(meshes[i], "vertices", what + " mesh"))
+        for (const auto& v :
+             r.list(r.required(meshes[i], "vertices", what + " mesh"), what + " mesh vertices"))
           mesh->vertices.push_back(r.vector3(v, what + " vertex"));
-        for (const auto& t : r.required(meshes[i], "triangles", what + " mesh")) {
+        for (const auto& t :
+             r.list(r.required(meshes[i], "triangles", what + " mesh"), what + " mesh triangles")) {
           const auto idx =
               r.numbers(t["vertex_indices"] ? t["vertex_indices"] : t, 3, what + " triangle");
           for (const double k : idx) {
@@ -307,21 +343,79 @@ Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
     }
   }
   if (const YAML::Node acm = root["allowed_collision_matrix"]) {
-    const YAML::Node names = r.required(acm, "entry_names", "allowed_collision_matrix");
-    const YAML::Node values = r.required(acm, "entry_values", "allowed_collision_matrix");
+    const YAML::Node names = r.list(r.required(acm, "entry_names", "allowed_collision_matrix"),
+                                    "allowed_collision_matrix entry_names");
+    const YAML::Node values = r.list(r.required(acm, "entry_values", "allowed_collision_matrix"),
+                                     "allowed_collision_matrix entry_values");
     if (values.size() != names.size())
       r.fail(values, "allowed_collision_matrix: one row of entry_values per entry name");
     for (std::size_t i = 0; i < names.size(); ++i) {
-      if (values[i].size() != names.size())
+      if (!values[i].IsSequence() || values[i].size() != names.size())
         r.fail(values[i],
                "allowed_collision_matrix: row " + std::to_string(i) + " has the wrong length");
       for (std::size_t j = 0; j < names.size(); ++j) {
-        if (values[i][j].as<bool>())
-          scene.allowedCollisions.allow(names[i].as<std::string>(), names[j].as<std::string>());
+        if (r.flag(values[i][j], "allowed_collision_matrix entry"))
+          scene.allowedCollisions.allow(r.text(names[i], "allowed_collision_matrix entry name"),
+                                        r.text(names[j], "allowed_collision_matrix entry name"));
       }
     }
   }
   return scene;
+}
+
+PlanRequest parseRequestText(const std::string& yaml, const std::string& source) {
+  const Reader r(source);
+  const YAML::Node root = parseYaml(yaml, source);
+  PlanRequest request;
+  if (root["group_name"]) request.group = r.text(root["group_name"], "group_name");
+  const YAML::Node state =
+      r.required(r.required(root, "start_state", "the request"), "joint_state", "start_state");
+  const YAML::Node names =
+      r.list(r.required(state, "name", "start_state.joint_state"), "start_state.joint_state.name");
+  const YAML::Node positions = r.list(r.required(state, "position", "start_state.joint_state"),
+                                      "start_state.joint_state.position");
+  if (names.size() != positions.size())
+    r.fail(state, "start_state.joint_state: one position per name is needed");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    request.start.names.push_back(r.text(names[i], "start_state joint name"));
+    request.start.positions.push_back(
+        r.number(positions[i], "start position of " + request.start.names.back()));
+  }
+  const YAML::Node goals = r.required(root, "goal_constraints", "the request");
+  if (!goals.IsSequence() || goals.size() == 0)
+    r.fail(goals, "goal_constraints must be a non-empty list");
+  const YAML::Node joints = r.list(r.required(goals[0], "joint_constraints", "goal_constraints[0]"),
+                                   "goal_constraints[0].joint_constraints");
+  for (const auto& c : joints) {
+    request.goal.names.push_back(
+        r.text(r.required(c, "joint_name", "a joint constraint"), "joint_name"));
+    request.goal.positions.push_back(r.number(r.required(c, "position", "a joint constraint"),
+                                              "goal position of " + request.goal.names.back()));
+  }
+  return request;
+}
+
+// What the checks above did not foresee (a map where a list belongs, ...) still names the file
+// and the line.
+template <class Read>
+auto namingYamlErrors(const std::string& source, Read read) {
+  try {
+    return read();
+  } catch (const YAML::Exception& e) {
+    throw FileError(source + (e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1)) +
+                    ": " + e.msg);
+  }
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& yaml, const std::string& source,
+                 const std::filesystem::path& baseDirectory) {
+  return namingYamlErrors(source, [&] { return parseSceneText(yaml, source, baseDirectory); });
+}
+
+Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
+  return namingYamlErrors(source, [&] { return parseMoveItSceneText(yaml, source); });
 }
 
 Scene loadScene(const std::filesystem::path& path) {
@@ -330,32 +424,8 @@ Scene loadScene(const std::filesystem::path& path) {
 
 PlanRequest loadMoveItRequest(const std::filesystem::path& path) {
   const std::string source = path.string();
-  const Reader r(source);
-  const YAML::Node root = parseYaml(readText(path, "motion plan request"), source);
-  PlanRequest request;
-  if (root["group_name"]) request.group = root["group_name"].as<std::string>();
-  const YAML::Node state =
-      r.required(r.required(root, "start_state", "the request"), "joint_state", "start_state");
-  const YAML::Node names = r.required(state, "name", "start_state.joint_state");
-  const YAML::Node positions = r.required(state, "position", "start_state.joint_state");
-  if (names.size() != positions.size())
-    r.fail(state, "start_state.joint_state: one position per name is needed");
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    request.start.names.push_back(names[i].as<std::string>());
-    request.start.positions.push_back(
-        r.number(positions[i], "start position of " + request.start.names.back()));
-  }
-  const YAML::Node goals = r.required(root, "goal_constraints", "the request");
-  if (!goals.IsSequence() || goals.size() == 0)
-    r.fail(goals, "goal_constraints must be a non-empty list");
-  const YAML::Node joints = r.required(goals[0], "joint_constraints", "goal_constraints[0]");
-  for (const auto& c : joints) {
-    request.goal.names.push_back(
-        r.required(c, "joint_name", "a joint constraint").as<std::string>());
-    request.goal.positions.push_back(r.number(r.required(c, "position", "a joint constraint"),
-                                              "goal position of " + request.goal.names.back()));
-  }
-  return request;
+  const std::string yaml = readText(path, "motion plan request");
+  return namingYamlErrors(source, [&] { return parseRequestText(yaml, source); });
 }
 
 std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,

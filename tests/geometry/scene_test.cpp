@@ -155,6 +155,19 @@ TEST_F(SceneFiles, ErrorsNameTheLine) {
       error("obstacles:\n  - {name: a, shape: sphere, radius: 1, motion: {type: teleport}}\n"),
       HasSubstr("unknown motion type 'teleport'"));
   EXPECT_THAT(error("obstacles: [\n"), HasSubstr("malformed YAML"));
+  EXPECT_THAT(error("obstacles:\n  - {name: [a, b], shape: sphere, radius: 1}\n"),
+              HasSubstr("s.yaml:2: obstacle name must be a string"));
+  EXPECT_THAT(
+      error("obstacles:\n  - {name: a, shape: sphere, radius: 1, motion: {type: "
+            "random_walk, step: [0.01, 0.02], bounds: [[0, 0, 0], [1, 1, 1]], seed: -3}}\n"),
+      HasSubstr("s.yaml:2: obstacle 'a' motion seed must be a non-negative integer"));
+  // MoveIt files: a value of the wrong kind, and a map where the format has a list.
+  EXPECT_THAT(error("world: {collision_objects: []}\nallowed_collision_matrix:\n  entry_names: "
+                    "[a, b]\n  entry_values:\n    - [false, true]\n    - [maybe, false]\n"),
+              HasSubstr("s.yaml:6: allowed_collision_matrix entry must be true or false"));
+  EXPECT_THAT(error("world:\n  collision_objects:\n    - id: box\n      primitives: {type: box}\n"
+                    "      primitive_poses: {position: [0, 0, 0]}\n"),
+              HasSubstr("s.yaml:4: collision object 'box' primitives must be a list"));
   EXPECT_THAT(messageOf<FileError>([&] { loadScene(path("absent.yaml")); }),
               HasSubstr("absent.yaml: cannot open"));
 }
