@@ -38,7 +38,11 @@ Summary summarize(const std::vector<double>& values) {
 std::string meanStd(const Summary& s, int digits) {
   if (s.count == 0) return "n/a";
   char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", digits, s.mean, digits, s.stddev);
+  if (s.count == 1) {  // one value has no spread to report
+    std::snprintf(buffer, sizeof buffer, "%.*f", digits, s.mean);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.*f ± %.*f", digits, s.mean, digits, s.stddev);
+  }
   return buffer;
 }
 

@@ -27,7 +27,7 @@ struct Summary {
 };
 /// Mean, sample standard deviation and median, ignoring NaN values.
 Summary summarize(const std::vector<double>& values);
-/// "12.3 ± 4.5" with `digits` decimals.
+/// "12.3 ± 4.5" with `digits` decimals ("12.3" for a single value).
 std::string meanStd(const Summary& s, int digits);
 /// A duration in seconds as "mean ± std unit" with a unit chosen for the mean (ns, µs, ms, s).
 std::string durationMeanStd(const Summary& seconds);
