@@ -236,7 +236,9 @@ std::string staticReport(const Table& r, const StaticOptions& o) {
                       paper == kPaperStatic.end() ? std::array<std::string, 3>{} : paper->second);
     }
     md << "\nC-space in collision: "
-       << meanStd(summarize(r.numbers("cobs_fraction", {{"dof", std::to_string(dof)}})), 3)
+       << meanStd(summarize(r.numbers("cobs_fraction",  // one row per trial
+                                      {{"dof", std::to_string(dof)}, {"method", "Fastron"}})),
+                  3)
        << " of the configurations.\n";
     const std::vector<double> stopped =
         r.numbers("qp_stopped", {{"dof", std::to_string(dof)}, {"method", "SSVM"}});
