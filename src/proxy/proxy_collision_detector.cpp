@@ -93,23 +93,31 @@ std::shared_ptr<const Model> ProxyCollisionDetector::model() const {
   return current;
 }
 
-void ProxyCollisionDetector::startBackground(std::function<void(const StepReport&)> onStep) {
+void ProxyCollisionDetector::startBackground(std::function<void(const StepReport&)> onStep,
+                                             std::chrono::nanoseconds minPeriod) {
+  if (minPeriod.count() < 0) throw InvalidArgument("startBackground: minPeriod must be >= 0");
   if (worker_.joinable()) throw Error("ProxyCollisionDetector: background updates already running");
   {
     const std::lock_guard lock(stepMutex_);
     if (version_ == 0) throw Error("ProxyCollisionDetector: initialize() before startBackground()");
   }
   workerError_ = nullptr;
-  worker_ = std::jthread([this, onStep = std::move(onStep)](const std::stop_token& stop) {
-    try {
-      while (!stop.stop_requested()) {
-        const StepReport report = step();
-        if (onStep) onStep(report);
-      }
-    } catch (...) {
-      workerError_ = std::current_exception();
-    }
-  });
+  worker_ =
+      std::jthread([this, onStep = std::move(onStep), minPeriod](const std::stop_token& stop) {
+        try {
+          while (!stop.stop_requested()) {
+            const auto began = std::chrono::steady_clock::now();
+            const StepReport report = step();
+            if (onStep) onStep(report);
+            if (minPeriod.count() > 0) {
+              std::unique_lock lock(pauseMutex_);
+              pause_.wait_until(lock, stop, began + minPeriod, [] { return false; });
+            }
+          }
+        } catch (...) {
+          workerError_ = std::current_exception();
+        }
+      });
 }
 
 void ProxyCollisionDetector::stopBackground() {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <thread>
 
@@ -168,6 +169,33 @@ TEST(ProxyCollisionDetector, ConcurrentQueriesDuringBackgroundUpdates) {
   EXPECT_GT(distinctModels.load(), 4u);  // the readers saw new models arrive
   // Synchronous steps work again after stopping.
   EXPECT_NO_THROW(proxy.step());
+}
+
+// With a minimum period, steps start at most once per period, and stopping does not wait the
+// period out.
+TEST(ProxyCollisionDetector, BackgroundStepsKeepTheirMinimumPeriod) {
+  using namespace std::chrono_literals;
+  MovingBalls world(2, 8);
+  ProxyCollisionDetector proxy(world.checker(2), JointLimits::unitBox(2), params(10));
+  proxy.initialize(300);
+  EXPECT_THROW(proxy.startBackground({}, -1ms), InvalidArgument);
+
+  std::atomic<int> steps{0};
+  const auto began = std::chrono::steady_clock::now();
+  proxy.startBackground([&](const StepReport&) { ++steps; }, 40ms);
+  std::this_thread::sleep_for(400ms);
+  proxy.stopBackground();
+  const auto elapsed = std::chrono::steady_clock::now() - began;
+  EXPECT_GE(steps.load(), 1);
+  EXPECT_LE(steps.load(), static_cast<int>(elapsed / 40ms) + 1);
+
+  steps = 0;
+  proxy.startBackground([&](const StepReport&) { ++steps; }, 60s);
+  while (steps == 0) std::this_thread::yield();
+  const auto stopping = std::chrono::steady_clock::now();
+  proxy.stopBackground();
+  EXPECT_LT(std::chrono::steady_clock::now() - stopping, 10s);
+  EXPECT_EQ(steps.load(), 1);
 }
 
 TEST(ProxyCollisionDetector, BackgroundErrorsAreRethrownOnStop) {

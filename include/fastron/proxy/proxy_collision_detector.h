@@ -3,6 +3,7 @@
 // with an optional background thread that keeps the model current while others query it.
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -57,8 +58,12 @@ class ProxyCollisionDetector {
   std::shared_ptr<const Model> model() const;
 
   /// Runs step() in a loop on a background thread, publishing each new model atomically.
-  /// `onStep` (optional) is called on that thread after each step.
-  void startBackground(std::function<void(const StepReport&)> onStep = {});
+  /// `onStep` (optional) is called on that thread after each step. Steps start at most once per
+  /// `minPeriod` (default: back to back). Give the period at which the world changes (e.g. the
+  /// sensing rate): each step on an unchanged world only adds active-learning points near the
+  /// boundary, so the support set, and with it the query time, keeps growing.
+  void startBackground(std::function<void(const StepReport&)> onStep = {},
+                       std::chrono::nanoseconds minPeriod = {});
   /// Stops and joins the background thread; rethrows an exception that ended its loop.
   void stopBackground();
   bool backgroundRunning() const { return worker_.joinable(); }
@@ -81,6 +86,8 @@ class ProxyCollisionDetector {
   // race that ThreadSanitizer reports. A mutex around the pointer copy is as cheap, and correct.
   mutable std::mutex modelMutex_;
   std::shared_ptr<const Model> model_;
+  std::mutex pauseMutex_;              // for pause_ only
+  std::condition_variable_any pause_;  // wakes the worker between steps when stopping
   std::jthread worker_;
   std::exception_ptr workerError_;
 };
