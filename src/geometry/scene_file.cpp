@@ -39,8 +39,9 @@ class Reader {
     return v;
   }
 
-  /// The node itself, after checking that it is a list.
-  const YAML::Node& list(const YAML::Node& node, const std::string& what) const {
+  /// The node itself, after checking that it is a list. A copy (nodes are handles), so that a
+  /// range-for over list(required(...)) does not iterate over a destroyed temporary.
+  YAML::Node list(const YAML::Node& node, const std::string& what) const {
     if (!node.IsSequence()) fail(node, what + " must be a list");
     return node;
   }
