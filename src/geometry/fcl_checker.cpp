@@ -157,16 +157,22 @@ std::shared_ptr<const FclChecker::Obstacles> FclChecker::obstacles() const {
   return obstacles_;
 }
 
+// Forward kinematics, then every robot shape moved to its pose with its AABB updated.
+void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
+                            const double* q) const {
+  forwardKinematics(robot_, q, scratch.kinematics, base);
+  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+    fcl::CollisionObjectd& object = *scratch.robotObjects[s];
+    object.setTransform(toFcl(shapePose(robot_, scratch.kinematics, s)));
+    object.computeAABB();
+  }
+}
+
 std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) const {
   const std::shared_ptr<const Obstacles> world = obstacles();
   auto scratch = scratch_.lease();
-  forwardKinematics(robot_, q, scratch->kinematics, world->robotBase);
+  placeRobot(*scratch, world->robotBase, q);
   const auto& shapes = robot_.shapes();
-  for (std::size_t s = 0; s < shapes.size(); ++s) {
-    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
-    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
-    object.computeAABB();
-  }
   auto linkName = [&](std::size_t s) {
     return robot_.links()[static_cast<std::size_t>(shapes[s].link)].name;
   };
@@ -191,12 +197,7 @@ std::vector<Contact> FclChecker::selfContacts(std::span<const double> q) const {
   checkConfiguration(q, dof());
   const std::shared_ptr<const Obstacles> world = obstacles();
   auto scratch = scratch_.lease();
-  forwardKinematics(robot_, q.data(), scratch->kinematics, world->robotBase);
-  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
-    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
-    object.computeAABB();
-  }
+  placeRobot(*scratch, world->robotBase, q.data());
   std::vector<Contact> contacts;
   std::vector<std::pair<int, int>> linkPairs;  // a link with several shapes counts once
   for (const auto& [a, b] : world->selfPairs) {
@@ -224,13 +225,11 @@ double FclChecker::distance(std::span<const double> q) const {
   if (collide(q.data(), false)) return 0;
   const std::shared_ptr<const Obstacles> world = obstacles();
   auto scratch = scratch_.lease();
-  forwardKinematics(robot_, q.data(), scratch->kinematics, world->robotBase);
+  placeRobot(*scratch, world->robotBase, q.data());
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    fcl::CollisionObjectd& object = *scratch->robotObjects[s];
-    object.setTransform(toFcl(shapePose(robot_, scratch->kinematics, s)));
-    object.computeAABB();
+    const fcl::CollisionObjectd& object = *scratch->robotObjects[s];
     for (std::size_t o = 0; o < world->objects.size(); ++o) {
       if (!world->allowed.empty() && world->allowed[s * world->objects.size() + o] != 0) continue;
       fcl::DistanceResultd result;

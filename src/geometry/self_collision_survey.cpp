@@ -32,7 +32,8 @@ SelfCollisionSurvey surveySelfCollisions(const Robot& robot, const SelfCollision
   }
   const FclChecker checker(robot, Scene{}, {.selfCollision = true});
 
-  // Every candidate pair, keyed by link names in shape order, starting at zero collisions.
+  // Every candidate pair, keyed by link names (the earlier link of robot.links() first, as
+  // FclChecker::selfContacts names them), starting at zero collisions.
   std::map<std::pair<std::string, std::string>, LinkPairSurvey> pairs;
   for (const auto& [a, b] : robot.selfCollisionPairs({})) {
     const auto [first, second] = std::minmax(robot.shapes()[a].link, robot.shapes()[b].link);

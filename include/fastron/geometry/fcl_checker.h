@@ -54,6 +54,7 @@ class FclChecker final : public CollisionChecker {
   struct Geometry;
   struct Obstacles;
   struct Scratch;
+  void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
   std::optional<Contact> collide(const double* q, bool wantContact) const;
   std::shared_ptr<const Obstacles> obstacles() const;
 

@@ -15,7 +15,7 @@ namespace fastron {
 
 /// Why a pair would be disabled by Setup Assistant's rules, or Enabled when none applies.
 enum class PairVerdict {
-  Default,  ///< in collision at the home configuration (every joint at 0, or its nearest limit)
+  Default,  ///< in collision at home: actuated joints at 0 (or the nearest limit), others held
   Always,   ///< in collision in at least SelfCollisionOptions::alwaysShare of the samples
   Never,    ///< never in collision over all samples (disabling it only saves time)
   Enabled,  ///< collides sometimes: a real self-collision to keep checking
