@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "fastron: internal error: " << oneLine(e.what()) << '\n';
     return 3;
+  } catch (...) {
+    std::cerr << "fastron: internal error: an exception of unknown type\n";
+    return 3;
   }
   return exitCode;
 }
