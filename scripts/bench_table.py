@@ -38,9 +38,12 @@ def geometry_table(runs):
     if not fk:
         return
     print("Time per exact check (ns): forward kinematics alone, FK + FCL and FK + GJK, with 0.1 m "
-          "boxes placed near the robot; the share of the queries in collision in brackets:\n")
-    print("| robot | obstacles | FK | FK + FCL | FK + GJK | GJK / FCL |")
-    print("|---|---|---|---|---|---|")
+          "boxes placed near the robot; the share of the queries in collision in brackets; the "
+          "last two columns time the same checkers on configurations FCL finds free only "
+          "(\"-\": none among 16 384 samples):\n")
+    print("| robot | obstacles | FK | FK + FCL | FK + GJK | GJK / FCL | FK + FCL, free only | "
+          "FK + GJK, free only |")
+    print("|---|---|---|---|---|---|---|---|")
     for r, name in enumerate(ROBOTS):
         for n in (1, 3, 10, 100):
             key = (("obstacles", n), ("robot", r))
@@ -48,8 +51,13 @@ def geometry_table(runs):
             gjk = runs.get(("BM_Check<GjkChecker>", key))
             if not fcl or not gjk:
                 continue
+            free_fcl = runs.get(("BM_CheckFree<FclChecker>", key))
+            free_gjk = runs.get(("BM_CheckFree<GjkChecker>", key))
+            free = "| - | - |"
+            if free_fcl and free_gjk and "error_occurred" not in free_fcl:
+                free = f"| {ns(free_fcl):.0f} | {ns(free_gjk):.0f} |"
             print(f"| {name} | {n} | {ns(fk[r]):.0f} | {ns(fcl):.0f} ({fcl['in_collision']:.0%}) | "
-                  f"{ns(gjk):.0f} ({gjk['in_collision']:.0%}) | {ns(gjk) / ns(fcl):.1f}x |")
+                  f"{ns(gjk):.0f} ({gjk['in_collision']:.0%}) | {ns(gjk) / ns(fcl):.1f}x {free}")
     print()
 
 
