@@ -85,6 +85,7 @@ void BM_Check(benchmark::State& state) {
   state.counters["in_collision"] =
       static_cast<double>(hits) / static_cast<double>(state.iterations());
 }
+
 // The same, on configurations FCL finds free only: no early exit at a first contact, so every
 // obstacle near a link must be ruled out (the cost a broad phase is for).
 template <class Checker>
@@ -113,19 +114,13 @@ void BM_CheckFree(benchmark::State& state) {
       static_cast<double>(free.size()) / static_cast<double>(pool.rows());
 }
 
-BENCHMARK(BM_Check<FclChecker>)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
-    ->ArgNames({"robot", "obstacles"});
-BENCHMARK(BM_Check<GjkChecker>)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
-    ->ArgNames({"robot", "obstacles"});
-
-BENCHMARK(BM_CheckFree<FclChecker>)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
-    ->ArgNames({"robot", "obstacles"});
-BENCHMARK(BM_CheckFree<GjkChecker>)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})
-    ->ArgNames({"robot", "obstacles"});
+void robotsAndObstacles(benchmark::internal::Benchmark* b) {
+  b->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})->ArgNames({"robot", "obstacles"});
+}
+BENCHMARK(BM_Check<FclChecker>)->Apply(robotsAndObstacles);
+BENCHMARK(BM_Check<GjkChecker>)->Apply(robotsAndObstacles);
+BENCHMARK(BM_CheckFree<FclChecker>)->Apply(robotsAndObstacles);
+BENCHMARK(BM_CheckFree<GjkChecker>)->Apply(robotsAndObstacles);
 
 }  // namespace
 }  // namespace fastron

@@ -1,10 +1,9 @@
 #include "fastron/geometry/robot_library.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cstdlib>
 
 #include "fastron/core/error.h"
+#include "yaml_reader.h"
 
 namespace fastron {
 
@@ -16,38 +15,41 @@ std::filesystem::path dataDirectory() {
 
 std::vector<RobotEntry> shippedRobots() {
   const std::filesystem::path catalogue = dataDirectory() / "robots" / "robots.yaml";
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(catalogue.string());
-  } catch (const YAML::Exception& e) {
-    throw FileError(catalogue.string() + ": " + e.what());
-  }
-  std::vector<RobotEntry> robots;
-  YAML::Mark where;  // of the entry being read, for errors that carry no position
-  try {
+  const std::string source = catalogue.string();
+  return detail::namingYamlErrors(source, [&] {
+    const detail::Reader r(source);
+    const YAML::Node root =
+        detail::parseYaml(detail::readText(catalogue, "robot catalogue"), source);
+    if (!root.IsMap()) r.fail(root, "the robot catalogue is a map of robots");
+    std::vector<RobotEntry> robots;
     for (const auto& entry : root) {
-      where = entry.first.Mark();
-      RobotEntry r;
-      r.name = entry.first.as<std::string>();
-      r.description = entry.second["description"].as<std::string>("");
-      if (!entry.second["urdf"])
-        throw FileError(catalogue.string() + ": robot '" + r.name + "' has no 'urdf'");
-      r.urdf = catalogue.parent_path() / entry.second["urdf"].as<std::string>();
-      for (const auto& j : entry.second["joints"]) r.joints.push_back(j.as<std::string>());
-      for (const auto& h : entry.second["held"])
-        r.held.emplace_back(h.first.as<std::string>(), h.second.as<double>());
-      for (const auto& p : entry.second["allowed_collisions"]) {
-        if (!p.IsSequence() || p.size() != 2)
-          throw YAML::Exception(p.Mark(), "allowed_collisions entries are [link, link] pairs");
-        r.allowedCollisions.emplace_back(p[0].as<std::string>(), p[1].as<std::string>());
+      RobotEntry robot;
+      robot.name = r.text(entry.first, "robot name");
+      const std::string what = "robot '" + robot.name + "'";
+      const YAML::Node e = entry.second;
+      r.onlyKeys(e, {"urdf", "description", "joints", "held", "allowed_collisions"}, what);
+      if (e["description"]) robot.description = r.text(e["description"], what + " description");
+      robot.urdf = catalogue.parent_path() / r.text(r.required(e, "urdf", what), what + " urdf");
+      for (const auto& j : r.list(r.required(e, "joints", what), what + " joints"))
+        robot.joints.push_back(r.text(j, what + " joint"));
+      if (e["held"]) {
+        if (!e["held"].IsMap()) r.fail(e["held"], what + " held must be a map of joint: position");
+        for (const auto& h : e["held"])
+          robot.held.emplace_back(r.text(h.first, what + " held joint"),
+                                  r.number(h.second, what + " held position"));
       }
-      robots.push_back(std::move(r));
+      if (e["allowed_collisions"]) {
+        for (const auto& p : r.list(e["allowed_collisions"], what + " allowed_collisions")) {
+          if (!p.IsSequence() || p.size() != 2)
+            r.fail(p, what + " allowed_collisions entries are [link, link] pairs");
+          robot.allowedCollisions.emplace_back(r.text(p[0], what + " link"),
+                                               r.text(p[1], what + " link"));
+        }
+      }
+      robots.push_back(std::move(robot));
     }
-  } catch (const YAML::Exception& e) {
-    const YAML::Mark mark = e.mark.is_null() ? where : e.mark;
-    throw FileError(catalogue.string() + ":" + std::to_string(mark.line + 1) + ": " + e.msg);
-  }
-  return robots;
+    return robots;
+  });
 }
 
 Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options) {

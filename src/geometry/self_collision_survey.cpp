@@ -55,11 +55,13 @@ SelfCollisionSurvey surveySelfCollisions(const Robot& robot, const SelfCollision
   survey.samples = options.samples;
   Rng rng(options.seed);
   const Configurations q = uniformConfigurations(limits, options.samples, rng);
-  std::vector<std::vector<std::pair<std::string, std::string>>> touching(options.samples);
+  // Per sample, the pairs touching (map nodes stay put): verdicts are known only at the end.
+  std::vector<std::vector<const LinkPairSurvey*>> touching(options.samples);
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     for (const Contact& c : checker.selfContacts({q.row(i).data(), robot.dof()})) {
-      ++pairs.at({c.robotLink, c.other}).collisions;
-      touching[static_cast<std::size_t>(i)].emplace_back(c.robotLink, c.other);
+      LinkPairSurvey& pair = pairs.at({c.robotLink, c.other});
+      ++pair.collisions;
+      touching[static_cast<std::size_t>(i)].push_back(&pair);
     }
   }
 
@@ -76,7 +78,7 @@ SelfCollisionSurvey surveySelfCollisions(const Robot& robot, const SelfCollision
     survey.configurationsBefore += !contacts.empty();
     survey.configurationsInCollision +=
         std::any_of(contacts.begin(), contacts.end(),
-                    [&](const auto& key) { return pairs.at(key).verdict == PairVerdict::Enabled; });
+                    [](const LinkPairSurvey* p) { return p->verdict == PairVerdict::Enabled; });
   }
   for (auto& [key, pair] : pairs) survey.pairs.push_back(std::move(pair));
   std::stable_sort(survey.pairs.begin(), survey.pairs.end(),

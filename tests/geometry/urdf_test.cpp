@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <numbers>
 
 #include "fastron/core/error.h"
@@ -224,6 +225,33 @@ TEST(RobotLibrary, EveryShippedRobotLoadsWithItsJoints) {
     const JointLimits limits = robot.limits();
     EXPECT_TRUE((limits.lower().array() < limits.upper().array()).all()) << entry.name;
   }
+}
+
+// A catalogue edited by a user (FASTRON_DATA_DIR points at their own data folder): every mistake
+// is named with the file and the line.
+class RobotCatalogue : public test::TempDir {
+ protected:
+  std::string error(const std::string& yaml) {
+    std::filesystem::create_directories(path("robots"));
+    write("robots/robots.yaml", yaml);
+    ::setenv("FASTRON_DATA_DIR", path("").c_str(), 1);
+    std::string message = messageOf<FileError>([] { shippedRobots(); });
+    ::unsetenv("FASTRON_DATA_DIR");
+    return message;
+  }
+};
+
+TEST_F(RobotCatalogue, MistakesNameTheFileAndLine) {
+  EXPECT_THAT(error("rod2: {joints: [yaw]}\n"),
+              HasSubstr("robots.yaml:1: robot 'rod2' has no 'urdf'"));
+  EXPECT_THAT(error("rod2:\n  urdf: rod2.urdf\n  joints: [yaw]\n  held: {pitch: up}\n"),
+              HasSubstr("robots.yaml:4: robot 'rod2' held position must be a number"));
+  EXPECT_THAT(error("rod2: {urdf: rod2.urdf, joints: [yaw], colour: red}\n"),
+              HasSubstr("unknown key 'colour'"));
+  EXPECT_THAT(error("rod2:\n  urdf: rod2.urdf\n  joints: [yaw]\n  allowed_collisions: [a]\n"),
+              HasSubstr("robots.yaml:4: robot 'rod2' allowed_collisions entries are [link, link]"));
+  EXPECT_THAT(error("- rod2\n"), HasSubstr("robots.yaml:1: the robot catalogue is a map"));
+  EXPECT_THAT(error("rod2: [\n"), HasSubstr("malformed YAML"));
 }
 
 }  // namespace
