@@ -53,9 +53,9 @@ BENCHMARK(BM_Train)
 
 // A model with |S| random support points and weights: query cost depends only on |S| and d.
 Model randomModel(std::size_t support, std::size_t d, KernelType type) {
-  const Eigen::MatrixXd s = Configurations(test::uniformPoints(support, d, 3));
+  const Configurations s = test::uniformPoints(support, d, 3);
   const Eigen::VectorXd w = Eigen::VectorXd::Random(static_cast<Eigen::Index>(support));
-  return {JointLimits::unitBox(d), {type, paperGamma(d)}, s, w};
+  return {FeatureMap::jointScaling(JointLimits::unitBox(d)), {type, paperGamma(d)}, s, w};
 }
 
 constexpr std::size_t kQueries = 1024;
@@ -78,7 +78,7 @@ void BM_QueryPlainDouble(benchmark::State& state) {
   const auto support = static_cast<std::size_t>(state.range(0));
   const auto d = static_cast<std::size_t>(state.range(1));
   const Model model = randomModel(support, d, KernelType::RationalQuadratic);
-  const Configurations s = model.supportPoints();  // row-major copy
+  const Configurations s = model.supportConfigurations();  // row-major copy
   const double* w = model.weights().data();
   const double halfGamma = 0.5 * model.kernel().gamma;
   const Configurations q = test::uniformPoints(kQueries, d, 4);

@@ -290,8 +290,7 @@ KernelExpansion IncrementalSvm::expansion(const JointLimits& limits) const {
     points.row(row) = x_[i].transpose();
     weights[row++] = alpha_[i] * y_[i];
   }
-  return {std::make_shared<const Model>(limits, kernel_, std::move(points), std::move(weights)),
-          b_};
+  return {jointSpaceModel(limits, kernel_, std::move(points), std::move(weights)), b_};
 }
 
 // ---------------------------------------------------------------- Algorithm 3

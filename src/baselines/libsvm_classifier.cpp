@@ -21,9 +21,8 @@ LibsvmClassifier::LibsvmClassifier(JointLimits limits, double gamma, double C, d
   validate(Kernel{KernelType::Gaussian, gamma_});
   if (!(C_ > 0) || !(tolerance_ > 0))
     throw InvalidArgument("LIBSVM: C and the tolerance must be positive");
-  model_.terms =
-      std::make_shared<const Model>(limits_, Kernel{KernelType::Gaussian, gamma_},
-                                    Eigen::MatrixXd(0, limits_.dim()), Eigen::VectorXd(0));
+  model_.terms = jointSpaceModel(limits_, Kernel{KernelType::Gaussian, gamma_},
+                                 Eigen::MatrixXd(0, limits_.dim()), Eigen::VectorXd(0));
 }
 
 void LibsvmClassifier::train(const Configurations& q, std::span<const std::int8_t> labels) {
@@ -78,8 +77,8 @@ void LibsvmClassifier::train(const Configurations& q, std::span<const std::int8_
   }
   const double bias =
       model->nr_class == 2 ? -sign * model->rho[0] : (labels.empty() ? -1.0 : labels[0]);
-  model_ = {std::make_shared<const Model>(limits_, Kernel{KernelType::Gaussian, gamma_},
-                                          std::move(points), std::move(weights)),
+  model_ = {jointSpaceModel(limits_, Kernel{KernelType::Gaussian, gamma_}, std::move(points),
+                            std::move(weights)),
             bias};
 }
 

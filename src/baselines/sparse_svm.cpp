@@ -11,8 +11,8 @@ SsvmClassifier::SsvmClassifier(JointLimits limits, Kernel kernel, SparseSvmParam
     : limits_(std::move(limits)), kernel_(kernel), params_(params) {
   validate(kernel_);
   if (!(params_.C > 0)) throw InvalidArgument("SSVM: C must be positive");
-  model_.terms = std::make_shared<const Model>(limits_, kernel_, Eigen::MatrixXd(0, limits_.dim()),
-                                               Eigen::VectorXd(0));
+  model_.terms =
+      jointSpaceModel(limits_, kernel_, Eigen::MatrixXd(0, limits_.dim()), Eigen::VectorXd(0));
 }
 
 // Algorithm 4. Row 0 of Kbar (and alpha) is the bias; rows 1..n the kernel basis functions.
@@ -91,8 +91,7 @@ void SsvmClassifier::train(const Configurations& q, std::span<const std::int8_t>
     points.row(static_cast<Eigen::Index>(k)) = x.row(support[k] - 1);
     weights[static_cast<Eigen::Index>(k)] = alpha[support[k]];
   }
-  model_ = {std::make_shared<const Model>(limits_, kernel_, std::move(points), std::move(weights)),
-            alpha[0]};
+  model_ = {jointSpaceModel(limits_, kernel_, std::move(points), std::move(weights)), alpha[0]};
 }
 
 }  // namespace fastron

@@ -17,15 +17,23 @@ void validate(const ActiveLearningParams& params) {
   }
 }
 
+double defaultVariance(const Model& model) {
+  if (model.features().kind() == FeatureKind::JointScaling)
+    return 1.0 / (2.0 * model.kernel().gamma);
+  return kTaskSpaceVariance;
+}
+
 Configurations activeLearning(const Model& model, const ActiveLearningParams& params, Rng& rng) {
   validate(params);
+  const JointLimits& limits = model.limits();
   const auto d = static_cast<Eigen::Index>(model.dim());
   const auto maxSamples = static_cast<Eigen::Index>(params.maxSamples);
-  const Eigen::MatrixXd& support = model.supportPoints();
-  const double variance =
-      params.variance > 0 ? params.variance : 1.0 / (2.0 * model.kernel().gamma);
+  // Samples are drawn in scaled joint space [-1, 1]^d whatever the features: Algorithm 2 needs
+  // configurations, and task-space features have no inverse.
+  const Configurations support = limits.toInput(model.supportConfigurations());
+  const double variance = params.variance > 0 ? params.variance : defaultVariance(model);
 
-  Eigen::MatrixXd samples(maxSamples, d);  // input space
+  Configurations samples(maxSamples, d);  // scaled joint space
   Eigen::Index count = 0;
 
   // Exploitation: up to kappa Gaussian samples around each support point (Alg. 2, line 5).
@@ -50,7 +58,7 @@ Configurations activeLearning(const Model& model, const ActiveLearningParams& pa
   for (; count < maxSamples; ++count) {
     for (Eigen::Index j = 0; j < d; ++j) samples(count, j) = uniform(rng);
   }
-  return model.limits().toJoint(Configurations(samples));
+  return limits.toJoint(samples);
 }
 
 Configurations uniformConfigurations(const JointLimits& limits, std::size_t n, Rng& rng) {

@@ -65,37 +65,37 @@ std::array<float, kQueries> kernelSums(const float* soa, const float* weights, s
 
 }  // namespace
 
-Model::Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints,
+Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigurations,
              Eigen::VectorXd weights)
-    : limits_(std::move(limits)),
+    : features_(std::move(features)),
       kernel_(kernel),
-      support_(std::move(supportPoints)),
+      configurations_(std::move(supportConfigurations)),
       weights_(std::move(weights)) {
   validate(kernel_);
-  const std::size_t d = limits_.dim();
+  const std::size_t d = dim();
   if (d == 0 || d > kMaxDimension) {
     throw InvalidArgument("model dimension must be between 1 and " + std::to_string(kMaxDimension) +
                           ", got " + std::to_string(d));
   }
-  if (static_cast<std::size_t>(support_.cols()) != d) {
-    throw InvalidArgument("support points have " + std::to_string(support_.cols()) +
+  if (static_cast<std::size_t>(configurations_.cols()) != d) {
+    throw InvalidArgument("support configurations have " + std::to_string(configurations_.cols()) +
                           " columns but the joint limits have dimension " + std::to_string(d));
   }
-  if (support_.rows() != weights_.size()) {
-    throw InvalidArgument(std::to_string(support_.rows()) + " support points but " +
+  if (configurations_.rows() != weights_.size()) {
+    throw InvalidArgument(std::to_string(configurations_.rows()) + " support points but " +
                           std::to_string(weights_.size()) + " weights");
   }
-  if (!support_.allFinite() || !weights_.allFinite()) {
-    throw InvalidArgument("support points and weights must be finite");
-  }
+  if (!weights_.allFinite()) throw InvalidArgument("weights must be finite");
+  support_ = features_.map(configurations_);  // checks that the configurations are finite
+  const std::size_t featureCount = featureDim();
 
   const std::size_t n = supportCount();
   paddedCount_ = (n + kLanes - 1) / kLanes * kLanes;
-  supportSoa_.assign(d * paddedCount_, 0.0f);
+  supportSoa_.assign(featureCount * paddedCount_, 0.0f);
   weightsF_.assign(paddedCount_, 0.0f);  // padding points have weight 0: they add nothing
   for (std::size_t i = 0; i < n; ++i) {
     const auto row = static_cast<Eigen::Index>(i);
-    for (std::size_t j = 0; j < d; ++j) {
+    for (std::size_t j = 0; j < featureCount; ++j) {
       supportSoa_[j * paddedCount_ + i] =
           static_cast<float>(support_(row, static_cast<Eigen::Index>(j)));
     }
@@ -103,33 +103,30 @@ Model::Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints,
   }
 }
 
-void Model::scaleToInput(const double* q, float* x) const {
-  const auto& scale = limits_.scale();
-  const auto& offset = limits_.offset();
+void Model::toFeatures(const double* q, float* x) const {
   for (std::size_t j = 0; j < dim(); ++j) {
     if (!std::isfinite(q[j])) {
       throw InvalidArgument("configuration value [" + std::to_string(j) + "] is not finite (" +
                             std::to_string(q[j]) + ")");
     }
-    const auto jj = static_cast<Eigen::Index>(j);
-    x[j] = static_cast<float>(scale[jj] * q[j] + offset[jj]);
   }
+  features_.map(q, x);
 }
 
 float Model::scoreInputFloat(const float* x) const {
   const auto gamma = static_cast<float>(kernel_.gamma);
   if (kernel_.type == KernelType::RationalQuadratic) {
     return kernelSum<KernelType::RationalQuadratic>(supportSoa_.data(), weightsF_.data(),
-                                                    paddedCount_, dim(), x, gamma);
+                                                    paddedCount_, featureDim(), x, gamma);
   }
-  return kernelSum<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_, dim(),
-                                         x, gamma);
+  return kernelSum<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_,
+                                         featureDim(), x, gamma);
 }
 
 double Model::score(const double* q) const {
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): scaleToInput fills it
-  std::array<float, kMaxDimension> x;
-  scaleToInput(q, x.data());
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): toFeatures fills it
+  std::array<float, kMaxFeatureDimension> x;
+  toFeatures(q, x.data());
   return scoreInputFloat(x.data());
 }
 
@@ -139,7 +136,9 @@ double Model::score(std::span<const double> q) const {
 }
 
 double Model::scoreExact(const double* q) const {
-  const Eigen::VectorXd x = limits_.toInput(std::span<const double>(q, dim()));
+  checkConfiguration(std::span<const double>(q, dim()), dim());
+  Eigen::VectorXd x(support_.cols());
+  features_.map(q, x.data());
   double f = 0;
   for (Eigen::Index i = 0; i < support_.rows(); ++i) {
     f += weights_[i] * kernel_((support_.row(i).transpose() - x).squaredNorm());
@@ -153,11 +152,12 @@ void Model::scoreGroup(const double* q, std::size_t count, float* out) const {
     return;
   }
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled below
-  std::array<float, kQueries * kMaxDimension> xs;
-  const std::size_t d = dim();
-  for (std::size_t k = 0; k < kQueries; ++k) {
-    // A short group repeats its last query: the lanes are computed anyway.
-    scaleToInput(q + std::min(k, count - 1) * d, xs.data() + k * d);
+  std::array<float, kQueries * kMaxFeatureDimension> xs;
+  const std::size_t d = featureDim();
+  for (std::size_t k = 0; k < count; ++k) toFeatures(q + k * dim(), xs.data() + k * d);
+  // A short group repeats its last query: the lanes are computed anyway.
+  for (std::size_t k = count; k < kQueries; ++k) {
+    std::copy_n(xs.data() + (count - 1) * d, d, xs.data() + k * d);
   }
   const auto gamma = static_cast<float>(kernel_.gamma);
   const auto sums =
@@ -198,6 +198,14 @@ Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {
   Eigen::VectorXd out(q.rows());
   scoreBatch(q.data(), static_cast<std::size_t>(q.rows()), out.data());
   return out;
+}
+
+std::shared_ptr<const Model> jointSpaceModel(const JointLimits& limits, Kernel kernel,
+                                             const Eigen::MatrixXd& inputPoints,
+                                             Eigen::VectorXd weights) {
+  return std::make_shared<const Model>(FeatureMap::jointScaling(limits), kernel,
+                                       limits.toJoint(Configurations(inputPoints)),
+                                       std::move(weights));
 }
 
 }  // namespace fastron

@@ -43,14 +43,15 @@ std::string_view toString(StopReason reason) {
   return "unknown";
 }
 
-Trainer::Trainer(JointLimits limits, TrainParams params)
-    : limits_(std::move(limits)), params_(params) {
+Trainer::Trainer(FeatureMap features, TrainParams params)
+    : features_(std::move(features)), params_(params) {
   validate(params_);
-  if (limits_.dim() == 0 || limits_.dim() > kMaxDimension) {
+  if (dim() == 0 || dim() > kMaxDimension) {
     throw InvalidArgument("trainer dimension must be between 1 and " +
-                          std::to_string(kMaxDimension) + ", got " + std::to_string(limits_.dim()));
+                          std::to_string(kMaxDimension) + ", got " + std::to_string(dim()));
   }
-  x_.resize(0, static_cast<Eigen::Index>(limits_.dim()));
+  q_.resize(0, static_cast<Eigen::Index>(dim()));
+  x_.resize(0, static_cast<Eigen::Index>(features_.featureDim()));
 }
 
 Eigen::VectorXd Trainer::kernelColumn(Eigen::Index i, Eigen::Index fromRow) const {
@@ -80,12 +81,13 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
     throw InvalidArgument(std::to_string(q.rows()) + " configurations but " +
                           std::to_string(labels.size()) + " labels");
   }
-  if (!q.allFinite()) throw InvalidArgument("configurations must be finite (found NaN or inf)");
   checkLabels(labels, "new point");
-  const Configurations input = limits_.toInput(q);  // checks the column count
+  const Eigen::MatrixXd input = features_.map(q);  // checks the column count and finiteness
 
   const Eigen::Index oldN = x_.rows();
   const Eigen::Index added = q.rows();
+  q_.conservativeResize(oldN + added, Eigen::NoChange);
+  q_.bottomRows(added) = q;
   x_.conservativeResize(oldN + added, Eigen::NoChange);
   x_.bottomRows(added) = input;
   y_.conservativeResize(oldN + added);
@@ -210,6 +212,7 @@ void Trainer::removeNonSupportPoints() {
   if (keep.size() == static_cast<std::size_t>(alpha_.size())) return;
 
   const auto n = static_cast<Eigen::Index>(keep.size());
+  Configurations q(n, q_.cols());
   Eigen::MatrixXd x(n, x_.cols());
   Eigen::VectorXd y(n), alpha(n), f(n);
   std::vector<Eigen::VectorXd> columns;
@@ -217,6 +220,7 @@ void Trainer::removeNonSupportPoints() {
   columns.reserve(keep.size());
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index i = keep[static_cast<std::size_t>(k)];
+    q.row(k) = q_.row(i);
     x.row(k) = x_.row(i);
     y[k] = y_[i];
     alpha[k] = alpha_[i];
@@ -230,6 +234,7 @@ void Trainer::removeNonSupportPoints() {
       columns.push_back(std::move(column));
     }
   }
+  q_ = std::move(q);
   x_ = std::move(x);
   y_ = std::move(y);
   alpha_ = std::move(alpha);
@@ -245,13 +250,13 @@ std::shared_ptr<const Model> Trainer::model() const {
     if (alpha_[i] != 0) support.push_back(i);
   }
   const auto n = static_cast<Eigen::Index>(support.size());
-  Eigen::MatrixXd points(n, x_.cols());
+  Configurations configurations(n, q_.cols());
   Eigen::VectorXd weights(n);
   for (Eigen::Index k = 0; k < n; ++k) {
-    points.row(k) = x_.row(support[static_cast<std::size_t>(k)]);
+    configurations.row(k) = q_.row(support[static_cast<std::size_t>(k)]);
     weights[k] = alpha_[support[static_cast<std::size_t>(k)]];
   }
-  return std::make_shared<const Model>(limits_, params_.kernel, std::move(points),
+  return std::make_shared<const Model>(features_, params_.kernel, std::move(configurations),
                                        std::move(weights));
 }
 

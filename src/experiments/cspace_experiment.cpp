@@ -72,9 +72,9 @@ CspaceResults runCspace(const CspaceOptions& o, const Progress& progress) {
     }
     // Support points, in input space, with the sign of their weight.
     auto addSupport = [&](const std::string& method, const Model& model) {
-      for (Eigen::Index i = 0; i < model.supportPoints().rows(); ++i) {
-        r.support.add({env, method, cell(model.supportPoints()(i, 0)),
-                       cell(model.supportPoints()(i, 1)), cell(model.weights()[i])});
+      for (Eigen::Index i = 0; i < model.supportFeatures().rows(); ++i) {
+        r.support.add({env, method, cell(model.supportFeatures()(i, 0)),
+                       cell(model.supportFeatures()(i, 1)), cell(model.weights()[i])});
       }
     };
     addSupport("Fastron", *fastron.model());

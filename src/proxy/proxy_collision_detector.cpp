@@ -11,20 +11,25 @@ namespace fastron {
 using Clock = std::chrono::steady_clock;
 
 ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle,
-                                               JointLimits limits, ProxyParams params)
+                                               FeatureMap features, ProxyParams params)
     : oracle_(std::move(oracle)),
-      limits_(std::move(limits)),
+      features_(std::move(features)),
       params_(params),
       rng_(params.seed),
-      trainer_(limits_, params.train) {
+      trainer_(features_, params.train) {
   if (!oracle_) throw InvalidArgument("ProxyCollisionDetector: no oracle given");
-  if (oracle_->dof() != limits_.dim()) {
+  if (oracle_->dof() != features_.configurationDim()) {
     throw InvalidArgument("ProxyCollisionDetector: oracle '" + oracle_->name() + "' has " +
                           std::to_string(oracle_->dof()) + " dof but the joint limits have " +
-                          std::to_string(limits_.dim()));
+                          std::to_string(features_.configurationDim()));
   }
   validate(params_.activeLearning);
 }
+
+ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle,
+                                               JointLimits limits, ProxyParams params)
+    : ProxyCollisionDetector(std::move(oracle), FeatureMap::jointScaling(std::move(limits)),
+                             params) {}
 
 ProxyCollisionDetector::~ProxyCollisionDetector() {
   worker_.request_stop();
@@ -47,13 +52,13 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   const std::lock_guard lock(stepMutex_);
   const auto start = Clock::now();
   StepReport report;
-  const Configurations q = uniformConfigurations(limits_, n, rng_);
+  const Configurations q = uniformConfigurations(limits(), n, rng_);
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
   const Labels labels = labelConfigurations(*oracle_, q, params_.labelThreads);
   report.labelTime = Clock::now() - labelStart;
   report.labelled = report.added = n;
-  trainer_ = Trainer(limits_, params_.train);
+  trainer_ = Trainer(features_, params_.train);
   trainer_.addPoints(q, labels);
   return finish(report, start);
 }
@@ -66,8 +71,9 @@ StepReport ProxyCollisionDetector::step() {
 
   const Configurations fresh = activeLearning(*trainer_.model(), params_.activeLearning, rng_);
   const auto support = static_cast<Eigen::Index>(trainer_.size());
-  Configurations all(support + fresh.rows(), static_cast<Eigen::Index>(limits_.dim()));
-  all.topRows(support) = limits_.toJoint(Configurations(trainer_.points()));
+  Configurations all(support + fresh.rows(),
+                     static_cast<Eigen::Index>(features_.configurationDim()));
+  all.topRows(support) = trainer_.configurations();
   all.bottomRows(fresh.rows()) = fresh;
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;

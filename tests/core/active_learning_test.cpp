@@ -14,9 +14,9 @@ namespace {
 
 Model modelWithSupport(const Eigen::MatrixXd& points, double gamma = 10) {
   const auto d = static_cast<std::size_t>(points.cols());
-  return {JointLimits::unitBox(d),
+  return {FeatureMap::jointScaling(JointLimits::unitBox(d)),
           {KernelType::RationalQuadratic, gamma},
-          points,
+          Configurations(points),
           Eigen::VectorXd::Ones(points.rows())};
 }
 
@@ -31,7 +31,7 @@ std::pair<Eigen::Index, double> nearest(const Eigen::MatrixXd& support,
 TEST(ActiveLearning, ReturnsAMaxSamplesWithinTheJointLimits) {
   const Eigen::MatrixXd support = Configurations(test::uniformPoints(40, 3, 1));
   const JointLimits limits(Eigen::Vector3d(-3, 0, 1), Eigen::Vector3d(3, 1, 2));
-  const Model model(limits, Kernel{}, support, Eigen::VectorXd::Ones(40));
+  const Model model = *jointSpaceModel(limits, Kernel{}, support, Eigen::VectorXd::Ones(40));
   Rng rng(2);
   const Configurations q = activeLearning(model, {500, 5, 0.5}, rng);
   ASSERT_EQ(q.rows(), 500);
@@ -103,7 +103,8 @@ TEST(ActiveLearning, ClampsExploitationSamplesToTheInputBox) {
 }
 
 TEST(ActiveLearning, WithoutSupportPointsEverythingIsExploration) {
-  const Model model(JointLimits::unitBox(3), Kernel{}, Eigen::MatrixXd(0, 3), Eigen::VectorXd(0));
+  const Model model(FeatureMap::jointScaling(JointLimits::unitBox(3)), Kernel{},
+                    Configurations(0, 3), Eigen::VectorXd(0));
   Rng rng(9);
   EXPECT_EQ(activeLearning(model, {123, 5, 0}, rng).rows(), 123);
 }

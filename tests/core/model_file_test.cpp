@@ -34,14 +34,15 @@ TEST_F(ModelFile, RoundTripKeepsEveryValue) {
   EXPECT_EQ(loaded.kernel().type, KernelType::Gaussian);
   EXPECT_EQ(loaded.kernel().gamma, 12);
   EXPECT_TRUE(loaded.limits() == model.limits());
-  EXPECT_EQ(loaded.supportPoints(), model.supportPoints());
+  EXPECT_EQ(loaded.supportConfigurations(), model.supportConfigurations());
   EXPECT_EQ(loaded.weights(), model.weights());
   const std::vector<double> q{0.3, 0.2, 1};
   EXPECT_EQ(loaded.score(q), model.score(q));
 }
 
 TEST_F(ModelFile, EmptyModelRoundTrips) {
-  const Model empty(JointLimits::unitBox(2), Kernel{}, Eigen::MatrixXd(0, 2), Eigen::VectorXd(0));
+  const Model empty(FeatureMap::jointScaling(JointLimits::unitBox(2)), Kernel{},
+                    Configurations(0, 2), Eigen::VectorXd(0));
   saveModel(empty, path("e.fastron"));
   EXPECT_EQ(loadModel(path("e.fastron")).supportCount(), 0u);
 }

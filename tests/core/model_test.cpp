@@ -71,7 +71,8 @@ TEST(Model, ScoreIsTheWeightedKernelSumInInputSpace) {
   const JointLimits limits(Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 4));
   Eigen::MatrixXd s(2, 2);
   s << 0, 0, 0.5, -0.5;
-  const Model model(limits, {KernelType::RationalQuadratic, 2}, s, Eigen::Vector2d(1.5, -0.25));
+  const Model model =
+      *jointSpaceModel(limits, {KernelType::RationalQuadratic, 2}, s, Eigen::Vector2d(1.5, -0.25));
   const std::vector<double> q{1.5, 1.0};  // input space (0.5, -0.5): on the second point
   const double r2 = 0.5;                  // to the first point
   const double expected = 1.5 / ((1 + r2) * (1 + r2)) - 0.25;
@@ -105,20 +106,20 @@ TEST(Model, FirstInCollisionIsTheFirstRowPredictedInCollision) {
 }
 
 TEST(Model, RejectsBadConstructionAndQueries) {
-  const JointLimits limits = JointLimits::unitBox(2);
+  const FeatureMap limits = FeatureMap::jointScaling(JointLimits::unitBox(2));
   const Kernel kernel{};
-  EXPECT_THROW(Model(limits, kernel, Eigen::MatrixXd::Zero(3, 3), Eigen::VectorXd::Zero(3)),
+  EXPECT_THROW(Model(limits, kernel, Configurations::Zero(3, 3), Eigen::VectorXd::Zero(3)),
                InvalidArgument);
-  EXPECT_THROW(Model(limits, kernel, Eigen::MatrixXd::Zero(3, 2), Eigen::VectorXd::Zero(2)),
+  EXPECT_THROW(Model(limits, kernel, Configurations::Zero(3, 2), Eigen::VectorXd::Zero(2)),
                InvalidArgument);
-  Eigen::MatrixXd nan = Eigen::MatrixXd::Zero(1, 2);
+  Configurations nan = Configurations::Zero(1, 2);
   nan(0, 1) = std::nan("");
   EXPECT_THROW(Model(limits, kernel, nan, Eigen::VectorXd::Ones(1)), InvalidArgument);
-  EXPECT_THROW(Model(JointLimits::unitBox(kMaxDimension + 1), kernel,
-                     Eigen::MatrixXd::Zero(1, kMaxDimension + 1), Eigen::VectorXd::Ones(1)),
+  EXPECT_THROW(Model(FeatureMap::jointScaling(JointLimits::unitBox(kMaxDimension + 1)), kernel,
+                     Configurations::Zero(1, kMaxDimension + 1), Eigen::VectorXd::Ones(1)),
                InvalidArgument);
 
-  const Model model(limits, kernel, Eigen::MatrixXd::Zero(1, 2), Eigen::VectorXd::Ones(1));
+  const Model model(limits, kernel, Configurations::Zero(1, 2), Eigen::VectorXd::Ones(1));
   EXPECT_THROW(model.score(std::vector<double>{0.0}), InvalidArgument);
   EXPECT_THROW(model.score(std::vector<double>{0.0, std::nan("")}), InvalidArgument);
   EXPECT_THROW(model.scoreBatch(Configurations::Zero(4, 3)), InvalidArgument);

@@ -108,11 +108,11 @@ TEST(ProxyCollisionDetector, SameSeedSameModel) {
     return proxy.model();
   };
   const auto a = run(42), b = run(42), c = run(43);
-  EXPECT_EQ(a->supportPoints(), b->supportPoints());
+  EXPECT_EQ(a->supportConfigurations(), b->supportConfigurations());
   EXPECT_EQ(a->weights(), b->weights());
   // Another seed, another model (compared by size first: Eigen compares equal shapes only).
-  EXPECT_TRUE(a->supportPoints().rows() != c->supportPoints().rows() ||
-              a->supportPoints() != c->supportPoints());
+  EXPECT_TRUE(a->supportConfigurations().rows() != c->supportConfigurations().rows() ||
+              a->supportConfigurations() != c->supportConfigurations());
 }
 
 TEST(ProxyCollisionDetector, RefusesMisuse) {

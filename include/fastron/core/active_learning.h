@@ -11,18 +11,30 @@ namespace fastron {
 struct ActiveLearningParams {
   std::size_t maxSamples = 500;            ///< A_max: configurations returned
   std::size_t samplesPerSupportPoint = 5;  ///< kappa: exploitation samples per support point
-  /// sigma^2 of the exploitation Gaussians, in input space; 0 means the paper's 1 / (2 gamma).
+  /// sigma^2 of the exploitation Gaussians, in scaled joint space [-1, 1]^d; 0 means
+  /// defaultVariance(model).
   double variance = 0;
 };
+
+/// sigma^2 of the exploitation Gaussians for kinematic features, in scaled joint space. The
+/// paper's 1 / (2 gamma) relates the spread to the kernel's width in its input space; with
+/// task-space features gamma is in 1/m^2 and says nothing about joint space. Chosen by the
+/// measured sweep in docs/algorithms.md.
+inline constexpr double kTaskSpaceVariance = 0.01;
+
+/// The paper's 1 / (2 gamma) for joint scaling (input space = scaled joint space);
+/// kTaskSpaceVariance for kinematic features.
+double defaultVariance(const Model& model);
 
 /// Throws InvalidArgument naming the field that is out of range.
 void validate(const ActiveLearningParams& params);
 
 /// Returns A_max new, unlabelled configurations (joint values, one per row).
 /// Exploitation: round k = 1..kappa draws one sample from N(s, sigma^2 I) around each support
-/// point s, clamped to [-1, 1]^d, until A_max samples exist; when kappa |S| > A_max the support
-/// points are visited in a random order, so the samples are not biased toward low indices.
-/// Exploration: uniform samples in [-1, 1]^d fill the rest.
+/// configuration s in scaled joint space, clamped to [-1, 1]^d, until A_max samples exist; when
+/// kappa |S| > A_max the support points are visited in a random order, so the samples are not
+/// biased toward low indices. Exploration: uniform samples in [-1, 1]^d (scaled joint space) fill
+/// the rest.
 Configurations activeLearning(const Model& model, const ActiveLearningParams& params, Rng& rng);
 
 /// n configurations drawn uniformly within the joint limits (the initial training set).

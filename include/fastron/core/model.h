@@ -4,34 +4,43 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
-#include "fastron/core/joint_limits.h"
+#include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
 #include "fastron/core/types.h"
 
 namespace fastron {
 
 /// Immutable once built, so one instance can be queried from any number of threads; queries do
-/// not allocate. Queries take joint values; the model scales them to [-1, 1]^d itself.
+/// not allocate. Queries take joint values; the model maps them to its features itself (joint
+/// scaling to [-1, 1]^d, or the world positions of control points: see feature_map.h).
 ///
 /// Two evaluation paths are kept: `score` sums over a padded structure-of-arrays `float` copy of
 /// the support set, vectorised (AVX2 / AVX-512 when built with FASTRON_NATIVE); `scoreExact` sums
 /// in `double` over the same points, the precision used in training.
 class Model {
  public:
-  /// `supportPoints`: one support point per row, in input space [-1, 1]^d; `weights`: one per row.
-  /// Throws InvalidArgument on mismatched sizes, non-finite values or dimension 0 or above
-  /// kMaxDimension.
-  Model(JointLimits limits, Kernel kernel, Eigen::MatrixXd supportPoints, Eigen::VectorXd weights);
+  /// `supportConfigurations`: one support configuration per row (joint values); `weights`: one
+  /// per row. The support features are computed with `features`. Throws InvalidArgument on
+  /// mismatched sizes, non-finite values or dimension 0 or above kMaxDimension.
+  Model(FeatureMap features, Kernel kernel, Configurations supportConfigurations,
+        Eigen::VectorXd weights);
 
-  std::size_t dim() const { return limits_.dim(); }
+  /// Joint values per configuration (what queries take).
+  std::size_t dim() const { return features_.configurationDim(); }
+  /// Features per configuration (what the kernel compares).
+  std::size_t featureDim() const { return features_.featureDim(); }
   std::size_t supportCount() const { return static_cast<std::size_t>(weights_.size()); }
-  const JointLimits& limits() const { return limits_; }
+  const FeatureMap& features() const { return features_; }
+  const JointLimits& limits() const { return features_.limits(); }
   const Kernel& kernel() const { return kernel_; }
-  /// Input-space support points, one per row.
-  const Eigen::MatrixXd& supportPoints() const { return support_; }
+  /// Support configurations (joint values), one per row.
+  const Configurations& supportConfigurations() const { return configurations_; }
+  /// Their features, one per row.
+  const Eigen::MatrixXd& supportFeatures() const { return support_; }
   const Eigen::VectorXd& weights() const { return weights_; }
 
   /// f(q) on the vectorised float path. q: dim() joint values. Throws InvalidArgument on a
@@ -61,11 +70,13 @@ class Model {
   float scoreInputFloat(const float* x) const;
   /// f of `count` (1 to 4) consecutive configurations of q, in one pass over the support set.
   void scoreGroup(const double* q, std::size_t count, float* out) const;
-  void scaleToInput(const double* q, float* x) const;
+  /// Features of q in float; throws InvalidArgument on a non-finite joint value.
+  void toFeatures(const double* q, float* x) const;
 
-  JointLimits limits_;
+  FeatureMap features_;
   Kernel kernel_;
-  Eigen::MatrixXd support_;
+  Configurations configurations_;
+  Eigen::MatrixXd support_;  // features of configurations_
   Eigen::VectorXd weights_;
 
   // Hot-path copies: support_ transposed to structure-of-arrays float, each dimension padded to
@@ -74,5 +85,11 @@ class Model {
   std::vector<float> supportSoa_;  // dim() blocks of paddedCount_ values
   std::vector<float> weightsF_;    // paddedCount_ values
 };
+
+/// A joint-space model from support points given in input space [-1, 1]^d, where the paper's SVM
+/// baselines train.
+std::shared_ptr<const Model> jointSpaceModel(const JointLimits& limits, Kernel kernel,
+                                             const Eigen::MatrixXd& inputPoints,
+                                             Eigen::VectorXd weights);
 
 }  // namespace fastron

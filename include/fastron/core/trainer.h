@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fastron/core/joint_limits.h"
+#include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
 #include "fastron/core/model.h"
 #include "fastron/core/types.h"
@@ -47,19 +47,25 @@ struct UpdateReport {
   std::chrono::nanoseconds elapsed{0};
 };
 
-/// Owns the training set X (input space), labels y, weights alpha, hypothesis F = K alpha and
-/// the lazily evaluated Gram matrix. Between updates only support points are kept, so memory is
-/// O(N |S|) during an update and O(|S|^2) after it; a dense N x N matrix is never allocated.
+/// Owns the training set (each configuration beside its features X), labels y, weights alpha,
+/// hypothesis F = K alpha and the lazily evaluated Gram matrix. Between updates only support points
+/// are kept, so memory is O(N |S|) during an update and O(|S|^2) after it; a dense N x N matrix is
+/// never allocated.
 class Trainer {
  public:
-  Trainer(JointLimits limits, TrainParams params);
+  /// Algorithm 1 runs on the features `features` maps configurations to.
+  Trainer(FeatureMap features, TrainParams params);
+  /// Joint-space features: the joint values scaled by `limits` (the paper's input).
+  Trainer(JointLimits limits, TrainParams params)
+      : Trainer(FeatureMap::jointScaling(std::move(limits)), params) {}
 
-  /// Appends configurations (joint values, one per row) with labels +1 / -1. Their weights start
+  /// Appends configurations (joint values, one per row) with labels +1 / -1, keeping each
+  /// configuration beside its features (nothing converts back). Their weights start
   /// at 0 and their F is computed from the current weights: cached Gram columns are first
   /// extended to the new rows (paper, "Dynamic Data Structures").
   void addPoints(const Configurations& q, std::span<const std::int8_t> labels);
 
-  /// Replaces the labels of the current points (same order as `points()`), e.g. after the
+  /// Replaces the labels of the current points (same order as `configurations()`), e.g. after the
   /// obstacles moved. A support point whose weight sign disagrees with its new label gets weight
   /// 0, and F is corrected.
   void relabel(std::span<const std::int8_t> labels);
@@ -72,12 +78,16 @@ class Trainer {
   /// Snapshot of the current support set (points with nonzero weight).
   std::shared_ptr<const Model> model() const;
 
-  std::size_t dim() const { return limits_.dim(); }
+  /// Joint values per configuration.
+  std::size_t dim() const { return features_.configurationDim(); }
   std::size_t size() const { return static_cast<std::size_t>(y_.size()); }
   std::size_t supportCount() const { return supportCount_; }
-  const JointLimits& limits() const { return limits_; }
+  const FeatureMap& features() const { return features_; }
+  const JointLimits& limits() const { return features_.limits(); }
   const TrainParams& params() const { return params_; }
-  /// Training points in input space, one per row.
+  /// Training configurations (joint values), one per row.
+  const Configurations& configurations() const { return q_; }
+  /// Their features, one per row.
   const Eigen::MatrixXd& points() const { return x_; }
   const Eigen::VectorXd& labels() const { return y_; }
   const Eigen::VectorXd& weights() const { return alpha_; }
@@ -92,9 +102,10 @@ class Trainer {
   std::size_t countMisclassified(const Eigen::VectorXd& f) const;
   void removeNonSupportPoints();
 
-  JointLimits limits_;
+  FeatureMap features_;
   TrainParams params_;
-  Eigen::MatrixXd x_;  // N x d, input space
+  Configurations q_;   // N x dim(), joint values
+  Eigen::MatrixXd x_;  // N x featureDim(), features of q_
   Eigen::VectorXd y_;  // +1 / -1
   Eigen::VectorXd alpha_;
   Eigen::VectorXd f_;

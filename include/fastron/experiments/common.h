@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fastron/core/collision_checker.h"
 #include "fastron/core/types.h"
-#include "fastron/geometry/collision_checker.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/proxy/proxy_collision_detector.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "fastron/geometry/collision_checker.h"
+#include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"

@@ -7,7 +7,7 @@
 #include <memory>
 #include <mutex>
 
-#include "fastron/geometry/collision_checker.h"
+#include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"

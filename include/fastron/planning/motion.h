@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "fastron/geometry/collision_checker.h"
+#include "fastron/core/collision_checker.h"
 
 namespace fastron {
 

@@ -9,9 +9,9 @@
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/StateValidityChecker.h>
 
+#include "fastron/core/collision_checker.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/model.h"
-#include "fastron/geometry/collision_checker.h"
 
 namespace fastron {
 

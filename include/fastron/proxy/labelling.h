@@ -2,8 +2,8 @@
 // Parallel labelling of configurations by an exact collision checker: the labelling dominates
 // the update time (paper, Sec. IV-B), so it runs on every core.
 
+#include "fastron/core/collision_checker.h"
 #include "fastron/core/types.h"
-#include "fastron/geometry/collision_checker.h"
 
 namespace fastron {
 

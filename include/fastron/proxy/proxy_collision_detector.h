@@ -12,10 +12,10 @@
 #include <thread>
 
 #include "fastron/core/active_learning.h"
-#include "fastron/core/joint_limits.h"
+#include "fastron/core/collision_checker.h"
+#include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 #include "fastron/core/trainer.h"
-#include "fastron/geometry/collision_checker.h"
 
 namespace fastron {
 
@@ -38,7 +38,11 @@ struct StepReport {
 class ProxyCollisionDetector {
  public:
   /// `oracle` labels configurations (it must be safe to call from several threads unless
-  /// params.labelThreads == 1) and its dof() must equal limits.dim().
+  /// params.labelThreads == 1) and its dof() must equal features.configurationDim(). The models
+  /// learn on `features` (e.g. a robot's task-space features, see geometry/control_points.h).
+  ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle, FeatureMap features,
+                         ProxyParams params = {});
+  /// Joint-space features: the joint values scaled by `limits` (the paper's input).
   ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle, JointLimits limits,
                          ProxyParams params = {});
   ~ProxyCollisionDetector();
@@ -69,14 +73,15 @@ class ProxyCollisionDetector {
   bool backgroundRunning() const { return worker_.joinable(); }
 
   const CollisionChecker& oracle() const { return *oracle_; }
-  const JointLimits& limits() const { return limits_; }
+  const FeatureMap& features() const { return features_; }
+  const JointLimits& limits() const { return features_.limits(); }
   const ProxyParams& params() const { return params_; }
 
  private:
   StepReport finish(StepReport report, std::chrono::steady_clock::time_point start);
 
   std::shared_ptr<const CollisionChecker> oracle_;
-  JointLimits limits_;
+  FeatureMap features_;
   ProxyParams params_;
   Rng rng_;
   Trainer trainer_;

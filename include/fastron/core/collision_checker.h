@@ -1,15 +1,15 @@
 #pragma once
-// The interface every exact collision checker implements, and an adapter for any callable.
+// The interface every exact collision checker (the oracle of the paper) implements, and an
+// adapter for any callable. In core, so that the proxy pipeline needs no geometry library.
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "fastron/core/types.h"
-#include "fastron/geometry/robot.h"
-#include "fastron/geometry/scene.h"
 
 namespace fastron {
 
@@ -39,21 +39,6 @@ class CollisionChecker {
  private:
   mutable std::atomic<std::uint64_t> calls_{0};
 };
-
-/// Options of the robot-against-scene checkers (FclChecker, GjkChecker).
-struct CheckerOptions {
-  bool selfCollision = false;  ///< also check link pairs not allowed to touch
-  double padding = 0;          ///< grow every robot shape by this much (not meshes)
-};
-
-/// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it
-/// cannot be padded (a mesh) or the padding is invalid.
-Shape paddedShape(const Robot& robot, std::size_t index, const CheckerOptions& options);
-
-/// Robot-obstacle pairs the scene allows to touch (its allowed collision matrix names a link and an
-/// obstacle, e.g. a grasped object and the hand): allowed[s * obstacles + o] = 1 when robot shape s
-/// may touch obstacle o. Empty when the scene allows no such pair.
-std::vector<std::uint8_t> allowedObstacleContacts(const Robot& robot, const Scene& scene);
 
 /// A CollisionChecker around a callable `bool(const double* q)`, e.g. an analytic oracle.
 /// The callable must itself be safe to call concurrently.

@@ -1,0 +1,106 @@
+#pragma once
+// The model's input map: from a configuration (joint values) to the features the kernel compares.
+//
+// Two kinds. Joint scaling is the paper's (Sec. II-G): q_in = (2 q - q_u - q_l) / (q_u - q_l).
+// Kinematic features are the world positions of a few control points on the robot, the input of
+// the authors' forward-kinematics kernel (Das and Yip, RA-L 2020): two configurations are near
+// when the robot's body is near, which in 7 joints is far more accurate with far fewer support
+// points. `core` knows no robot: kinematic features reach it through PointKinematics, which the
+// geometry layer implements.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fastron/core/joint_limits.h"
+#include "fastron/core/types.h"
+
+namespace fastron {
+
+/// A point fixed in a link's frame whose world position is a feature.
+struct ControlPoint {
+  std::string link;
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< in the link's frame, metres
+
+  bool operator==(const ControlPoint&) const = default;
+};
+
+/// What a model file records of the kinematics behind its features, to refuse a robot that differs.
+struct KinematicsDescription {
+  std::string robot;
+  std::vector<std::string> joints;  ///< actuated joints, in configuration order
+  std::vector<ControlPoint> points;
+  std::uint64_t checksum = 0;  ///< of the kinematic description (joint origins, axes, types)
+
+  bool operator==(const KinematicsDescription&) const = default;
+};
+
+/// World positions of control points as a function of the configuration. Implementations are
+/// immutable and thread-safe; positions() does not allocate.
+class PointKinematics {
+ public:
+  virtual ~PointKinematics() = default;
+  virtual std::size_t dof() const = 0;
+  virtual std::size_t pointCount() const = 0;
+  /// Writes 3 * pointCount() coordinates (x, y, z of each point, metres) for dof() joint values.
+  virtual void positions(const double* q, double* out) const = 0;
+  /// Float version of positions() for the query path; may be computed in float.
+  virtual void positions(const double* q, float* out) const = 0;
+  virtual KinematicsDescription description() const = 0;
+};
+
+enum class FeatureKind : std::uint8_t {
+  JointScaling = 0,  ///< joint values scaled to [-1, 1] by the joint limits
+  Kinematic = 1,     ///< world positions of control points, times a scale
+};
+std::string_view toString(FeatureKind kind);
+/// "joints" or "fk"; throws InvalidArgument naming the value.
+FeatureKind parseFeatureKind(std::string_view name);
+
+/// Largest feature dimension a model accepts (queries keep their features on the stack).
+inline constexpr std::size_t kMaxFeatureDimension = 192;
+
+/// A value: cheap to copy (the kinematics are shared, immutable). Always holds the joint limits,
+/// which bound sampling (uniform and active-learning samples are drawn in scaled joint space).
+class FeatureMap {
+ public:
+  FeatureMap() = default;
+  static FeatureMap jointScaling(JointLimits limits);
+  /// Features = `scale` * world positions of the kinematics' control points. Throws
+  /// InvalidArgument when the kinematics are null, their dof differs from the limits, they have
+  /// no point or too many, or the scale is not finite and positive.
+  static FeatureMap kinematic(JointLimits limits, std::shared_ptr<const PointKinematics> kinematics,
+                              double scale = 1);
+
+  FeatureKind kind() const { return kind_; }
+  const JointLimits& limits() const { return limits_; }
+  /// Joint values per configuration.
+  std::size_t configurationDim() const { return limits_.dim(); }
+  /// Features per configuration.
+  std::size_t featureDim() const;
+  /// Null for joint scaling.
+  const std::shared_ptr<const PointKinematics>& kinematics() const { return kinematics_; }
+  double scale() const { return scale_; }
+
+  /// Features of one configuration; q holds configurationDim() finite values (not checked: the
+  /// hot path). `x` receives featureDim() values.
+  void map(const double* q, double* x) const;
+  void map(const double* q, float* x) const;
+  /// Features of every row; throws InvalidArgument on a wrong column count or a non-finite value.
+  Eigen::MatrixXd map(const Configurations& q) const;
+
+  /// "joints" or "fk (N points)": for reports.
+  std::string summary() const;
+
+ private:
+  FeatureKind kind_ = FeatureKind::JointScaling;
+  JointLimits limits_;
+  std::shared_ptr<const PointKinematics> kinematics_;
+  double scale_ = 1;
+};
+
+}  // namespace fastron

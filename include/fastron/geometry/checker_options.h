@@ -1,0 +1,29 @@
+#pragma once
+// What the robot-against-scene checkers (FclChecker, GjkChecker) share: their options, padded
+// robot shapes, and the robot-obstacle pairs a scene allows to touch.
+
+#include <cstdint>
+#include <vector>
+
+#include "fastron/core/collision_checker.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/scene.h"
+
+namespace fastron {
+
+/// Options of the robot-against-scene checkers (FclChecker, GjkChecker).
+struct CheckerOptions {
+  bool selfCollision = false;  ///< also check link pairs not allowed to touch
+  double padding = 0;          ///< grow every robot shape by this much (not meshes)
+};
+
+/// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it
+/// cannot be padded (a mesh) or the padding is invalid.
+Shape paddedShape(const Robot& robot, std::size_t index, const CheckerOptions& options);
+
+/// Robot-obstacle pairs the scene allows to touch (its allowed collision matrix names a link and an
+/// obstacle, e.g. a grasped object and the hand): allowed[s * obstacles + o] = 1 when robot shape s
+/// may touch obstacle o. Empty when the scene allows no such pair.
+std::vector<std::uint8_t> allowedObstacleContacts(const Robot& robot, const Scene& scene);
+
+}  // namespace fastron

@@ -1,0 +1,92 @@
+#pragma once
+// Task-space features for a robot: control points on its links and the fast, positions-only
+// forward kinematics that places them (the PointKinematics of core/feature_map.h).
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fastron/core/feature_map.h"
+#include "fastron/geometry/robot.h"
+
+namespace fastron {
+
+/// How control points are chosen automatically (see defaultControlPoints).
+struct ControlPointOptions {
+  /// At most this many points (0 = every candidate left after the spacing rule).
+  std::size_t maxPoints = 0;
+  /// A candidate closer than this (mean distance over sampled configurations, metres) to a point
+  /// already chosen adds little and is skipped.
+  double minSpacing = 0.05;
+};
+
+/// The control points a task-space model of `robot` uses by default. Candidates are the origins
+/// of the links that move under the actuated joints, and, for each link with collision geometry
+/// but no moving descendant, the far end of its geometry (the centre of the face of its bounding
+/// box farthest from the link origin along the longest side). The candidates are placed at 64
+/// seeded random configurations; a candidate that stays within 1 mm of one place is dropped.
+/// The rest are taken in order of how much they move (standard deviation of the position, the
+/// points far down the chain first), skipping one closer than options.minSpacing on average to
+/// a point already taken, up to options.maxPoints. The result depends only on the robot.
+std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
+                                               const ControlPointOptions& options = {});
+
+/// Control points at the origins of the named links, in order; throws InvalidArgument naming an
+/// unknown link.
+std::vector<ControlPoint> linkOriginPoints(const Robot& robot,
+                                           const std::vector<std::string>& links);
+
+/// 64-bit FNV-1a hash of what the positions depend on: the links and joints in tree order with
+/// their types, origins, axes and held positions, and the actuated joints.
+std::uint64_t kinematicsChecksum(const Robot& robot);
+
+/// World positions (in the robot's base frame) of control points. The robot's kinematic tree is
+/// compiled once: fixed and held joints are folded into constant transforms, each actuated joint
+/// on the way to a point becomes one rotation (or translation) about a local z axis, so a query
+/// costs one sine and cosine and two 3x3 products per joint, and nothing is allocated.
+class RobotPointKinematics final : public PointKinematics {
+ public:
+  /// Throws InvalidArgument for an unknown link or no points.
+  RobotPointKinematics(const Robot& robot, std::vector<ControlPoint> points);
+
+  std::size_t dof() const override { return dof_; }
+  std::size_t pointCount() const override { return points_.size(); }
+  void positions(const double* q, double* out) const override;
+  void positions(const double* q, float* out) const override;
+  KinematicsDescription description() const override { return description_; }
+
+  /// Actuated joints that move at least one control point.
+  std::size_t steps() const { return steps_.size(); }
+
+ private:
+  struct Step {
+    int parent = -1;  ///< step whose frame this one's hangs off, -1 for the base
+    int joint = 0;    ///< index into the configuration
+    bool prismatic = false;
+    Eigen::Matrix3d rotation;  ///< constant transform from the parent step's frame, then
+    Eigen::Vector3d translation;  ///< a rotation about (or translation along) local z by q
+  };
+  struct Point {
+    int step = -1;  ///< frame the point is fixed in, -1 for the base
+    Eigen::Vector3d local;
+  };
+  template <class T>
+  void place(const double* q, T* out) const;
+
+  std::size_t dof_ = 0;
+  std::vector<Step> steps_;
+  std::vector<Point> points_;
+  KinematicsDescription description_;
+};
+
+/// Largest number of actuated joints between the base and a control point.
+inline constexpr std::size_t kMaxKinematicSteps = 64;
+
+/// The model's features for `robot`: joint scaling by its limits, or the world positions of
+/// `points` (defaultControlPoints when empty) scaled by `scale`.
+FeatureMap robotFeatures(const Robot& robot, FeatureKind kind,
+                         std::vector<ControlPoint> points = {}, double scale = 1);
+
+}  // namespace fastron
