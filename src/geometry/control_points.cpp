@@ -73,7 +73,7 @@ Eigen::Vector3d farEnd(const Eigen::AlignedBox3d& bounds) {
   bounds.sizes().maxCoeff(&axis);
   Eigen::Vector3d p = bounds.center();
   p[axis] = std::abs(bounds.max()[axis]) >= std::abs(bounds.min()[axis]) ? bounds.max()[axis]
-                                                                          : bounds.min()[axis];
+                                                                         : bounds.min()[axis];
   return p;
 }
 
@@ -180,8 +180,9 @@ std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
     if (!tooClose) chosen.push_back(&c);
   }
   if (chosen.empty()) {
-    throw InvalidArgument("robot '" + robot.name() +
-                          "': no link moves under the actuated joints, so there is no control point");
+    throw InvalidArgument(
+        "robot '" + robot.name() +
+        "': no link moves under the actuated joints, so there is no control point");
   }
   std::vector<ControlPoint> points;
   for (const Candidate* c : chosen) points.push_back(c->point);
@@ -218,7 +219,8 @@ std::uint64_t kinematicsChecksum(const Robot& robot) {
 
 RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<ControlPoint> points)
     : dof_(robot.dof()) {
-  if (points.empty()) throw InvalidArgument("robot '" + robot.name() + "': no control points given");
+  if (points.empty())
+    throw InvalidArgument("robot '" + robot.name() + "': no control points given");
   const auto& joints = robot.joints();
   const auto& actuated = robot.actuatedJoints();
   // Each link's frame as (step, constant transform from that step's frame): fixed and held
@@ -329,8 +331,12 @@ void RobotPointKinematics::place(const double* q, T* out) const {
   }
 }
 
-void RobotPointKinematics::positions(const double* q, double* out) const { place(q, out); }
-void RobotPointKinematics::positions(const double* q, float* out) const { place(q, out); }
+void RobotPointKinematics::positions(const double* q, double* out) const {
+  place(q, out);
+}
+void RobotPointKinematics::positions(const double* q, float* out) const {
+  place(q, out);
+}
 
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, std::vector<ControlPoint> points,
                          double scale) {

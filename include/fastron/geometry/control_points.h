@@ -65,7 +65,7 @@ class RobotPointKinematics final : public PointKinematics {
     int parent = -1;  ///< step whose frame this one's hangs off, -1 for the base
     int joint = 0;    ///< index into the configuration
     bool prismatic = false;
-    Eigen::Matrix3d rotation;  ///< constant transform from the parent step's frame, then
+    Eigen::Matrix3d rotation;     ///< constant transform from the parent step's frame, then
     Eigen::Vector3d translation;  ///< a rotation about (or translation along) local z by q
   };
   struct Point {
