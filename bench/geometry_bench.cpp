@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "fastron/core/active_learning.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
@@ -69,6 +70,29 @@ void BM_ForwardKinematics(benchmark::State& state) {
   state.SetLabel(robot.name());
 }
 BENCHMARK(BM_ForwardKinematics)->DenseRange(0, 5)->ArgName("robot");
+
+// Task-space features: the world positions of the robot's automatic control points (at most
+// `points` of them), float path (queries) and double path (training).
+template <class T>
+void BM_ControlPoints(benchmark::State& state) {
+  const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
+  const RobotPointKinematics kinematics(
+      robot, defaultControlPoints(robot, {.maxPoints = static_cast<std::size_t>(state.range(1))}));
+  const Configurations q = queries(robot);
+  std::vector<T> out(3 * kinematics.pointCount());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    kinematics.positions(q.row(static_cast<Eigen::Index>(i)).data(), out.data());
+    benchmark::DoNotOptimize(out.data());
+    i = (i + 1) % 1024;
+  }
+  state.SetLabel(robot.name() + ", " + std::to_string(kinematics.pointCount()) + " points, " +
+                 std::to_string(kinematics.steps()) + " joints");
+}
+BENCHMARK(BM_ControlPoints<float>)
+    ->ArgsProduct({{2, 3, 4, 5}, {1, 3, 6, 0}})
+    ->ArgNames({"robot", "points"});
+BENCHMARK(BM_ControlPoints<double>)->ArgsProduct({{2, 4}, {3}})->ArgNames({"robot", "points"});
 
 template <class Checker>
 void BM_Check(benchmark::State& state) {

@@ -20,7 +20,7 @@ namespace fastron::cli {
 namespace {
 
 struct BenchOptions {
-  std::string name, out, problems;
+  std::string name, out, problems, features = "fk";
   std::size_t trials = 0;                // 0: the experiment's default
   double timeLimit = 0, resolution = 0;  // 0: the experiment's default
   std::uint64_t seed = 1;
@@ -45,6 +45,7 @@ int runBench(const BenchOptions& o) {
   const auto setPlanning = [&o](auto& options, std::size_t defaultTrials) {
     options.seed = o.seed;
     options.quick = o.quick;
+    options.features = parseFeatureKind(o.features);
     if (o.timeLimit > 0) options.timeLimit = o.timeLimit;
     if (o.resolution > 0) options.resolution = o.resolution;
     if constexpr (requires { options.trials; }) {
@@ -72,6 +73,7 @@ int runBench(const BenchOptions& o) {
     changing.steps = o.quick ? 3 : 50;
     changing.seed = o.seed;
     changing.quick = o.quick;
+    changing.features = parseFeatureKind(o.features);
     if (o.quick) changing.cases = {"4dof", "7dof-3boxes"};
     results = runChanging(changing, progress);
     report = changingReport(results, changing);
@@ -80,6 +82,7 @@ int runBench(const BenchOptions& o) {
     sweep.trials = o.trials ? o.trials : (o.quick ? 1 : 3);
     sweep.seed = o.seed;
     sweep.quick = o.quick;
+    sweep.features = parseFeatureKind(o.features);
     if (o.quick) sweep.obstacles = {1, 10};
     results = runObstacleSweep(sweep, progress);
     report = sweepReport(results, sweep);
@@ -163,6 +166,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "planning experiments: joint-space step of edge checks")
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
+  cmd->add_option("--features", o->features,
+                  "changing, sweep and planning experiments: Fastron's input, fk (task-space "
+                  "features) or joints (the paper's)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fk", "joints"}));
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
   cmd->add_flag("--quick", o->quick, "small sizes, for a fast check");
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");

@@ -31,5 +31,6 @@ void addCheckCommand(CLI::App& app, int& exitCode);
 void addRobotsCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addPlanCommand(CLI::App& app, int& exitCode);
+void addSampleCommand(CLI::App& app, int& exitCode);
 
 }  // namespace fastron::cli

@@ -19,10 +19,12 @@ namespace {
 struct DemoCommandOptions {
   std::string out = "fastron-demo";
   DemoOptions demo;
+  std::string features = "fk";
   bool plot = true;
 };
 
-int runDemoCommand(const DemoCommandOptions& o) {
+int runDemoCommand(DemoCommandOptions o) {
+  o.demo.features = parseFeatureKind(o.features);
   const std::filesystem::path dir(o.out);
   std::filesystem::create_directories(dir);
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.demo.seed));
@@ -85,6 +87,10 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->demo.seed, "seed of every random choice")->capture_default_str();
+  cmd->add_option("--features", o->features,
+                  "Fastron's input: fk (task-space features) or joints (the paper's)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fk", "joints"}));
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");
   cmd->callback([o, &exitCode] { exitCode = runDemoCommand(*o); });
 }

@@ -1,26 +1,68 @@
-// fastron eval: a model against a labelled dataset.
+// fastron eval: a model against a labelled dataset, or against FCL on fresh samples of a scene.
 
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
+#include "fastron/core/active_learning.h"
 #include "fastron/core/dataset.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
+#include "fastron/experiments/common.h"
+#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/scene_file.h"
+#include "fastron/proxy/labelling.h"
 #include "report_format.h"
+#include "robot_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct EvalOptions {
-  std::string model, data;
+  std::string model, data, scene;
+  RobotOptions robot;
+  std::size_t samples = 20000;
+  std::uint64_t seed = 2;
+  bool selfCollision = false;
 };
 
+/// Mean seconds per call of `fn` over the rows of q, repeated to at least 0.2 s.
+template <class Fn>
+double secondsPerRow(const Configurations& q, Fn&& fn) {
+  using Clock = std::chrono::steady_clock;
+  std::size_t calls = 0;
+  const auto start = Clock::now();
+  while (Clock::now() - start < std::chrono::milliseconds(200)) {
+    for (Eigen::Index i = 0; i < q.rows(); ++i) fn(q.row(i).data());
+    calls += static_cast<std::size_t>(q.rows());
+  }
+  return std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(calls);
+}
+
 int runEval(const EvalOptions& o) {
-  const Dataset data = readDataset(o.data);
-  const Model model = loadModel(o.model);
+  if (o.data.empty() == o.scene.empty()) {
+    throw InvalidArgument("give --data (a labelled dataset) or --robot with --scene, not both");
+  }
+  if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
+  std::optional<Robot> robot;
+  if (!o.robot.robot.empty()) robot = loadRobotFromOptions(o.robot);
+  const Model model = robot ? loadModelFor(o.model, *robot) : loadModel(o.model);
+
+  Dataset data;
+  std::shared_ptr<const FclChecker> fcl;
+  if (!o.scene.empty()) {
+    fcl = std::make_shared<const FclChecker>(*robot, loadScene(o.scene),
+                                             CheckerOptions{o.selfCollision});
+    Rng rng(o.seed);
+    data.points = uniformConfigurations(robot->limits(), o.samples, rng);
+    data.labels = labelConfigurations(*fcl, data.points);
+  } else {
+    data = readDataset(o.data);
+  }
   if (model.dim() != data.dim()) {
     throw InvalidArgument(o.data + " has " + std::to_string(data.dim()) +
                           " configuration columns, but the model " + o.model + " has dimension " +
@@ -28,29 +70,40 @@ int runEval(const EvalOptions& o) {
   }
   const ConfusionCounts c = evaluate(model, data.points, data.labels);
 
-  // Query time: the dataset's configurations, one at a time, repeated to at least 0.2 s.
-  using Clock = std::chrono::steady_clock;
-  std::size_t queries = 0;
-  volatile double sink = 0;  // keeps the queries from being optimised away
-  const auto start = Clock::now();
-  while (Clock::now() - start < std::chrono::milliseconds(200)) {
-    for (Eigen::Index i = 0; i < data.points.rows(); ++i)
-      sink = sink + model.score(data.points.row(i).data());
-    queries += data.size();
-  }
-  const double perQuery =
-      std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(queries);
+  volatile double sink = 0;  // keeps the work from being optimised away
+  const double query =
+      secondsPerRow(data.points, [&](const double* q) { sink = sink + model.score(q); });
+  std::vector<float> x(model.featureDim());
+  const double features = secondsPerRow(data.points, [&](const double* q) {
+    model.features().map(q, x.data());
+    sink = sink + x[0];
+  });
 
   std::cout << "model       " << o.model << ": dimension " << model.dim() << ", "
-            << model.supportCount() << " support points, kernel " << toString(model.kernel().type)
-            << " gamma " << model.kernel().gamma << '\n';
-  std::cout << "data        " << o.data << ": " << data.size() << " configurations\n";
+            << model.supportCount() << " support points, features " << model.features().summary()
+            << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
+            << '\n';
+  if (fcl) {
+    std::cout << "data        " << data.size() << " uniform configurations of " << o.scene
+              << " labelled by FCL (seed " << o.seed << "), "
+              << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
+                      static_cast<double>(data.size()))
+              << " in collision\n";
+  } else {
+    std::cout << "data        " << o.data << ": " << data.size() << " configurations\n";
+  }
   std::cout << "accuracy    " << rate(c.accuracy()) << "\nTPR         " << rate(c.tpr())
             << "\nTNR         " << rate(c.tnr()) << '\n';
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
-  std::cout << "query time  " << duration(perQuery) << " per configuration (mean of " << queries
+  std::cout << "query time  " << duration(query) << " per configuration (features "
+            << duration(features) << ", kernel sum " << duration(std::max(0.0, query - features))
             << ")\n";
+  if (fcl) {
+    const double exact = meanSecondsPerCheck(data.points, *fcl, 0.2);
+    std::cout << "FK+FCL      " << duration(exact) << " per configuration: the model is "
+              << times(exact / query) << " faster\n";
+  }
   return 0;
 }
 
@@ -58,13 +111,22 @@ int runEval(const EvalOptions& o) {
 
 void addEvalCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<EvalOptions>();
-  CLI::App* cmd = app.add_subcommand("eval", "Evaluate a model on a labelled dataset");
+  CLI::App* cmd = app.add_subcommand(
+      "eval", "Evaluate a model on a labelled dataset, or against FCL on a robot in a scene");
   cmd->add_option("--model", o->model, "model file from fastron train")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--data", o->data, "CSV or .npy labelled dataset")
-      ->required()
+  cmd->add_option("--data", o->data, "CSV or .npy labelled dataset")->check(CLI::ExistingFile);
+  addRobotOptions(*cmd, o->robot, false);
+  cmd->add_option("--scene", o->scene,
+                  "with --robot: compare with FCL on fresh uniform samples of this scene")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--samples", o->samples, "with --scene: how many samples")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--seed", o->seed, "with --scene: seed of the samples")->capture_default_str();
+  cmd->add_flag("--self-collision", o->selfCollision,
+                "with --scene: count self-collisions as collisions");
   cmd->callback([o, &exitCode] { exitCode = runEval(*o); });
 }
 

@@ -8,11 +8,13 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
 #include "fastron/core/error.h"
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/common.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/scene_file.h"
@@ -29,8 +31,10 @@ struct PlanOptions {
   std::string scene, request, model, out, checker = "fastron", planner = "RRTConnect";
   std::vector<double> start, goal;
   std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
+  FeatureOptions features;
   std::size_t samples = 5000, updates = 3;
-  double gamma = 5, beta = 500, resolution = 0.03, timeLimit = 10, padding = 0;
+  std::optional<double> gamma, beta;
+  double resolution = 0.03, timeLimit = 10, padding = 0;
   std::uint64_t seed = 1;
   bool selfCollision = false;
 };
@@ -110,10 +114,15 @@ int runPlan(const PlanOptions& o) {
   } else {
     std::shared_ptr<const Model> model;
     if (!o.model.empty()) {
-      model = std::make_shared<const Model>(loadModel(o.model, robot.dof()));
-      std::cout << "model    " << o.model << ", " << model->supportCount() << " support points\n";
+      model = std::make_shared<const Model>(loadModelFor(o.model, robot));
+      std::cout << "model    " << o.model << ", " << model->supportCount()
+                << " support points, features " << model->features().summary() << '\n';
     } else {
-      ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(o.gamma, o.beta, o.seed));
+      const FeatureMap features = featuresFromOptions(o.features, robot);
+      ProxyParams params = experimentProxyParams(features.kind(), 5, 500, o.seed);
+      if (o.gamma) params.train.kernel.gamma = *o.gamma;
+      if (o.beta) params.train.beta = *o.beta;
+      ProxyCollisionDetector proxy(fcl, features, params);
       const auto began = std::chrono::steady_clock::now();
       proxy.initialize(o.samples);
       for (std::size_t u = 0; u < o.updates; ++u) proxy.step();
@@ -122,7 +131,8 @@ int runPlan(const PlanOptions& o) {
                 << " active-learning updates in "
                 << duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
                                 .count())
-                << ", " << model->supportCount() << " support points\n";
+                << ", " << model->supportCount() << " support points, features "
+                << features.summary() << '\n';
     }
     plan = planVerified(model, fcl, limits, start, goal, options);
   }
@@ -170,11 +180,12 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--updates", o->updates, "active-learning updates after them")
       ->capture_default_str();
-  cmd->add_option("--gamma", o->gamma, "kernel width of the trained model")
-      ->capture_default_str()
+  addFeatureOptions(*cmd, o->features);
+  cmd->add_option("--gamma", o->gamma,
+                  "kernel width of the trained model (default: 40 for fk features, 5 for joints)")
       ->check(numberAbove(0));
-  cmd->add_option("--beta", o->beta, "conditional bias of the trained model")
-      ->capture_default_str()
+  cmd->add_option("--beta", o->beta,
+                  "conditional bias of the trained model (default: 10 for fk, 500 for joints)")
       ->check(numberAbove(1, true));
   cmd->add_option("--resolution", o->resolution, "joint-space step of edge checks")
       ->capture_default_str()

@@ -32,4 +32,11 @@ inline std::string duration(double seconds) {
   return buffer;
 }
 
+/// A speed ratio such as "3.4x".
+inline std::string times(double ratio) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1fx", ratio);
+  return buffer;
+}
+
 }  // namespace fastron::cli

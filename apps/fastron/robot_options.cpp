@@ -1,13 +1,14 @@
 #include "robot_options.h"
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot_library.h"
 
 namespace fastron::cli {
 
-void addRobotOptions(CLI::App& cmd, RobotOptions& options) {
+void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required) {
   cmd.add_option("--robot", options.robot, "a shipped robot (see fastron robots) or a URDF file")
-      ->required();
+      ->required(required);
   cmd.add_option(
          "--joints", options.joints,
          "actuated joints, comma-separated (default: the robot's own list); others stay at 0")
@@ -34,6 +35,38 @@ Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const
                           " actuated joints (" + names + ")");
   }
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
+  cmd.add_option("--features", options.kind,
+                 "the model's input: fk (world positions of control points on the robot) or "
+                 "joints (scaled joint values, as in the paper)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fk", "joints"}));
+  cmd.add_option("--control-links", options.controlLinks,
+                 "fk: links whose origins are the control points, comma-separated (default: "
+                 "chosen automatically, see docs/algorithms.md)")
+      ->delimiter(',');
+  cmd.add_option("--control-points", options.automatic.maxPoints,
+                 "fk: at most this many automatic control points (0: all)")
+      ->capture_default_str();
+  cmd.add_option("--control-spacing", options.automatic.minSpacing,
+                 "fk: automatic control points at least this far apart on average (m)")
+      ->capture_default_str();
+}
+
+FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot) {
+  const FeatureKind kind = parseFeatureKind(options.kind);
+  if (kind == FeatureKind::JointScaling) {
+    if (!options.controlLinks.empty()) {
+      throw InvalidArgument("--control-links needs --features fk");
+    }
+    return robotFeatures(robot, kind);
+  }
+  std::vector<ControlPoint> points = options.controlLinks.empty()
+                                         ? defaultControlPoints(robot, options.automatic)
+                                         : linkOriginPoints(robot, options.controlLinks);
+  return robotFeatures(robot, kind, std::move(points));
 }
 
 }  // namespace fastron::cli

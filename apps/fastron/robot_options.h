@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/feature_map.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot.h"
 
 namespace fastron::cli {
@@ -16,7 +18,7 @@ struct RobotOptions {
   std::vector<std::string> packagePaths;
 };
 
-void addRobotOptions(CLI::App& cmd, RobotOptions& options);
+void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required = true);
 
 /// The shipped robot or URDF, with --joints applied.
 Robot loadRobotFromOptions(const RobotOptions& options);
@@ -26,5 +28,17 @@ Robot loadRobotFromOptions(const RobotOptions& options);
 /// differs.
 Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const Robot& robot,
                                         const char* option);
+
+/// The options that choose a model's features: --features, --control-links, --control-points.
+struct FeatureOptions {
+  std::string kind = "fk";
+  std::vector<std::string> controlLinks;  ///< link origins as control points (default: automatic)
+  ControlPointOptions automatic;          ///< the automatic choice's cap and spacing
+};
+
+void addFeatureOptions(CLI::App& cmd, FeatureOptions& options);
+
+/// The features of a model of `robot` chosen by the options.
+FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot);
 
 }  // namespace fastron::cli

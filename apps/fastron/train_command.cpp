@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 #include "commands.h"
 #include "fastron/core/dataset.h"
@@ -11,17 +12,26 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
 #include "fastron/core/trainer.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/scene_file.h"
+#include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
+#include "robot_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct TrainOptions {
-  std::string data, output, kernel = "rq";
+  std::string data, output, kernel = "rq", scene;
   std::vector<std::string> limits;
-  TrainParams params;
+  RobotOptions robot;
+  FeatureOptions features;
+  std::optional<double> gamma, beta;
+  std::optional<std::size_t> maxIterations, maxSupport;
+  std::size_t samples = 8000, activeLearning = 0;
   double holdout = 0;
   std::uint64_t seed = 1;
+  bool selfCollision = false;
 };
 
 /// "lo:hi" per joint, or the dataset's bounding box when none are given.
@@ -65,12 +75,107 @@ Dataset rows(const Dataset& data, const std::vector<Eigen::Index>& index) {
   return out;
 }
 
+/// The training settings: the feature kind's defaults, then what the options give.
+TrainParams trainParams(const TrainOptions& o, FeatureKind kind, std::size_t defaultIterations) {
+  TrainParams params = defaultTrainParams(kind);
+  params.kernel.type = parseKernelType(o.kernel);
+  if (o.gamma) params.kernel.gamma = *o.gamma;
+  if (o.beta) params.beta = *o.beta;
+  params.maxIterations = o.maxIterations.value_or(defaultIterations);
+  params.maxSupportPoints = o.maxSupport.value_or(5000);
+  return params;
+}
+
+void printParams(const TrainParams& params, const FeatureMap& features) {
+  std::cout << "features      " << features.summary() << '\n';
+  if (features.kind() == FeatureKind::Kinematic) {
+    std::cout << "control       ";
+    const auto points = features.kinematics()->description().points;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      std::cout << (p ? ", " : "") << points[p].link;
+      if (!points[p].offset.isZero()) {
+        std::cout << " + (" << points[p].offset.transpose().format({3, 0, ", "}) << ")";
+      }
+    }
+    std::cout << '\n';
+  }
+  std::cout << "kernel        " << toString(params.kernel.type) << ", gamma " << params.kernel.gamma
+            << ", beta " << params.beta << '\n';
+}
+
+void printReport(const UpdateReport& report) {
+  std::cout << "update        " << report.iterations
+            << " iterations, stopped: " << toString(report.stopReason)
+            << (report.reverted ? " (reverted to the better earlier solution)" : "") << ", "
+            << duration(seconds(report.elapsed)) << '\n';
+  std::cout << "support set   " << report.supportCount << " points; " << report.misclassified
+            << " training points misclassified\n";
+}
+
+/// fastron train --robot R --scene S: FCL-labelled uniform samples, Algorithm 1, then K rounds
+/// of active learning (Algorithm 2).
+int trainOnScene(const TrainOptions& o) {
+  const Robot robot = loadRobotFromOptions(o.robot);
+  const Scene scene = loadScene(o.scene);
+  const auto fcl =
+      std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
+  const FeatureMap features = featuresFromOptions(o.features, robot);
+  ProxyParams params;
+  params.train = trainParams(o, features.kind(), 20000);
+  params.seed = o.seed;
+  std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
+            << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+  printParams(params.train, features);
+  ProxyCollisionDetector proxy(fcl, features, params);
+  StepReport step = proxy.initialize(o.samples);
+  std::cout << "samples       " << o.samples << " labelled by FCL in "
+            << duration(seconds(step.labelTime)) << '\n';
+  printReport(step.update);
+  for (std::size_t k = 0; k < o.activeLearning; ++k) {
+    step = proxy.step();
+    std::cout << "active        round " << (k + 1) << ": " << step.added << " new points, |S| "
+              << step.update.supportCount << ", " << duration(seconds(step.total)) << '\n';
+  }
+  saveModel(*proxy.model(), o.output);
+  std::cout << "model         " << o.output << '\n';
+  return 0;
+}
+
 int runTrain(const TrainOptions& o) {
   if (o.holdout < 0 || o.holdout >= 1) throw InvalidArgument("--holdout must be in [0, 1)");
+  if (o.data.empty() == o.scene.empty()) {
+    throw InvalidArgument("give --data (a labelled dataset) or --robot with --scene, not both");
+  }
+  if (!o.scene.empty()) {
+    if (o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
+    if (!o.limits.empty())
+      throw InvalidArgument("--limits goes with --data; the robot has its own");
+    return trainOnScene(o);
+  }
   const Dataset data = readDataset(o.data);
-  TrainParams params = o.params;
-  params.kernel.type = parseKernelType(o.kernel);
-  const JointLimits limits = parseLimits(o.limits, data);
+  std::optional<Robot> robot;
+  if (!o.robot.robot.empty()) {
+    if (!o.limits.empty())
+      throw InvalidArgument("--limits goes with --data alone; the robot has its own");
+    robot = loadRobotFromOptions(o.robot);
+    if (robot->dof() != data.dim()) {
+      throw InvalidArgument(o.data + " has " + std::to_string(data.dim()) +
+                            " configuration columns but " + robot->name() + " has " +
+                            std::to_string(robot->dof()) + " actuated joints");
+    }
+  }
+  const FeatureMap features = robot ? featuresFromOptions(o.features, *robot)
+                                    : FeatureMap::jointScaling(parseLimits(o.limits, data));
+  // A dataset without a robot keeps the paper's settings of old (gamma 10, beta 1).
+  const TrainParams params = robot ? trainParams(o, features.kind(), 5000) : [&] {
+    TrainParams p;
+    p.kernel.type = parseKernelType(o.kernel);
+    p.kernel.gamma = o.gamma.value_or(p.kernel.gamma);
+    p.beta = o.beta.value_or(p.beta);
+    p.maxIterations = o.maxIterations.value_or(p.maxIterations);
+    p.maxSupportPoints = o.maxSupport.value_or(p.maxSupportPoints);
+    return p;
+  }();
 
   // Split off a random held-out share for validation.
   std::vector<Eigen::Index> order(data.size());
@@ -83,7 +188,7 @@ int runTrain(const TrainOptions& o) {
   const Dataset train =
       rows(data, {order.begin() + static_cast<std::ptrdiff_t>(held), order.end()});
 
-  Trainer trainer(limits, params);
+  Trainer trainer(features, params);
   trainer.addPoints(train.points, train.labels);
   const UpdateReport report = trainer.update();
   const auto model = trainer.model();
@@ -92,19 +197,18 @@ int runTrain(const TrainOptions& o) {
   std::cout << "data          " << o.data << ": " << data.size() << " configurations, dimension "
             << data.dim() << " (" << train.size() << " for training, " << test.size()
             << " held out)\n";
-  std::cout << "joint limits  " << (o.limits.empty() ? "from the data's range:" : "given:");
+  const JointLimits& limits = features.limits();
+  std::cout << "joint limits  "
+            << (robot              ? "the robot's:"
+                : o.limits.empty() ? "from the data's range:"
+                                   : "given:");
   for (std::size_t j = 0; j < data.dim(); ++j) {
     const auto jj = static_cast<Eigen::Index>(j);
     std::cout << ' ' << limits.lower()[jj] << ':' << limits.upper()[jj];
   }
-  std::cout << "\nkernel        " << toString(params.kernel.type) << ", gamma "
-            << params.kernel.gamma << ", beta " << params.beta << '\n';
-  std::cout << "update        " << report.iterations
-            << " iterations, stopped: " << toString(report.stopReason)
-            << (report.reverted ? " (reverted to the better earlier solution)" : "") << ", "
-            << duration(seconds(report.elapsed)) << '\n';
-  std::cout << "support set   " << report.supportCount << " points; " << report.misclassified
-            << " training points misclassified\n";
+  std::cout << '\n';
+  printParams(params, features);
+  printReport(report);
   if (test.size() > 0) {
     const ConfusionCounts c = evaluate(*model, test.points, test.labels);
     std::cout << "held out      accuracy " << rate(c.accuracy()) << ", TPR " << rate(c.tpr())
@@ -118,20 +222,38 @@ int runTrain(const TrainOptions& o) {
 
 void addTrainCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<TrainOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("train", "Train a Fastron model (Algorithm 1) on a labelled dataset");
+  CLI::App* cmd = app.add_subcommand(
+      "train",
+      "Train a Fastron model (Algorithm 1) on a labelled dataset, or on a robot in a scene");
   cmd->add_option("--data", o->data, "CSV or .npy: configuration columns, then the label +1 / -1")
-      ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", o->output, "model file to write")->required();
-  cmd->add_option("--gamma", o->params.kernel.gamma, "kernel width (input space [-1, 1]^d)")
+  addRobotOptions(*cmd, o->robot, false);
+  cmd->add_option("--scene", o->scene,
+                  "with --robot: train on FCL-labelled samples of this scene (the project's YAML "
+                  "or a MoveIt PlanningScene)")
+      ->check(CLI::ExistingFile);
+  addFeatureOptions(*cmd, o->features);
+  cmd->add_option("--samples", o->samples, "with --scene: uniform samples labelled by FCL")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--active-learning", o->activeLearning,
+                  "with --scene: rounds of active learning (Algorithm 2) after the first update")
       ->capture_default_str();
+  cmd->add_flag("--self-collision", o->selfCollision,
+                "with --scene: label self-collisions as collisions too");
+  cmd->add_option("-o,--output", o->output, "model file to write")->required();
+  cmd->add_option("--gamma", o->gamma,
+                  "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
+                  "features, 5 for joints)");
   cmd->add_option("--kernel", o->kernel, "rq (rational quadratic) or gaussian")
       ->capture_default_str();
-  cmd->add_option("--beta", o->params.beta, "conditional bias, >= 1")->capture_default_str();
-  cmd->add_option("--max-iter", o->params.maxIterations, "iteration limit")->capture_default_str();
-  cmd->add_option("--max-support", o->params.maxSupportPoints, "support-point cap")
-      ->capture_default_str();
+  cmd->add_option("--beta", o->beta,
+                  "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 10 for "
+                  "fk features, 500 for joints)");
+  cmd->add_option("--max-iter", o->maxIterations,
+                  "iteration limit (default 5000; 20000 with --scene)");
+  cmd->add_option("--max-support", o->maxSupport,
+                  "support-point cap (default 3000; 5000 with --robot)");
   cmd->add_option(
          "--limits", o->limits,
          "joint limits LOWER:UPPER per column, comma-separated (write --limits=-3.14:3.14,...); "
@@ -139,7 +261,8 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->delimiter(',');
   cmd->add_option("--holdout", o->holdout, "share of the data held out for validation")
       ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "seed of the held-out split")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of the held-out split and of sampling")
+      ->capture_default_str();
   cmd->callback([o, &exitCode] { exitCode = runTrain(*o); });
 }
 

@@ -31,6 +31,18 @@ void validate(const TrainParams& params) {
   }
 }
 
+TrainParams defaultTrainParams(FeatureKind kind) {
+  TrainParams params;
+  if (kind == FeatureKind::Kinematic) {
+    params.kernel = {KernelType::RationalQuadratic, 40};
+    params.beta = 10;
+  } else {
+    params.kernel = {KernelType::RationalQuadratic, 5};
+    params.beta = 500;
+  }
+  return params;
+}
+
 std::string_view toString(StopReason reason) {
   switch (reason) {
     case StopReason::Converged:

@@ -53,8 +53,8 @@ inline Scene sceneForTrial(const std::string& file, std::uint64_t seed) {
   return scene;
 }
 
-inline ProxyParams proxyParams(const Case& c, std::uint64_t seed) {
-  return experimentProxyParams(c.gamma, c.beta, seed);
+inline ProxyParams proxyParams(const Case& c, std::uint64_t seed, FeatureKind kind) {
+  return experimentProxyParams(kind, c.gamma, c.beta, seed);
 }
 
 }  // namespace fastron::experiments

@@ -7,6 +7,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
@@ -40,15 +41,19 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
     const Case c = caseFor(name);
     const Robot robot = baxterWithJoints(c.joints);
     const JointLimits limits = robot.limits();
+    const FeatureMap features = robotFeatures(robot, o.features);
+    const bool jointRow = o.features != FeatureKind::JointScaling;
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
       const std::uint64_t seed = o.seed * 1000 + trial;
       Scene scene = sceneForTrial(c.scene, seed);
       auto fcl = std::make_shared<FclChecker>(robot, scene);
       auto gjk = std::make_shared<GjkChecker>(robot, scene);
-      ProxyCollisionDetector fromFcl(fcl, limits, proxyParams(c, seed)),
-          fromGjk(gjk, limits, proxyParams(c, seed));
+      ProxyCollisionDetector fromFcl(fcl, features, proxyParams(c, seed, o.features)),
+          fromGjk(gjk, features, proxyParams(c, seed, o.features)),
+          inJoints(fcl, limits, proxyParams(c, seed, FeatureKind::JointScaling));
       fromFcl.initialize(initial);
       fromGjk.initialize(initial);
+      if (jointRow) inJoints.initialize(initial);
       Rng rng(seed);
       for (std::size_t step = 1; step <= o.steps; ++step) {
         if (progress && (step == 1 || step % 10 == 0)) {
@@ -60,6 +65,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         fcl->setScene(scene);
         gjk->setScene(scene);
         const StepReport rf = fromFcl.step(), rg = fromGjk.step();
+        const StepReport rj = jointRow ? inJoints.step() : StepReport{};
         const Configurations test = uniformConfigurations(limits, tests, rng);
         const Labels truth = labelConfigurations(*fcl, test);
         auto row = [&](const std::string& method, const ConfusionCounts& counts, double support,
@@ -68,8 +74,10 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
                      cell(counts.accuracy()), cell(counts.tpr()), cell(counts.tnr()), cell(support),
                      cell(query), cell(update)});
         };
-        for (const auto& [method, proxy, report] : {std::tuple{"Fastron (FCL)", &fromFcl, &rf},
-                                                    std::tuple{"Fastron (GJK)", &fromGjk, &rg}}) {
+        std::vector<std::tuple<const char*, const ProxyCollisionDetector*, const StepReport*>>
+            proxies{{"Fastron (FCL)", &fromFcl, &rf}, {"Fastron (GJK)", &fromGjk, &rg}};
+        if (jointRow) proxies.emplace_back("Fastron (FCL, joints)", &inJoints, &rj);
+        for (const auto& [method, proxy, report] : proxies) {
           const auto model = proxy->model();
           const Eigen::VectorXd scores = model->scoreBatch(test);
           row(method,
@@ -120,7 +128,12 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
   md << "# Changing environments (paper, Sec. IV-B, Figs. 8 to 11)\n\nBaxter's right arm, boxes on "
         "random walks of 1 to 4 cm "
      << "per step; " << o.trials << " trial(s) of " << o.steps << " updates per case, seed "
-     << o.seed << (o.quick ? ", quick mode" : "")
+     << o.seed << (o.quick ? ", quick mode" : "") << ". Fastron's input: "
+     << (o.features == FeatureKind::Kinematic
+             ? "task-space features (world positions of the automatic control points, "
+               "docs/algorithms.md); 'Fastron (FCL, joints)' is the paper's joint-space model "
+               "beside them"
+             : "joint values scaled to [-1, 1] (the paper's)")
      << ". Accuracy, TPR and TNR against FCL on fresh configurations after every update; mean ± "
         "standard deviation over all "
      << "updates of all trials; the paper's values (C++, MoveIt's Baxter, 2018 hardware) beside "
@@ -130,8 +143,11 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
        << "\n\n| Method | |S| | Query time | Update time | Accuracy | TPR | TNR | paper |S| | "
           "paper query | paper update |\n"
        << "|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const std::string method : {"Fastron (FCL)", "Fastron (GJK)", "FK+GJK", "FK+FCL"}) {
-      const auto paper = kPaperChanging.find({name, method});
+    for (const std::string method :
+         {"Fastron (FCL)", "Fastron (GJK)", "Fastron (FCL, joints)", "FK+GJK", "FK+FCL"}) {
+      if (r.numbers("accuracy", {{"case", name}, {"method", method}}).empty()) continue;
+      const auto paper = kPaperChanging.find(
+          {name, method == "Fastron (FCL, joints)" ? std::string("Fastron (FCL)") : method});
       md << methodRow(r, method, {{"case", name}, {"method", method}}, "update_s",
                       paper == kPaperChanging.end() ? std::array<std::string, 3>{} : paper->second);
     }
@@ -162,7 +178,8 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
       }
       auto fcl = std::make_shared<FclChecker>(robot, scene);
       const GjkChecker gjk(robot, scene);
-      ProxyCollisionDetector proxy(fcl, limits, proxyParams(c, rng()));
+      ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features),
+                                   proxyParams(c, rng(), o.features));
       proxy.initialize(o.quick ? 500 : 3000);
       for (int s = 0; s < (o.quick ? 2 : 10); ++s)
         proxy.step();  // active learning refines the static scene
@@ -192,7 +209,8 @@ std::string sweepReport(const Table& r, const SweepOptions& o) {
         "among 0.1 m boxes placed at "
      << "random in its reachable space, " << o.trials << " trial(s) per count, seed " << o.seed
      << (o.quick ? ", quick mode" : "")
-     << ". Fastron trained on FCL labels (initial set plus active-learning updates).\n\n"
+     << ". Fastron trained on FCL labels (initial set plus active-learning updates), on "
+     << (o.features == FeatureKind::Kinematic ? "task-space features" : "joint values") << ".\n\n"
      << "| obstacles | C-space in collision | Fastron |S| | Fastron | FK + GJK | FK + FCL "
         "|\n|---|---|---|---|---|---|\n";
   for (const std::string& count : r.distinct("obstacles")) {

@@ -222,4 +222,18 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
   return p;
 }
 
+std::string featureSentence(FeatureKind kind) {
+  return kind == FeatureKind::Kinematic
+             ? "Fastron learns on task-space features: the world positions of the robot's "
+               "automatic control points (docs/algorithms.md)."
+             : "Fastron learns on joint values scaled to [-1, 1] (the paper's input).";
+}
+
+ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
+                                  std::uint64_t seed) {
+  if (kind == FeatureKind::JointScaling) return experimentProxyParams(jointGamma, jointBeta, seed);
+  const TrainParams defaults = defaultTrainParams(kind);
+  return experimentProxyParams(defaults.kernel.gamma, defaults.beta, seed);
+}
+
 }  // namespace fastron

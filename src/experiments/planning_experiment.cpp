@@ -13,6 +13,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
@@ -239,7 +240,8 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene);
     auto gjk = std::make_shared<GjkChecker>(robot, scene);
     FclChecker audit(robot, scene);
-    ProxyCollisionDetector proxy(fcl, limits, proxyParams(c, seed));
+    ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features),
+                                 proxyParams(c, seed, o.features));
     proxy.initialize(initial);
     Rng rng(seed);
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
@@ -270,6 +272,7 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
 std::string planningReport(const Table& r, const PlanningOptions& o) {
   std::ostringstream md;
   md << "# Motion planning with moving obstacles (paper, Sec. IV-C, Figs. 13 and 14)\n\n"
+     << featureSentence(o.features) << ' '
      << "Baxter's right arm; before each trial the boxes move 5 random-walk steps and the model "
         "makes 5 updates; start and goal are drawn collision-free with the shoulder yaw in "
         "opposite "
@@ -301,7 +304,8 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
   auto fcl = std::make_shared<FclChecker>(ur3, scene);
   auto gjk = std::make_shared<GjkChecker>(ur3, scene);
   const FclChecker audit(ur3, scene);
-  ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(10, 100, o.seed));
+  ProxyCollisionDetector proxy(fcl, robotFeatures(ur3, o.features, limits),
+                               experimentProxyParams(o.features, 10, 100, o.seed));
   if (progress) progress("shelf: training the model");
   proxy.initialize(o.quick ? 2000 : 8000);
   for (int update = 0; update < (o.quick ? 2 : 5); ++update) proxy.step();
@@ -346,7 +350,9 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
 
 std::string shelfReport(const Table& r, const ShelfOptions& o) {
   std::ostringstream md;
-  md << "# UR3 shelf (paper, Sec. V-A)\n\nThe UR3 reaches from the lower shelf to the higher one "
+  md << "# UR3 shelf (paper, Sec. V-A)\n\n"
+     << featureSentence(o.features)
+     << " The UR3 reaches from the lower shelf to the higher one "
         "(start and goal drawn with the end effector inside the shelf, collision-free); RRT with "
         "Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL. Edges "
         "checked every "
@@ -369,14 +375,14 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
   // The model learns a padded PSM3, so it stays conservative while the instruments move on
   // between its updates (paper, Sec. V-B).
   auto padded = std::make_shared<FclChecker>(psm, scene, CheckerOptions{.padding = o.padding});
-  ProxyParams params;
-  params.train.kernel = {KernelType::RationalQuadratic, 10};
-  params.train.beta = 100;
+  ProxyParams params = experimentProxyParams(o.features, 10, 100, o.seed);
+  params.train.maxIterations = TrainParams{}.maxIterations;
+  params.train.maxSupportPoints = TrainParams{}.maxSupportPoints;
   params.activeLearning.maxSamples = 300;
   params.seed = o.seed;
   params.labelThreads = 1;              // the other core plans
   std::atomic<std::size_t> updates{0};  // before the proxy: its thread counts here until joined
-  ProxyCollisionDetector proxy(padded, limits, params);
+  ProxyCollisionDetector proxy(padded, robotFeatures(psm, o.features), params);
   if (progress) progress("surgical: training the model");
   proxy.initialize(o.quick ? 1000 : 3000);
 
@@ -449,7 +455,9 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
 
 std::string surgicalReport(const Table& r, const SurgicalOptions& o) {
   std::ostringstream md;
-  md << "# Autonomous surgical assistant (paper, Sec. V-B)\n\nPSM3 (yaw, pitch, insertion) "
+  md << "# Autonomous surgical assistant (paper, Sec. V-B)\n\n"
+     << featureSentence(o.features)
+     << " PSM3 (yaw, pitch, insertion) "
         "moves between home and a target between the instruments of PSM1 and PSM2, which follow "
         "circles; at every tick each method plans an RRT from scratch from PSM3's current "
         "configuration, and PSM3 follows the Fastron plan. The model (of a PSM3 padded by "
@@ -533,6 +541,7 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   if (o.quick && problems.size() > 2) problems.resize(2);
   Robot robot = loadRobot(o.robot);
   const JointLimits limits = robot.limits();
+  const FeatureMap features = robotFeatures(robot, o.features);
   for (std::size_t p = 0; p < problems.size(); ++p) {
     const Problem& problem = problems[p];
     if (progress)
@@ -552,7 +561,8 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene);
     const FclChecker audit(robot, scene);
 
-    ProxyCollisionDetector proxy(fcl, limits, experimentProxyParams(5, 500, o.seed + p));
+    ProxyCollisionDetector proxy(fcl, features,
+                                 experimentProxyParams(o.features, 5, 500, o.seed + p));
     const auto began = std::chrono::steady_clock::now();
     proxy.initialize(o.quick ? 1500 : o.trainingPoints);
     for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) proxy.step();
@@ -574,7 +584,8 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
 
 std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
   std::ostringstream md;
-  md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\nRobot " << o.robot
+  md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\n"
+     << featureSentence(o.features) << " Robot " << o.robot
      << "; for each problem Fastron is trained on the scene ("
      << (o.quick ? 1500 : o.trainingPoints) << " samples, then " << (o.quick ? 1 : o.updates)
      << " active-learning updates) and RRT-Connect plans with Fastron (verified and repaired with "
@@ -612,13 +623,13 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   auto fcl = std::make_shared<FclChecker>(robot, scene);
   auto gjk = std::make_shared<GjkChecker>(robot, scene);
   FclChecker audit(robot, scene);
-  ProxyParams params = proxyParams(c, o.seed);
+  ProxyParams params = proxyParams(c, o.seed, o.features);
   params.labelThreads = 1;  // the other core plans
   // Before the proxy: its thread updates these until it is joined.
   std::mutex updateMutex;
   std::size_t updates = 0;
   double updateSeconds = 0;
-  ProxyCollisionDetector proxy(fcl, limits, params);
+  ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features), params);
   if (progress)
     progress("training the first model on " + std::to_string(o.initialPoints) +
              " FCL-labelled samples");
@@ -696,6 +707,7 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
   std::ostringstream md;
   char line[256];
   md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"
+     << featureSentence(o.features) << ' '
      << "The model updates on a background thread from FCL labels (500 active-learning points per "
         "update); at each of "
      << o.ticks

@@ -9,6 +9,7 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
+#include "fastron/core/model_file.h"
 #include "fastron/geometry/kinematics.h"
 
 namespace fastron {
@@ -230,7 +231,7 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
   std::vector<int> stepOf(linkCount, -1);
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> inStep(
       linkCount, Eigen::Isometry3d::Identity());
-  std::vector<Step> all;
+  std::vector<Step<double>> all;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
     const auto parent = static_cast<std::size_t>(joint.parent);
@@ -244,7 +245,7 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     }
     const Eigen::Matrix3d align = alignZWith(joint.axis);
     const Eigen::Isometry3d fixed = inStep[parent] * joint.origin;
-    Step step;
+    Step<double> step;
     step.parent = stepOf[parent];
     step.joint = static_cast<int>(position - actuated.begin());
     step.prismatic = joint.type == JointType::Prismatic;
@@ -267,20 +268,27 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
   std::vector<int> newIndex(all.size(), -1);
   for (std::size_t s = 0; s < all.size(); ++s) {
     if (!used[s]) continue;
-    Step step = all[s];
+    Step<double> step = all[s];
     if (step.parent >= 0) step.parent = newIndex[static_cast<std::size_t>(step.parent)];
-    newIndex[s] = static_cast<int>(steps_.size());
-    steps_.push_back(step);
+    newIndex[s] = static_cast<int>(chain_.steps.size());
+    chain_.steps.push_back(step);
   }
-  if (steps_.size() > kMaxKinematicSteps) {
-    throw InvalidArgument("robot '" + robot.name() + "': " + std::to_string(steps_.size()) +
+  if (chain_.steps.size() > kMaxKinematicSteps) {
+    throw InvalidArgument("robot '" + robot.name() + "': " + std::to_string(chain_.steps.size()) +
                           " actuated joints lead to the control points, at most " +
                           std::to_string(kMaxKinematicSteps) + " are supported");
   }
   for (const ControlPoint& p : points) {
     const auto link = static_cast<std::size_t>(robot.linkIndex(p.link));
     const int step = stepOf[link] < 0 ? -1 : newIndex[static_cast<std::size_t>(stepOf[link])];
-    points_.push_back({step, inStep[link] * p.offset});
+    chain_.points.push_back({step, inStep[link] * p.offset});
+  }
+  for (const auto& step : chain_.steps) {
+    chainF_.steps.push_back({step.parent, step.joint, step.prismatic, step.rotation.cast<float>(),
+                             step.translation.cast<float>()});
+  }
+  for (const auto& point : chain_.points) {
+    chainF_.points.push_back({point.step, point.local.cast<float>()});
   }
 
   description_.robot = robot.name();
@@ -289,44 +297,116 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
   description_.checksum = kinematicsChecksum(robot);
 }
 
+template <>
+const RobotPointKinematics::Chain<double>& RobotPointKinematics::chain<double>() const {
+  return chain_;
+}
+template <>
+const RobotPointKinematics::Chain<float>& RobotPointKinematics::chain<float>() const {
+  return chainF_;
+}
+
+namespace {
+
+constexpr std::size_t kTrigLanes = 16;
+using TrigLanes = Eigen::Array<float, kTrigLanes, 1>;
+
+/// cos and sin of `count` angles: in float with Eigen's SIMD sin/cos (16 at a time), or in double
+/// one by one.
+template <class T>
+void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
+  if constexpr (std::is_same_v<T, float>) {
+    for (std::size_t b = 0; b < count; b += kTrigLanes) {
+      TrigLanes a = TrigLanes::Zero();
+      const std::size_t n = std::min(kTrigLanes, count - b);
+      std::copy_n(angles + b, n, a.data());
+      const TrigLanes c = a.cos(), s = a.sin();
+      std::copy_n(c.data(), n, cosines + b);
+      std::copy_n(s.data(), n, sines + b);
+    }
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      cosines[k] = std::cos(angles[k]);
+      sines[k] = std::sin(angles[k]);
+    }
+  }
+}
+
+/// A rigid transform as 12 scalars: rotation row by row, then translation. Composed with plain
+/// scalar multiply-adds: for 3x3 matrices the compiler's scalar code beats SIMD shuffles, and the
+/// chain of frames stays in registers and same-size loads and stores.
+template <class T>
+struct Frame {
+  std::array<T, 9> r;
+  std::array<T, 3> t;
+};
+
+template <class T>
+Frame<T> compose(const Frame<T>& a, const Eigen::Matrix<T, 3, 3>& rotation,
+                 const Eigen::Matrix<T, 3, 1>& translation) {
+  Frame<T> f;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      f.r[3 * i + j] = a.r[3 * i] * rotation(0, j) + a.r[3 * i + 1] * rotation(1, j) +
+                       a.r[3 * i + 2] * rotation(2, j);
+    }
+    f.t[i] = a.r[3 * i] * translation[0] + a.r[3 * i + 1] * translation[1] +
+             a.r[3 * i + 2] * translation[2] + a.t[i];
+  }
+  return f;
+}
+
+template <class T>
+Frame<T> frameOf(const Eigen::Matrix<T, 3, 3>& rotation,
+                 const Eigen::Matrix<T, 3, 1>& translation) {
+  Frame<T> f;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) f.r[3 * i + j] = rotation(i, j);
+    f.t[i] = translation[i];
+  }
+  return f;
+}
+
+}  // namespace
+
 template <class T>
 void RobotPointKinematics::place(const double* q, T* out) const {
-  using Matrix3 = Eigen::Matrix<T, 3, 3>;
-  using Vector3 = Eigen::Matrix<T, 3, 1>;
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled step by step
-  std::array<Matrix3, kMaxKinematicSteps> rotations;
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled step by step
-  std::array<Vector3, kMaxKinematicSteps> translations;
-  for (std::size_t s = 0; s < steps_.size(); ++s) {
-    const Step& step = steps_[s];
-    Matrix3 r = step.rotation.cast<T>();
-    Vector3 t = step.translation.cast<T>();
-    if (step.parent >= 0) {
-      const auto p = static_cast<std::size_t>(step.parent);
-      t = rotations[p] * t + translations[p];
-      r = rotations[p] * r;
-    }
-    const double value = q[step.joint];
+  const Chain<T>& c = chain<T>();
+  const std::size_t n = c.steps.size();
+  // NOLINTBEGIN(cppcoreguidelines-pro-type-member-init): filled before they are read
+  std::array<T, kMaxKinematicSteps> values, cosines, sines;
+  std::array<Frame<T>, kMaxKinematicSteps> frames;
+  // NOLINTEND(cppcoreguidelines-pro-type-member-init)
+  for (std::size_t s = 0; s < n; ++s) values[s] = static_cast<T>(q[c.steps[s].joint]);
+  cosSin(values.data(), n, cosines.data(), sines.data());
+  for (std::size_t s = 0; s < n; ++s) {
+    const Step<T>& step = c.steps[s];
+    Frame<T> f = step.parent >= 0 ? compose(frames[static_cast<std::size_t>(step.parent)],
+                                            step.rotation, step.translation)
+                                  : frameOf(step.rotation, step.translation);
     if (step.prismatic) {
-      t += static_cast<T>(value) * r.col(2);
-    } else {  // r * Rz(value): only the x and y columns turn
-      const T c = static_cast<T>(std::cos(value));
-      const T s = static_cast<T>(std::sin(value));
-      const Vector3 x = r.col(0);
-      r.col(0) = c * x + s * r.col(1);
-      r.col(1) = c * r.col(1) - s * x;
+      for (int i = 0; i < 3; ++i) f.t[i] += values[s] * f.r[3 * i + 2];
+    } else {  // f * Rz(value): only the x and y columns turn
+      const T co = cosines[s], si = sines[s];
+      for (int i = 0; i < 3; ++i) {
+        const T x = f.r[3 * i], y = f.r[3 * i + 1];
+        f.r[3 * i] = co * x + si * y;
+        f.r[3 * i + 1] = co * y - si * x;
+      }
     }
-    rotations[s] = r;
-    translations[s] = t;
+    frames[s] = f;
   }
-  for (std::size_t k = 0; k < points_.size(); ++k) {
-    const Point& p = points_[k];
-    Eigen::Map<Vector3> position(out + 3 * k);
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    const Point<T>& p = c.points[k];
+    T* position = out + 3 * k;
     if (p.step < 0) {
-      position = p.local.cast<T>();
-    } else {
-      const auto s = static_cast<std::size_t>(p.step);
-      position = rotations[s] * p.local.cast<T>() + translations[s];
+      for (int i = 0; i < 3; ++i) position[i] = p.local[i];
+      continue;
+    }
+    const Frame<T>& f = frames[static_cast<std::size_t>(p.step)];
+    for (int i = 0; i < 3; ++i) {
+      position[i] = f.r[3 * i] * p.local[0] + f.r[3 * i + 1] * p.local[1] +
+                    f.r[3 * i + 2] * p.local[2] + f.t[i];
     }
   }
 }
@@ -340,10 +420,33 @@ void RobotPointKinematics::positions(const double* q, float* out) const {
 
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, std::vector<ControlPoint> points,
                          double scale) {
-  if (kind == FeatureKind::JointScaling) return FeatureMap::jointScaling(robot.limits());
+  return robotFeatures(robot, kind, robot.limits(), std::move(points), scale);
+}
+
+FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, JointLimits limits,
+                         std::vector<ControlPoint> points, double scale) {
+  if (kind == FeatureKind::JointScaling) return FeatureMap::jointScaling(std::move(limits));
   if (points.empty()) points = defaultControlPoints(robot);
   return FeatureMap::kinematic(
-      robot.limits(), std::make_shared<RobotPointKinematics>(robot, std::move(points)), scale);
+      std::move(limits), std::make_shared<RobotPointKinematics>(robot, std::move(points)), scale);
+}
+
+Model loadModelFor(const std::filesystem::path& path, const Robot& robot) {
+  const ModelFileHeader header = readModelHeader(path);
+  std::shared_ptr<const PointKinematics> kinematics;
+  if (header.features == FeatureKind::Kinematic) {
+    if (header.kinematics.robot != robot.name()) {
+      throw FileError(path.string() + ": the model was trained for robot '" +
+                      header.kinematics.robot + "', not '" + robot.name() + "'");
+    }
+    try {
+      kinematics = std::make_shared<RobotPointKinematics>(robot, header.kinematics.points);
+    } catch (const InvalidArgument& e) {
+      throw FileError(path.string() + ": the model's control points do not fit robot '" +
+                      robot.name() + "': " + e.what());
+    }
+  }
+  return loadModel(path, robot.dof(), std::move(kinematics));
 }
 
 }  // namespace fastron

@@ -2,6 +2,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "fastron/core/error.h"
 #include "fastron/core/trainer.h"
@@ -92,6 +93,44 @@ TEST_F(ModelFile, WrongMagicVersionAndDimensionAreNamed) {
 
   EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("m.fastron"), 7); }),
               HasSubstr("model has dimension 3 but 7 was expected"));
+}
+
+// Version 1 files (support points in input space [-1, 1]^d, no feature block) still load, as
+// joint-space models: the bytes are written here by hand, as version 1 laid them out.
+TEST_F(ModelFile, VersionOneStillLoads) {
+  std::string bytes("FASTRON\0", 8);
+  auto put = [&bytes](const auto value) {
+    bytes.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  put(std::uint32_t{1});  // version
+  put(std::uint32_t{2});  // dimension
+  put(std::uint32_t{0});  // rational quadratic
+  put(std::uint32_t{0});  // reserved
+  put(2.0);               // gamma
+  put(0.0), put(-2.0);    // lower limits
+  put(4.0), put(2.0);     // upper limits
+  put(std::uint64_t{2});
+  put(0.5), put(0.0);    // support point 1, input space: joint values (3, 0)
+  put(-1.0), put(1.0);   // support point 2: joint values (0, 2)
+  put(1.5), put(-0.25);  // weights
+  put(static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size()))));
+  write("v1.fastron", bytes);
+
+  EXPECT_EQ(readModelHeader(path("v1.fastron")).version, 1u);
+  const Model model = loadModel(path("v1.fastron"), 2);
+  EXPECT_EQ(model.features().kind(), FeatureKind::JointScaling);
+  ASSERT_EQ(model.supportCount(), 2u);
+  EXPECT_NEAR(model.supportConfigurations()(0, 0), 3, 1e-12);
+  EXPECT_NEAR(model.supportConfigurations()(1, 1), 2, 1e-12);
+  const std::vector<double> q{3, 0};  // on the first support point, r2 = 2.25 + 1 to the second
+  const double expected = 1.5 - 0.25 / ((1 + 3.25) * (1 + 3.25));
+  EXPECT_NEAR(model.scoreExact(q.data()), expected, 1e-12);
+
+  // Saved again, it becomes version 2 with the same contents.
+  saveModel(model, path("v2.fastron"));
+  EXPECT_EQ(readModelHeader(path("v2.fastron")).version, 2u);
+  EXPECT_EQ(loadModel(path("v2.fastron")).scoreExact(q.data()), model.scoreExact(q.data()));
 }
 
 TEST_F(ModelFile, UnwritablePathIsNamed) {

@@ -171,6 +171,70 @@ TEST(ProxyCollisionDetector, ConcurrentQueriesDuringBackgroundUpdates) {
   EXPECT_NO_THROW(proxy.step());
 }
 
+// A planar arm of two unit links whose joints are the first two coordinates: the control points
+// are the elbow and the tip. Task-space features without any robot library.
+class PlanarArm final : public PointKinematics {
+ public:
+  std::size_t dof() const override { return 2; }
+  std::size_t pointCount() const override { return 2; }
+  void positions(const double* q, double* out) const override { place(q, out); }
+  void positions(const double* q, float* out) const override { place(q, out); }
+  KinematicsDescription description() const override {
+    return {"planar", {"a", "b"}, {{"upper", {}}, {"lower", {}}}, 42};
+  }
+
+ private:
+  template <class T>
+  static void place(const double* q, T* out) {
+    const double pi = 3.14159265358979;
+    const double a = pi * q[0], b = a + pi * q[1];
+    const double elbow[3] = {std::cos(a), std::sin(a), 0};
+    const double tip[3] = {elbow[0] + std::cos(b), elbow[1] + std::sin(b), 0};
+    for (int k = 0; k < 3; ++k) {
+      out[k] = static_cast<T>(elbow[k]);
+      out[3 + k] = static_cast<T>(tip[k]);
+    }
+  }
+};
+
+// The same concurrency, on task-space features: readers map their queries through the shared
+// kinematics while the background thread maps its training points.
+TEST(ProxyCollisionDetector, ConcurrentQueriesWithTaskSpaceFeatures) {
+  MovingBalls world(2, 9);
+  ProxyParams p = params(3);  // gamma in 1/m^2: the arm reaches 2 m
+  p.labelThreads = 2;
+  const FeatureMap features =
+      FeatureMap::kinematic(JointLimits::unitBox(2), std::make_shared<PlanarArm>());
+  ProxyCollisionDetector proxy(world.checker(2), features, p);
+  proxy.initialize(800);
+  EXPECT_EQ(proxy.model()->featureDim(), 6u);
+  std::atomic<int> steps{0};
+  proxy.startBackground([&](const StepReport&) { ++steps; });
+  std::atomic<bool> done{false};
+  auto reader = [&](std::uint64_t seed) {
+    const Configurations q = test::uniformPoints(32, 2, seed);
+    while (!done) {
+      const std::shared_ptr<const Model> model = proxy.model();
+      const Eigen::VectorXd first = model->scoreBatch(q);
+      for (Eigen::Index i = 0; i < q.rows(); ++i)
+        ASSERT_EQ(model->score(q.row(i).data()), first[i]);
+    }
+  };
+  {
+    std::jthread r1(reader, 3), r2(reader, 4);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (steps < 5 && std::chrono::steady_clock::now() < deadline) {
+      world.move(0.01);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    done = true;
+  }
+  proxy.stopBackground();
+  EXPECT_GE(steps.load(), 1);
+  for (int s = 0; s < 3; ++s) proxy.step();  // the world stands still now
+  EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.9);
+}
+
 // With a minimum period, steps start at most once per period, and stopping does not wait the
 // period out.
 TEST(ProxyCollisionDetector, BackgroundStepsKeepTheirMinimumPeriod) {

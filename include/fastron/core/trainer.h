@@ -26,6 +26,12 @@ struct TrainParams {
 /// Throws InvalidArgument naming the field that is out of range.
 void validate(const TrainParams& params);
 
+/// The rational-quadratic kernel's gamma and the conditional bias beta that suit each kind of
+/// features on a 7-joint arm, chosen by the sweep in docs/algorithms.md: joint scaling gamma 5,
+/// beta 500 (the paper's 7-DOF settings, Sec. IV-B); task-space features (metres) gamma 40,
+/// beta 10.
+TrainParams defaultTrainParams(FeatureKind kind);
+
 enum class StopReason {
   Converged,       ///< every training point has positive margin and no support point is redundant
   SupportCap,      ///< a misclassified point needed a new support point, the cap was reached and

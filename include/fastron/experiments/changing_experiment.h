@@ -17,11 +17,15 @@ struct ChangingOptions {
   std::size_t steps = 50;  ///< obstacle moves (model updates) per trial
   std::uint64_t seed = 1;
   bool quick = false;
+  /// Fastron's input. With task-space features a joint-space Fastron (FCL) runs beside them, so
+  /// the paper's row stays in the table.
+  FeatureKind features = FeatureKind::Kinematic;
   std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
 };
 
 /// One row per (case, trial, step, method): accuracy, tpr, tnr against FCL, support, query_s,
-/// update_s (labelling + training).
+/// update_s (labelling + training). Methods: "Fastron (FCL)", "Fastron (GJK)" on
+/// options.features, "Fastron (FCL, joints)" when those are task-space, "FK+GJK", "FK+FCL".
 Table runChanging(const ChangingOptions& options, const Progress& progress);
 std::string changingReport(const Table& results, const ChangingOptions& options);
 
@@ -29,6 +33,7 @@ struct SweepOptions {
   std::size_t trials = 3;
   std::uint64_t seed = 1;
   bool quick = false;
+  FeatureKind features = FeatureKind::Kinematic;
   std::vector<std::size_t> obstacles{1, 2, 5, 10, 20, 50, 100};
 };
 

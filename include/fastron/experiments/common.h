@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/feature_map.h"
 #include "fastron/core/types.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
@@ -60,6 +61,9 @@ struct Table {
 std::string methodRow(const Table& results, const std::string& method, const Table::Filter& where,
                       const std::string& timeColumn, const std::array<std::string, 3>& paper);
 
+/// A sentence for reports saying what Fastron learned on.
+std::string featureSentence(FeatureKind kind);
+
 /// Formats a number for a CSV cell (full precision, "nan" for NaN).
 std::string cell(double value);
 
@@ -75,6 +79,10 @@ double meanSecondsPerCall(const Configurations& q, const std::function<bool(cons
 /// kernel of width `gamma`, conditional bias `beta`, 20000 iterations per update, at most 5000
 /// support points, 500 active-learning points per update (paper, Sec. IV-B).
 ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed);
+/// The same with the gamma and beta of `kind` (defaultTrainParams) for task-space features, and
+/// `jointGamma`, `jointBeta` (the experiment's joint-space settings, e.g. the paper's) for joints.
+ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
+                                  std::uint64_t seed);
 
 /// Up to `maxCubes` cubes (at least one) of random size in [minSide, maxSide], centred in the
 /// upper half of the ball of radius `reach` around the robot's base, and clear of the base.

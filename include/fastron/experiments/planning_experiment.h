@@ -23,6 +23,8 @@ struct PlanningOptions {
   std::vector<PlannerType> planners = allPlannerTypes();
   double timeLimit = 10;     ///< seconds per planning query (and per repaired stretch)
   double resolution = 0.03;  ///< joint-space step of edge checks (rad)
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
 };
 
 /// One row per (case, trial, planner, method): solved, status, plan_s, verify_s, repair_s,
@@ -36,6 +38,8 @@ struct ShelfOptions {
   std::size_t trials = 10;  ///< start/goal pairs
   std::uint64_t seed = 1;
   bool quick = false;
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
   double resolution = 0.03;
 };
@@ -52,6 +56,8 @@ struct SurgicalOptions {
   double timeLimit = 1;
   double resolution = 0.01;  ///< joint units (rad, and m for the insertion)
   double padding = 0.005;    ///< PSM3 padding of the model's oracle (paper: a padded PSM3)
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
 };
 
 /// PSM3 replans an RRT every tick between home and a target among PSM1 and PSM2 moving on
@@ -67,6 +73,8 @@ struct MotionBenchOptions {
   bool quick = false;
   std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model
   std::size_t updates = 3;            ///< active-learning updates after them
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
   double resolution = 0.03;
 };
@@ -83,6 +91,8 @@ struct DemoOptions {
   std::uint64_t seed = 1;
   std::size_t initialPoints = 3000;
   std::size_t testPoints = 1000;  ///< fresh configurations scoring the model at each tick
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 5;
   double resolution = 0.03;
 };

@@ -4,22 +4,26 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "fastron/core/feature_map.h"
+#include "fastron/core/model.h"
 #include "fastron/geometry/robot.h"
 
 namespace fastron {
 
 /// How control points are chosen automatically (see defaultControlPoints).
 struct ControlPointOptions {
-  /// At most this many points (0 = every candidate left after the spacing rule).
-  std::size_t maxPoints = 0;
+  /// At most this many points (0 = every candidate left after the spacing rule). More points
+  /// cost query time and, measured on Baxter and the Panda, do not buy accuracy (the points far
+  /// down the chain are the ones that collide): docs/algorithms.md.
+  std::size_t maxPoints = 4;
   /// A candidate closer than this (mean distance over sampled configurations, metres) to a point
   /// already chosen adds little and is skipped.
-  double minSpacing = 0.05;
+  double minSpacing = 0.1;
 };
 
 /// The control points a task-space model of `robot` uses by default. Candidates are the origins
@@ -45,39 +49,52 @@ std::uint64_t kinematicsChecksum(const Robot& robot);
 /// World positions (in the robot's base frame) of control points. The robot's kinematic tree is
 /// compiled once: fixed and held joints are folded into constant transforms, each actuated joint
 /// on the way to a point becomes one rotation (or translation) about a local z axis, so a query
-/// costs one sine and cosine and two 3x3 products per joint, and nothing is allocated.
+/// costs two 3x3 products per joint, the sines and cosines of all joints are computed at once
+/// with SIMD (float path), and nothing is allocated.
 class RobotPointKinematics final : public PointKinematics {
  public:
   /// Throws InvalidArgument for an unknown link or no points.
   RobotPointKinematics(const Robot& robot, std::vector<ControlPoint> points);
 
   std::size_t dof() const override { return dof_; }
-  std::size_t pointCount() const override { return points_.size(); }
+  std::size_t pointCount() const override { return chain_.points.size(); }
   void positions(const double* q, double* out) const override;
   void positions(const double* q, float* out) const override;
   KinematicsDescription description() const override { return description_; }
 
   /// Actuated joints that move at least one control point.
-  std::size_t steps() const { return steps_.size(); }
+  std::size_t steps() const { return chain_.steps.size(); }
 
  private:
+  /// One actuated joint: a constant transform from the parent step's frame, then a rotation
+  /// about (or translation along) the local z axis by the joint's value.
+  template <class T>
   struct Step {
     int parent = -1;  ///< step whose frame this one's hangs off, -1 for the base
     int joint = 0;    ///< index into the configuration
     bool prismatic = false;
-    Eigen::Matrix3d rotation;     ///< constant transform from the parent step's frame, then
-    Eigen::Vector3d translation;  ///< a rotation about (or translation along) local z by q
+    Eigen::Matrix<T, 3, 3> rotation;
+    Eigen::Matrix<T, 3, 1> translation;
   };
+  template <class T>
   struct Point {
     int step = -1;  ///< frame the point is fixed in, -1 for the base
-    Eigen::Vector3d local;
+    Eigen::Matrix<T, 3, 1> local;
   };
+  template <class T>
+  struct Chain {
+    std::vector<Step<T>> steps;
+    std::vector<Point<T>> points;
+  };
+  /// The float chain for queries; the double one for training and exact scores.
+  template <class T>
+  const Chain<T>& chain() const;
   template <class T>
   void place(const double* q, T* out) const;
 
   std::size_t dof_ = 0;
-  std::vector<Step> steps_;
-  std::vector<Point> points_;
+  Chain<double> chain_;
+  Chain<float> chainF_;
   KinematicsDescription description_;
 };
 
@@ -88,5 +105,13 @@ inline constexpr std::size_t kMaxKinematicSteps = 64;
 /// `points` (defaultControlPoints when empty) scaled by `scale`.
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind,
                          std::vector<ControlPoint> points = {}, double scale = 1);
+/// The same with other joint limits than the robot's (e.g. a narrower range to sample).
+FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, JointLimits limits,
+                         std::vector<ControlPoint> points = {}, double scale = 1);
+
+/// Loads a model file for `robot`: a task-space model gets kinematics built from `robot` and the
+/// control points the file records, and is refused (FileError naming the difference) when the
+/// robot's name, actuated joints or kinematics differ from those it was trained on.
+Model loadModelFor(const std::filesystem::path& path, const Robot& robot);
 
 }  // namespace fastron
