@@ -15,14 +15,16 @@
 #include "fastron/experiments/planning_experiment.h"
 #include "fastron/experiments/static_experiment.h"
 #include "plotting.h"
+#include "robot_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct BenchOptions {
   std::string name, out, problems, features = "fk";
-  std::size_t trials = 0;                // 0: the experiment's default
-  double timeLimit = 0, resolution = 0;  // 0: the experiment's default
+  std::size_t trials = 0;                    // 0: the experiment's default
+  double timeLimit = 0, resolution = 0;      // 0: the experiment's default
+  double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
 };
@@ -31,6 +33,9 @@ int runBench(const BenchOptions& o) {
   const std::filesystem::path dir = o.out.empty()
                                         ? std::filesystem::path("fastron-results") / o.name
                                         : std::filesystem::path(o.out);
+  if ((o.gamma > 0 || o.beta > 0 || o.variance > 0) && o.name != "changing") {
+    throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
+  }
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();
   const Progress progress = [start](std::string_view line) {
@@ -74,6 +79,9 @@ int runBench(const BenchOptions& o) {
     changing.seed = o.seed;
     changing.quick = o.quick;
     changing.features = parseFeatureKind(o.features);
+    changing.gamma = o.gamma;
+    changing.beta = o.beta;
+    changing.variance = o.variance;
     if (o.quick) changing.cases = {"4dof", "7dof-3boxes"};
     results = runChanging(changing, progress);
     report = changingReport(results, changing);
@@ -166,11 +174,14 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "planning experiments: joint-space step of edge checks")
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
-  cmd->add_option("--features", o->features,
-                  "changing, sweep and planning experiments: Fastron's input, fk (task-space "
-                  "features) or joints (the paper's)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"fk", "joints"}));
+  addFeatureKindOption(*cmd, o->features);  // changing, sweep and the planning experiments
+  cmd->add_option("--gamma", o->gamma, "changing: kernel width of the models on --features")
+      ->check(numberAbove(0));
+  cmd->add_option("--beta", o->beta, "changing: conditional bias of the models on --features")
+      ->check(numberAbove(1, true));
+  cmd->add_option("--al-variance", o->variance,
+                  "changing: active-learning spread sigma^2 in scaled joint space")
+      ->check(numberAbove(0));
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
   cmd->add_flag("--quick", o->quick, "small sizes, for a fast check");
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");

@@ -12,6 +12,7 @@
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/planning_experiment.h"
 #include "plotting.h"
+#include "robot_options.h"
 
 namespace fastron::cli {
 namespace {
@@ -87,10 +88,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->demo.seed, "seed of every random choice")->capture_default_str();
-  cmd->add_option("--features", o->features,
-                  "Fastron's input: fk (task-space features) or joints (the paper's)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"fk", "joints"}));
+  addFeatureKindOption(*cmd, o->features);
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");
   cmd->callback([o, &exitCode] { exitCode = runDemoCommand(*o); });
 }

@@ -1,6 +1,5 @@
 // fastron eval: a model against a labelled dataset, or against FCL on fresh samples of a scene.
 
-#include <chrono>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -30,18 +29,7 @@ struct EvalOptions {
   bool selfCollision = false;
 };
 
-/// Mean seconds per call of `fn` over the rows of q, repeated to at least 0.2 s.
-template <class Fn>
-double secondsPerRow(const Configurations& q, Fn&& fn) {
-  using Clock = std::chrono::steady_clock;
-  std::size_t calls = 0;
-  const auto start = Clock::now();
-  while (Clock::now() - start < std::chrono::milliseconds(200)) {
-    for (Eigen::Index i = 0; i < q.rows(); ++i) fn(q.row(i).data());
-    calls += static_cast<std::size_t>(q.rows());
-  }
-  return std::chrono::duration<double>(Clock::now() - start).count() / static_cast<double>(calls);
-}
+constexpr double kTimingSeconds = 0.2;  // each timing repeats the configurations this long
 
 int runEval(const EvalOptions& o) {
   if (o.data.empty() == o.scene.empty()) {
@@ -70,14 +58,16 @@ int runEval(const EvalOptions& o) {
   }
   const ConfusionCounts c = evaluate(model, data.points, data.labels);
 
-  volatile double sink = 0;  // keeps the work from being optimised away
-  const double query =
-      secondsPerRow(data.points, [&](const double* q) { sink = sink + model.score(q); });
+  const double query = meanSecondsPerCall(
+      data.points, [&](const double* q) { return model.inCollision(q); }, kTimingSeconds);
   std::vector<float> x(model.featureDim());
-  const double features = secondsPerRow(data.points, [&](const double* q) {
-    model.features().map(q, x.data());
-    sink = sink + x[0];
-  });
+  const double features = meanSecondsPerCall(
+      data.points,
+      [&](const double* q) {
+        model.features().map(q, x.data());
+        return x[0] > 0;
+      },
+      kTimingSeconds);
 
   std::cout << "model       " << o.model << ": dimension " << model.dim() << ", "
             << model.supportCount() << " support points, features " << model.features().summary()
@@ -100,7 +90,7 @@ int runEval(const EvalOptions& o) {
             << duration(features) << ", kernel sum " << duration(std::max(0.0, query - features))
             << ")\n";
   if (fcl) {
-    const double exact = meanSecondsPerCheck(data.points, *fcl, 0.2);
+    const double exact = meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
     std::cout << "FK+FCL      " << duration(exact) << " per configuration: the model is "
               << times(exact / query) << " faster\n";
   }

@@ -37,12 +37,16 @@ Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
-  cmd.add_option("--features", options.kind,
-                 "the model's input: fk (world positions of control points on the robot) or "
+void addFeatureKindOption(CLI::App& cmd, std::string& kind) {
+  cmd.add_option("--features", kind,
+                 "Fastron's input: fk (world positions of control points on the robot) or "
                  "joints (scaled joint values, as in the paper)")
       ->capture_default_str()
       ->check(CLI::IsMember({"fk", "joints"}));
+}
+
+void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
+  addFeatureKindOption(cmd, options.kind);
   cmd.add_option("--control-links", options.controlLinks,
                  "fk: links whose origins are the control points, comma-separated (default: "
                  "chosen automatically, see docs/algorithms.md)")

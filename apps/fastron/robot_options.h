@@ -37,6 +37,8 @@ struct FeatureOptions {
 };
 
 void addFeatureOptions(CLI::App& cmd, FeatureOptions& options);
+/// --features alone (fk or joints), for commands that choose only the kind.
+void addFeatureKindOption(CLI::App& cmd, std::string& kind);
 
 /// The features of a model of `robot` chosen by the options.
 FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot);

@@ -1,5 +1,6 @@
 // fastron sample: uniform configurations of a robot in a scene, labelled by FCL, as a dataset.
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -33,14 +34,7 @@ int runSample(const SampleOptions& o) {
   data.points = uniformConfigurations(robot.limits(), o.count, rng);
   data.labels = labelConfigurations(fcl, data.points);
   data.columnNames = robot.actuatedJointNames();
-  const std::string extension = std::filesystem::path(o.output).extension().string();
-  if (extension == ".npy") {
-    writeNpy(data, o.output);
-  } else if (extension == ".csv") {
-    writeCsv(data, o.output);
-  } else {
-    throw InvalidArgument("-o " + o.output + ": the file must end in .csv or .npy");
-  }
+  writeDataset(data, o.output);
   const auto colliding = std::count(data.labels.begin(), data.labels.end(), std::int8_t{1});
   std::cout << "wrote " << o.output << ": " << data.size() << " configurations of " << robot.name()
             << " (" << robot.dof() << " joints) in " << o.scene << ", "

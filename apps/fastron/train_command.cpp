@@ -75,14 +75,21 @@ Dataset rows(const Dataset& data, const std::vector<Eigen::Index>& index) {
   return out;
 }
 
-/// The training settings: the feature kind's defaults, then what the options give.
-TrainParams trainParams(const TrainOptions& o, FeatureKind kind, std::size_t defaultIterations) {
+/// `defaults` with what the options give instead.
+TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
+  defaults.kernel.type = parseKernelType(o.kernel);
+  defaults.kernel.gamma = o.gamma.value_or(defaults.kernel.gamma);
+  defaults.beta = o.beta.value_or(defaults.beta);
+  defaults.maxIterations = o.maxIterations.value_or(defaults.maxIterations);
+  defaults.maxSupportPoints = o.maxSupport.value_or(defaults.maxSupportPoints);
+  return defaults;
+}
+
+/// The feature kind's gamma and beta with the given iteration limit and a cap of 5000.
+TrainParams robotDefaults(FeatureKind kind, std::size_t maxIterations) {
   TrainParams params = defaultTrainParams(kind);
-  params.kernel.type = parseKernelType(o.kernel);
-  if (o.gamma) params.kernel.gamma = *o.gamma;
-  if (o.beta) params.beta = *o.beta;
-  params.maxIterations = o.maxIterations.value_or(defaultIterations);
-  params.maxSupportPoints = o.maxSupport.value_or(5000);
+  params.maxIterations = maxIterations;
+  params.maxSupportPoints = 5000;
   return params;
 }
 
@@ -121,7 +128,7 @@ int trainOnScene(const TrainOptions& o) {
       std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
   const FeatureMap features = featuresFromOptions(o.features, robot);
   ProxyParams params;
-  params.train = trainParams(o, features.kind(), 20000);
+  params.train = withOptions(robotDefaults(features.kind(), 20000), o);
   params.seed = o.seed;
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
             << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
@@ -166,16 +173,9 @@ int runTrain(const TrainOptions& o) {
   }
   const FeatureMap features = robot ? featuresFromOptions(o.features, *robot)
                                     : FeatureMap::jointScaling(parseLimits(o.limits, data));
-  // A dataset without a robot keeps the paper's settings of old (gamma 10, beta 1).
-  const TrainParams params = robot ? trainParams(o, features.kind(), 5000) : [&] {
-    TrainParams p;
-    p.kernel.type = parseKernelType(o.kernel);
-    p.kernel.gamma = o.gamma.value_or(p.kernel.gamma);
-    p.beta = o.beta.value_or(p.beta);
-    p.maxIterations = o.maxIterations.value_or(p.maxIterations);
-    p.maxSupportPoints = o.maxSupport.value_or(p.maxSupportPoints);
-    return p;
-  }();
+  // A dataset without a robot keeps the settings of old (gamma 10, beta 1, cap 3000).
+  const TrainParams params =
+      withOptions(robot ? robotDefaults(features.kind(), 5000) : TrainParams{}, o);
 
   // Split off a random held-out share for validation.
   std::vector<Eigen::Index> order(data.size());

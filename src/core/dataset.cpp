@@ -246,6 +246,13 @@ Dataset readDataset(const std::filesystem::path& path) {
   throw FileError(path.string() + ": unknown dataset format '" + ext + "' (expected .csv or .npy)");
 }
 
+void writeDataset(const Dataset& data, const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".npy") return writeNpy(data, path);
+  if (ext == ".csv" || ext == ".txt") return writeCsv(data, path);
+  throw FileError(path.string() + ": unknown dataset format '" + ext + "' (expected .csv or .npy)");
+}
+
 void writeCsv(const Dataset& data, const std::filesystem::path& path) {
   std::ofstream out(path);
   if (!data.columnNames.empty()) {

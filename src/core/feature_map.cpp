@@ -1,6 +1,6 @@
 #include "fastron/core/feature_map.h"
 
-#include <cmath>
+#include <array>
 
 #include "fastron/core/error.h"
 
@@ -19,11 +19,12 @@ FeatureKind parseFeatureKind(std::string_view name) {
 FeatureMap FeatureMap::jointScaling(JointLimits limits) {
   FeatureMap map;
   map.limits_ = std::move(limits);
+  map.featureDim_ = map.limits_.dim();
   return map;
 }
 
 FeatureMap FeatureMap::kinematic(JointLimits limits,
-                                 std::shared_ptr<const PointKinematics> kinematics, double scale) {
+                                 std::shared_ptr<const PointKinematics> kinematics) {
   if (!kinematics) throw InvalidArgument("kinematic features need kinematics, got none");
   if (kinematics->dof() != limits.dim()) {
     throw InvalidArgument("kinematic features: the kinematics have " +
@@ -36,49 +37,32 @@ FeatureMap FeatureMap::kinematic(JointLimits limits,
                           std::to_string(kMaxFeatureDimension / 3) + " control points, got " +
                           std::to_string(points));
   }
-  if (!std::isfinite(scale) || scale <= 0) {
-    throw InvalidArgument("kinematic feature scale must be finite and > 0, got " +
-                          std::to_string(scale));
-  }
   FeatureMap map;
   map.kind_ = FeatureKind::Kinematic;
   map.limits_ = std::move(limits);
   map.kinematics_ = std::move(kinematics);
-  map.scale_ = scale;
+  map.featureDim_ = 3 * points;
   return map;
 }
 
-std::size_t FeatureMap::featureDim() const {
-  return kind_ == FeatureKind::Kinematic ? 3 * kinematics_->pointCount() : limits_.dim();
-}
-
-void FeatureMap::map(const double* q, double* x) const {
+template <class T>
+void FeatureMap::mapTo(const double* q, T* x) const {
   if (kind_ == FeatureKind::Kinematic) {
     kinematics_->positions(q, x);
-    if (scale_ != 1) {
-      for (std::size_t k = 0; k < featureDim(); ++k) x[k] *= scale_;
-    }
-    return;
-  }
-  const auto& scale = limits_.scale();
-  const auto& offset = limits_.offset();
-  for (Eigen::Index j = 0; j < scale.size(); ++j) x[j] = scale[j] * q[j] + offset[j];
-}
-
-void FeatureMap::map(const double* q, float* x) const {
-  if (kind_ == FeatureKind::Kinematic) {
-    kinematics_->positions(q, x);
-    if (scale_ != 1) {
-      const auto s = static_cast<float>(scale_);
-      for (std::size_t k = 0; k < featureDim(); ++k) x[k] *= s;
-    }
     return;
   }
   const auto& scale = limits_.scale();
   const auto& offset = limits_.offset();
   for (Eigen::Index j = 0; j < scale.size(); ++j) {
-    x[j] = static_cast<float>(scale[j] * q[j] + offset[j]);
+    x[j] = static_cast<T>(scale[j] * q[j] + offset[j]);
   }
+}
+
+void FeatureMap::map(const double* q, double* x) const {
+  mapTo(q, x);
+}
+void FeatureMap::map(const double* q, float* x) const {
+  mapTo(q, x);
 }
 
 Eigen::MatrixXd FeatureMap::map(const Configurations& q) const {
@@ -87,10 +71,13 @@ Eigen::MatrixXd FeatureMap::map(const Configurations& q) const {
                           " columns, expected " + std::to_string(configurationDim()));
   }
   if (!q.allFinite()) throw InvalidArgument("configurations must be finite (found NaN or inf)");
-  // Row-major, so each row is one contiguous feature vector for map().
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> x(
-      q.rows(), static_cast<Eigen::Index>(featureDim()));
-  for (Eigen::Index i = 0; i < q.rows(); ++i) map(q.row(i).data(), x.row(i).data());
+  const auto d = static_cast<Eigen::Index>(featureDim());
+  Eigen::MatrixXd x(q.rows(), d);
+  std::array<double, kMaxFeatureDimension> row{};
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    map(q.row(i).data(), row.data());
+    x.row(i) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), d);
+  }
   return x;
 }
 

@@ -213,7 +213,6 @@ Contents readVersion2(const std::vector<char>& bytes, Contents c, const std::str
   readLimits(r, c);
   if (c.header.features == FeatureKind::Kinematic) {
     KinematicsDescription& k = c.header.kinematics;
-    c.header.scale = r.getFinite("feature scale");
     k.checksum = r.get<std::uint64_t>("kinematics checksum");
     k.robot = r.getString("robot name");
     const auto joints = r.get<std::uint32_t>("joint count");
@@ -322,7 +321,6 @@ void saveModel(const Model& model, const std::filesystem::path& path) {
     w.put<double>(model.limits().upper()[static_cast<Eigen::Index>(j)]);
   if (features.kind() == FeatureKind::Kinematic) {
     const KinematicsDescription k = features.kinematics()->description();
-    w.put<double>(features.scale());
     w.put<std::uint64_t>(k.checksum);
     w.putString(k.robot);
     w.put<std::uint32_t>(static_cast<std::uint32_t>(k.joints.size()));
@@ -371,10 +369,9 @@ Model loadModel(const std::filesystem::path& path, std::optional<std::size_t> ex
   }
   try {
     JointLimits limits(std::move(c.lower), std::move(c.upper));
-    FeatureMap features =
-        c.header.features == FeatureKind::Kinematic
-            ? FeatureMap::kinematic(std::move(limits), std::move(kinematics), c.header.scale)
-            : FeatureMap::jointScaling(std::move(limits));
+    FeatureMap features = c.header.features == FeatureKind::Kinematic
+                              ? FeatureMap::kinematic(std::move(limits), std::move(kinematics))
+                              : FeatureMap::jointScaling(std::move(limits));
     return Model(std::move(features), c.kernel, std::move(c.support), std::move(c.weights));
   } catch (const InvalidArgument& e) {
     throw FileError(file + ": invalid model: " + e.what());

@@ -48,8 +48,11 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       Scene scene = sceneForTrial(c.scene, seed);
       auto fcl = std::make_shared<FclChecker>(robot, scene);
       auto gjk = std::make_shared<GjkChecker>(robot, scene);
-      ProxyCollisionDetector fromFcl(fcl, features, proxyParams(c, seed, o.features)),
-          fromGjk(gjk, features, proxyParams(c, seed, o.features)),
+      ProxyParams params = proxyParams(c, seed, o.features);
+      if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
+      if (o.beta > 0) params.train.beta = o.beta;
+      params.activeLearning.variance = o.variance;
+      ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
           inJoints(fcl, limits, proxyParams(c, seed, FeatureKind::JointScaling));
       fromFcl.initialize(initial);
       fromGjk.initialize(initial);
@@ -134,6 +137,9 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
                "docs/algorithms.md); 'Fastron (FCL, joints)' is the paper's joint-space model "
                "beside them"
              : "joint values scaled to [-1, 1] (the paper's)")
+     << (o.gamma > 0 ? ", gamma " + cell(o.gamma) : "")
+     << (o.beta > 0 ? ", beta " + cell(o.beta) : "")
+     << (o.variance > 0 ? ", active-learning variance " + cell(o.variance) : "")
      << ". Accuracy, TPR and TNR against FCL on fresh configurations after every update; mean ± "
         "standard deviation over all "
      << "updates of all trials; the paper's values (C++, MoveIt's Baxter, 2018 hardware) beside "
@@ -162,6 +168,7 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
   const Eigen::AlignedBox3d space(Eigen::Vector3d(0.25, -1.10, -0.30),
                                   Eigen::Vector3d(1.05, -0.15, 0.75));
   const Case c = caseFor("7dof");
+  const FeatureMap features = robotFeatures(robot, o.features);
   for (const std::size_t count : o.obstacles) {
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
       if (progress)
@@ -178,8 +185,7 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
       }
       auto fcl = std::make_shared<FclChecker>(robot, scene);
       const GjkChecker gjk(robot, scene);
-      ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features),
-                                   proxyParams(c, rng(), o.features));
+      ProxyCollisionDetector proxy(fcl, features, proxyParams(c, rng(), o.features));
       proxy.initialize(o.quick ? 500 : 3000);
       for (int s = 0; s < (o.quick ? 2 : 10); ++s)
         proxy.step();  // active learning refines the static scene

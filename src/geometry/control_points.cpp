@@ -2,10 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstring>
-#include <numeric>
-#include <random>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -23,41 +21,13 @@ Eigen::Matrix3d alignZWith(const Eigen::Vector3d& axis) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
 }
 
-/// The transform a joint adds at a fixed value: origin, then its motion.
-Eigen::Isometry3d jointTransform(const Joint& joint, double value) {
-  Eigen::Isometry3d t = joint.origin;
-  if (joint.type == JointType::Revolute || joint.type == JointType::Continuous) {
-    t.rotate(Eigen::AngleAxisd(value, joint.axis));
-  } else if (joint.type == JointType::Prismatic) {
-    t.translate(value * joint.axis);
-  }
-  return t;
-}
-
 /// Axis-aligned box, in the link's frame, around the link's collision shapes; empty when the link
 /// has none.
 Eigen::AlignedBox3d linkBounds(const Robot& robot, int link) {
   Eigen::AlignedBox3d bounds;
   for (const LinkShape& s : robot.shapes()) {
     if (s.link != link) continue;
-    const Eigen::Vector3d half = std::visit(
-        [](const auto& shape) -> Eigen::Vector3d {
-          using T = std::decay_t<decltype(shape)>;
-          if constexpr (std::is_same_v<T, Box>) return shape.size / 2;
-          if constexpr (std::is_same_v<T, Sphere>) return Eigen::Vector3d::Constant(shape.radius);
-          if constexpr (std::is_same_v<T, Cylinder>) {
-            return {shape.radius, shape.radius, shape.length / 2};
-          }
-          if constexpr (std::is_same_v<T, Capsule>) {
-            return {shape.radius, shape.radius, shape.length / 2 + shape.radius};
-          }
-          if constexpr (std::is_same_v<T, Mesh>) {
-            Eigen::Vector3d h = Eigen::Vector3d::Zero();
-            for (const auto& v : shape.mesh->vertices) h = h.cwiseMax(v.cwiseAbs());
-            return h;
-          }
-        },
-        s.shape);
+    const Eigen::Vector3d half = halfExtents(s.shape);
     for (int corner = 0; corner < 8; ++corner) {
       const Eigen::Vector3d c((corner & 1) ? half.x() : -half.x(),
                               (corner & 2) ? half.y() : -half.y(),
@@ -90,6 +60,7 @@ bool isAncestor(const Robot& robot, int ancestor, int link) {
 }
 
 struct Candidate {
+  std::size_t link = 0;
   ControlPoint point;
   std::vector<Eigen::Vector3d> samples;  // world position at each sampled configuration
   double spread = 0;                     // RMS distance from the mean position
@@ -99,19 +70,17 @@ std::vector<Candidate> candidatePoints(const Robot& robot) {
   std::vector<Candidate> candidates;
   const auto& links = robot.links();
   for (std::size_t l = 0; l < links.size(); ++l) {
-    candidates.push_back({{links[l].name, Eigen::Vector3d::Zero()}, {}, 0});
+    candidates.push_back({l, {links[l].name, Eigen::Vector3d::Zero()}, {}, 0});
   }
   for (std::size_t l = 0; l < links.size(); ++l) {
     const Eigen::AlignedBox3d bounds = linkBounds(robot, static_cast<int>(l));
     if (bounds.isEmpty()) continue;
-    bool hasMovingDescendant = false;
-    for (const Joint& joint : robot.joints()) {
-      if (joint.movable() && joint.child != static_cast<int>(l) &&
-          isAncestor(robot, static_cast<int>(l), joint.child)) {
-        hasMovingDescendant = true;
-      }
-    }
-    if (!hasMovingDescendant) candidates.push_back({{links[l].name, farEnd(bounds)}, {}, 0});
+    // A movable joint below the link: its parent is the link or one of the link's descendants.
+    const bool hasMovingDescendant =
+        std::any_of(robot.joints().begin(), robot.joints().end(), [&](const Joint& joint) {
+          return joint.movable() && isAncestor(robot, static_cast<int>(l), joint.parent);
+        });
+    if (!hasMovingDescendant) candidates.push_back({l, {links[l].name, farEnd(bounds)}, {}, 0});
   }
   return candidates;
 }
@@ -122,10 +91,7 @@ void place(const Robot& robot, std::vector<Candidate>& candidates) {
   KinematicsData data = makeKinematicsData(robot);
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     forwardKinematics(robot, q.row(i).data(), data);
-    for (Candidate& c : candidates) {
-      const auto link = static_cast<std::size_t>(robot.linkIndex(c.point.link));
-      c.samples.push_back(data.linkPoses[link] * c.point.offset);
-    }
+    for (Candidate& c : candidates) c.samples.push_back(data.linkPoses[c.link] * c.point.offset);
   }
   for (Candidate& c : candidates) {
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -156,6 +122,63 @@ void hashString(std::uint64_t& h, const std::string& s) {
 }
 void hashDoubles(std::uint64_t& h, const double* v, std::size_t n) {
   hashBytes(h, v, n * sizeof(double));
+}
+
+/// A Frame (RobotPointKinematics' 12-scalar rigid transform) from a rotation and a translation.
+template <class Frame>
+Frame toFrame(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation) {
+  using T = typename decltype(Frame::t)::value_type;
+  Frame f;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) f.r[3 * i + j] = static_cast<T>(rotation(i, j));
+    f.t[i] = static_cast<T>(translation[i]);
+  }
+  return f;
+}
+
+/// a * b for two frames.
+template <class Frame>
+Frame compose(const Frame& a, const Frame& b) {
+  Frame f;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      f.r[3 * i + j] =
+          a.r[3 * i] * b.r[j] + a.r[3 * i + 1] * b.r[3 + j] + a.r[3 * i + 2] * b.r[6 + j];
+    }
+    f.t[i] = a.r[3 * i] * b.t[0] + a.r[3 * i + 1] * b.t[1] + a.r[3 * i + 2] * b.t[2] + a.t[i];
+  }
+  return f;
+}
+
+template <class To, std::size_t N, class From>
+std::array<To, N> castArray(const std::array<From, N>& a) {
+  std::array<To, N> out;
+  for (std::size_t i = 0; i < N; ++i) out[i] = static_cast<To>(a[i]);
+  return out;
+}
+
+constexpr std::size_t kTrigLanes = 16;
+using TrigLanes = Eigen::Array<float, kTrigLanes, 1>;
+
+/// cos and sin of `count` angles: in float with Eigen's SIMD sin/cos (16 at a time), or in double
+/// one by one.
+template <class T>
+void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
+  if constexpr (std::is_same_v<T, float>) {
+    for (std::size_t b = 0; b < count; b += kTrigLanes) {
+      TrigLanes a = TrigLanes::Zero();
+      const std::size_t n = std::min(kTrigLanes, count - b);
+      std::copy_n(angles + b, n, a.data());
+      const TrigLanes c = a.cos(), s = a.sin();
+      std::copy_n(c.data(), n, cosines + b);
+      std::copy_n(s.data(), n, sines + b);
+    }
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      cosines[k] = std::cos(angles[k]);
+      sines[k] = std::sin(angles[k]);
+    }
+  }
 }
 
 }  // namespace
@@ -249,8 +272,7 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     step.parent = stepOf[parent];
     step.joint = static_cast<int>(position - actuated.begin());
     step.prismatic = joint.type == JointType::Prismatic;
-    step.rotation = fixed.linear() * align;
-    step.translation = fixed.translation();
+    step.fixed = toFrame<Frame<double>>(fixed.linear() * align, fixed.translation());
     stepOf[child] = static_cast<int>(all.size());
     inStep[child].setIdentity();
     inStep[child].linear() = align.transpose();
@@ -281,14 +303,17 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
   for (const ControlPoint& p : points) {
     const auto link = static_cast<std::size_t>(robot.linkIndex(p.link));
     const int step = stepOf[link] < 0 ? -1 : newIndex[static_cast<std::size_t>(stepOf[link])];
-    chain_.points.push_back({step, inStep[link] * p.offset});
+    const Eigen::Vector3d local = inStep[link] * p.offset;
+    chain_.points.push_back({step, {local.x(), local.y(), local.z()}});
   }
   for (const auto& step : chain_.steps) {
-    chainF_.steps.push_back({step.parent, step.joint, step.prismatic, step.rotation.cast<float>(),
-                             step.translation.cast<float>()});
+    chainF_.steps.push_back({step.parent,
+                             step.joint,
+                             step.prismatic,
+                             {castArray<float>(step.fixed.r), castArray<float>(step.fixed.t)}});
   }
   for (const auto& point : chain_.points) {
-    chainF_.points.push_back({point.step, point.local.cast<float>()});
+    chainF_.points.push_back({point.step, castArray<float>(point.local)});
   }
 
   description_.robot = robot.name();
@@ -306,69 +331,6 @@ const RobotPointKinematics::Chain<float>& RobotPointKinematics::chain<float>() c
   return chainF_;
 }
 
-namespace {
-
-constexpr std::size_t kTrigLanes = 16;
-using TrigLanes = Eigen::Array<float, kTrigLanes, 1>;
-
-/// cos and sin of `count` angles: in float with Eigen's SIMD sin/cos (16 at a time), or in double
-/// one by one.
-template <class T>
-void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
-  if constexpr (std::is_same_v<T, float>) {
-    for (std::size_t b = 0; b < count; b += kTrigLanes) {
-      TrigLanes a = TrigLanes::Zero();
-      const std::size_t n = std::min(kTrigLanes, count - b);
-      std::copy_n(angles + b, n, a.data());
-      const TrigLanes c = a.cos(), s = a.sin();
-      std::copy_n(c.data(), n, cosines + b);
-      std::copy_n(s.data(), n, sines + b);
-    }
-  } else {
-    for (std::size_t k = 0; k < count; ++k) {
-      cosines[k] = std::cos(angles[k]);
-      sines[k] = std::sin(angles[k]);
-    }
-  }
-}
-
-/// A rigid transform as 12 scalars: rotation row by row, then translation. Composed with plain
-/// scalar multiply-adds: for 3x3 matrices the compiler's scalar code beats SIMD shuffles, and the
-/// chain of frames stays in registers and same-size loads and stores.
-template <class T>
-struct Frame {
-  std::array<T, 9> r;
-  std::array<T, 3> t;
-};
-
-template <class T>
-Frame<T> compose(const Frame<T>& a, const Eigen::Matrix<T, 3, 3>& rotation,
-                 const Eigen::Matrix<T, 3, 1>& translation) {
-  Frame<T> f;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      f.r[3 * i + j] = a.r[3 * i] * rotation(0, j) + a.r[3 * i + 1] * rotation(1, j) +
-                       a.r[3 * i + 2] * rotation(2, j);
-    }
-    f.t[i] = a.r[3 * i] * translation[0] + a.r[3 * i + 1] * translation[1] +
-             a.r[3 * i + 2] * translation[2] + a.t[i];
-  }
-  return f;
-}
-
-template <class T>
-Frame<T> frameOf(const Eigen::Matrix<T, 3, 3>& rotation,
-                 const Eigen::Matrix<T, 3, 1>& translation) {
-  Frame<T> f;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) f.r[3 * i + j] = rotation(i, j);
-    f.t[i] = translation[i];
-  }
-  return f;
-}
-
-}  // namespace
-
 template <class T>
 void RobotPointKinematics::place(const double* q, T* out) const {
   const Chain<T>& c = chain<T>();
@@ -381,9 +343,9 @@ void RobotPointKinematics::place(const double* q, T* out) const {
   cosSin(values.data(), n, cosines.data(), sines.data());
   for (std::size_t s = 0; s < n; ++s) {
     const Step<T>& step = c.steps[s];
-    Frame<T> f = step.parent >= 0 ? compose(frames[static_cast<std::size_t>(step.parent)],
-                                            step.rotation, step.translation)
-                                  : frameOf(step.rotation, step.translation);
+    Frame<T> f = step.parent >= 0
+                     ? compose(frames[static_cast<std::size_t>(step.parent)], step.fixed)
+                     : step.fixed;
     if (step.prismatic) {
       for (int i = 0; i < 3; ++i) f.t[i] += values[s] * f.r[3 * i + 2];
     } else {  // f * Rz(value): only the x and y columns turn
@@ -418,17 +380,16 @@ void RobotPointKinematics::positions(const double* q, float* out) const {
   place(q, out);
 }
 
-FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, std::vector<ControlPoint> points,
-                         double scale) {
-  return robotFeatures(robot, kind, robot.limits(), std::move(points), scale);
+FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, std::vector<ControlPoint> points) {
+  return robotFeatures(robot, kind, robot.limits(), std::move(points));
 }
 
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, JointLimits limits,
-                         std::vector<ControlPoint> points, double scale) {
+                         std::vector<ControlPoint> points) {
   if (kind == FeatureKind::JointScaling) return FeatureMap::jointScaling(std::move(limits));
   if (points.empty()) points = defaultControlPoints(robot);
-  return FeatureMap::kinematic(
-      std::move(limits), std::make_shared<RobotPointKinematics>(robot, std::move(points)), scale);
+  return FeatureMap::kinematic(std::move(limits),
+                               std::make_shared<RobotPointKinematics>(robot, std::move(points)));
 }
 
 Model loadModelFor(const std::filesystem::path& path, const Robot& robot) {

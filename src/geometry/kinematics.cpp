@@ -11,6 +11,22 @@ KinematicsData makeKinematicsData(const Robot& robot) {
   return data;
 }
 
+Eigen::Isometry3d jointTransform(const Joint& joint, double value) {
+  Eigen::Isometry3d t = joint.origin;
+  switch (joint.type) {
+    case JointType::Revolute:
+    case JointType::Continuous:
+      t.linear() = t.linear() * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
+      break;
+    case JointType::Prismatic:
+      t.translation() += t.linear() * (value * joint.axis);
+      break;
+    case JointType::Fixed:
+      break;
+  }
+  return t;
+}
+
 void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data,
                        const Eigen::Isometry3d& base) {
   const auto& actuated = robot.actuatedJoints();
@@ -20,20 +36,9 @@ void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data
   const auto& joints = robot.joints();
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const Joint& joint = joints[j];
-    Eigen::Isometry3d pose = data.linkPoses[static_cast<std::size_t>(joint.parent)] * joint.origin;
-    const double value = data.jointPositions[j];
-    switch (joint.type) {
-      case JointType::Revolute:
-      case JointType::Continuous:
-        pose.linear() = pose.linear() * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
-        break;
-      case JointType::Prismatic:
-        pose.translation() += pose.linear() * (value * joint.axis);
-        break;
-      case JointType::Fixed:
-        break;
-    }
-    data.linkPoses[static_cast<std::size_t>(joint.child)] = pose;
+    data.linkPoses[static_cast<std::size_t>(joint.child)] =
+        data.linkPoses[static_cast<std::size_t>(joint.parent)] *
+        jointTransform(joint, data.jointPositions[j]);
   }
 }
 

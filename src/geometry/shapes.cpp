@@ -107,4 +107,24 @@ double boundingRadius(const Shape& shape) {
                     shape);
 }
 
+Eigen::Vector3d halfExtents(const Shape& shape) {
+  return std::visit(
+      Overloaded{
+          [](const Box& b) -> Eigen::Vector3d { return b.size / 2; },
+          [](const Sphere& s) -> Eigen::Vector3d { return Eigen::Vector3d::Constant(s.radius); },
+          [](const Cylinder& c) -> Eigen::Vector3d {
+            return {c.radius, c.radius, c.length / 2};
+          },
+          [](const Capsule& c) -> Eigen::Vector3d {
+            return {c.radius, c.radius, c.length / 2 + c.radius};
+          },
+          [](const Mesh& m) -> Eigen::Vector3d {
+            Eigen::Vector3d h = Eigen::Vector3d::Zero();
+            for (const auto& v : m.mesh->vertices) h = h.cwiseMax(v.cwiseAbs());
+            return h;
+          },
+      },
+      shape);
+}
+
 }  // namespace fastron

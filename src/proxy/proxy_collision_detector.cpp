@@ -69,7 +69,9 @@ StepReport ProxyCollisionDetector::step() {
   const auto start = Clock::now();
   StepReport report;
 
-  const Configurations fresh = activeLearning(*trainer_.model(), params_.activeLearning, rng_);
+  // The published model is the trainer's current support set: nothing changes the trainer between
+  // steps (stepMutex_), so Algorithm 2 samples around it instead of building the same model again.
+  const Configurations fresh = activeLearning(*model(), params_.activeLearning, rng_);
   const auto support = static_cast<Eigen::Index>(trainer_.size());
   Configurations all(support + fresh.rows(),
                      static_cast<Eigen::Index>(features_.configurationDim()));

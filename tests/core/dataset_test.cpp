@@ -53,6 +53,21 @@ TEST_F(DatasetFiles, CsvRoundTrip) {
   EXPECT_EQ(back.columnNames, data.columnNames);
 }
 
+TEST_F(DatasetFiles, WriteDatasetChoosesTheFormatByExtension) {
+  Dataset data;
+  data.points = Configurations::Random(20, 3);
+  data.labels.assign(20, 1);
+  for (const char* name : {"w.csv", "w.npy"}) {
+    writeDataset(data, path(name));
+    const Dataset back = readDataset(path(name));
+    EXPECT_EQ(back.points, data.points) << name;
+    EXPECT_EQ(back.labels, data.labels) << name;
+  }
+  EXPECT_EQ(read(path("w.npy")).substr(1, 5), "NUMPY");
+  EXPECT_THAT(messageOf<FileError>([&] { writeDataset(data, path("w.dat")); }),
+              HasSubstr("w.dat: unknown dataset format '.dat'"));
+}
+
 TEST_F(DatasetFiles, BadCsvRowsNameTheLineAndColumn) {
   EXPECT_THAT(csvError("q1,q2,label\n0,0,1\n0,1\n"), HasSubstr("d.csv:3: 2 columns, expected 3"));
   EXPECT_THAT(csvError("0,0,1\n0,abc,1\n"), HasSubstr("d.csv:2: column 2: 'abc' is not a number"));

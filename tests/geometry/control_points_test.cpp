@@ -5,6 +5,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstring>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -162,10 +165,6 @@ TEST_F(TaskSpaceModelFile, EveryOtherRobotIsRefusedByName) {
       messageOf<FileError>([&] { loadModelFor(file, reordered); }),
       HasSubstr("on joints right_s0,right_s1,right_e0,right_e1,right_w0,right_w1,right_w2"));
 
-  Robot held = loadRobot("baxter");
-  held.setHeldPosition("right_hand", 0);  // unchanged: a fixed joint keeps its pose
-  EXPECT_NO_THROW(loadModelFor(file, held));
-
   // Other kinematics under the same name and joints: a joint origin moved by 1 cm.
   const Robot original = loadRobot("baxter");
   std::vector<Joint> joints = original.joints();
@@ -183,6 +182,25 @@ TEST_F(TaskSpaceModelFile, EveryOtherRobotIsRefusedByName) {
               HasSubstr("control points"));
 }
 
+// A joint that is not actuated is part of the kinematics at its held value: the same robot and
+// joints with the wrist held elsewhere place the control points elsewhere.
+TEST_F(TaskSpaceModelFile, AnotherHeldPositionIsAnotherRobot) {
+  const Robot four = baxterWithJoints(4);  // right_w0..w2 held at 0
+  const FeatureMap features = robotFeatures(four, FeatureKind::Kinematic);
+  Trainer trainer(features, defaultTrainParams(FeatureKind::Kinematic));
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(four.limits(), 200, rng);
+  const FclChecker fcl(four, loadScene(dataDirectory() / "scenes" / "baxter_one_box.yaml"));
+  trainer.addPoints(q, labelConfigurations(fcl, q, 1));
+  trainer.update();
+  saveModel(*trainer.model(), path("four.fastron"));
+  EXPECT_NO_THROW(loadModelFor(path("four.fastron"), baxterWithJoints(4)));
+  Robot bent = baxterWithJoints(4);
+  bent.setHeldPosition("right_w1", 0.7);
+  EXPECT_THAT(messageOf<FileError>([&] { loadModelFor(path("four.fastron"), bent); }),
+              HasSubstr("kinematics (joint origins, axes or types) differ"));
+}
+
 TEST_F(TaskSpaceModelFile, ACorruptFeatureBlockIsRefused) {
   saveModel(trainedOn(loadRobot("baxter")), path("m.fastron"));
   std::string bytes = read(path("m.fastron"));
@@ -195,6 +213,29 @@ TEST_F(TaskSpaceModelFile, ACorruptFeatureBlockIsRefused) {
   EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("c.fastron")); }), HasSubstr("checksum"));
   write("t.fastron", bytes.substr(0, name + 3));
   EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("t.fastron")); }), HasSubstr("truncated"));
+
+  // Contents that disagree with themselves under a valid checksum (a writer's bug, not noise):
+  // no control points, and a robot name of 100000 bytes.
+  const auto withChecksum = [](std::string b) {
+    const auto crc = static_cast<std::uint32_t>(
+        crc32(0L, reinterpret_cast<const Bytef*>(b.data()), static_cast<uInt>(b.size() - 4)));
+    std::memcpy(b.data() + b.size() - 4, &crc, 4);
+    return b;
+  };
+  const std::size_t joints = name + 6;  // the u32 joint count follows the name "baxter"
+  const std::size_t points = bytes.find("right_hand") - 4 - 4;  // count, then the first link
+  std::string noPoints = bytes;
+  std::memset(noPoints.data() + points, 0, 4);
+  write("p.fastron", withChecksum(noPoints));
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("p.fastron")); }),
+              HasSubstr("invalid model: 0 control points"));
+  std::string longName = bytes;
+  const std::uint32_t huge = 100000;
+  std::memcpy(longName.data() + name - 4, &huge, 4);
+  write("n.fastron", withChecksum(longName));
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("n.fastron")); }),
+              HasSubstr("invalid model: robot name of 100000 bytes"));
+  ASSERT_EQ(bytes.substr(joints, 4), std::string("\x07\0\0\0", 4));  // the layout assumed above
 }
 
 // Claim 1 of the paper in feature space: with distinct features every training point ends with

@@ -27,6 +27,9 @@ Dataset readDataset(const std::filesystem::path& path);
 Dataset readCsv(const std::filesystem::path& path);
 Dataset readNpy(const std::filesystem::path& path);
 
+/// Writes a .csv or .npy file (chosen by extension, as readDataset reads them); throws FileError
+/// naming the file for another extension.
+void writeDataset(const Dataset& data, const std::filesystem::path& path);
 /// Writes configuration columns and the label; with column names, a header row first.
 void writeCsv(const Dataset& data, const std::filesystem::path& path);
 /// Writes a float64 C-order array of shape (n, d + 1).

@@ -55,7 +55,7 @@ class PointKinematics {
 
 enum class FeatureKind : std::uint8_t {
   JointScaling = 0,  ///< joint values scaled to [-1, 1] by the joint limits
-  Kinematic = 1,     ///< world positions of control points, times a scale
+  Kinematic = 1,     ///< world positions of control points, in metres
 };
 std::string_view toString(FeatureKind kind);
 /// "joints" or "fk"; throws InvalidArgument naming the value.
@@ -70,21 +70,21 @@ class FeatureMap {
  public:
   FeatureMap() = default;
   static FeatureMap jointScaling(JointLimits limits);
-  /// Features = `scale` * world positions of the kinematics' control points. Throws
-  /// InvalidArgument when the kinematics are null, their dof differs from the limits, they have
-  /// no point or too many, or the scale is not finite and positive.
-  static FeatureMap kinematic(JointLimits limits, std::shared_ptr<const PointKinematics> kinematics,
-                              double scale = 1);
+  /// Features = world positions of the kinematics' control points, in metres. (No scale factor:
+  /// scaling every feature by s is the same model as the kernel's gamma times s^2.) Throws
+  /// InvalidArgument when the kinematics are null, their dof differs from the limits, or they have
+  /// no point or too many.
+  static FeatureMap kinematic(JointLimits limits,
+                              std::shared_ptr<const PointKinematics> kinematics);
 
   FeatureKind kind() const { return kind_; }
   const JointLimits& limits() const { return limits_; }
   /// Joint values per configuration.
   std::size_t configurationDim() const { return limits_.dim(); }
   /// Features per configuration.
-  std::size_t featureDim() const;
+  std::size_t featureDim() const { return featureDim_; }
   /// Null for joint scaling.
   const std::shared_ptr<const PointKinematics>& kinematics() const { return kinematics_; }
-  double scale() const { return scale_; }
 
   /// Features of one configuration; q holds configurationDim() finite values (not checked: the
   /// hot path). `x` receives featureDim() values.
@@ -97,10 +97,13 @@ class FeatureMap {
   std::string summary() const;
 
  private:
+  template <class T>
+  void mapTo(const double* q, T* x) const;
+
   FeatureKind kind_ = FeatureKind::JointScaling;
   JointLimits limits_;
   std::shared_ptr<const PointKinematics> kinematics_;
-  double scale_ = 1;
+  std::size_t featureDim_ = 0;  // kept: the query path must not ask the kinematics each time
 };
 
 }  // namespace fastron

@@ -5,7 +5,7 @@
 //   magic "FASTRON\0", u32 version (2), u32 dimension d (joint values per configuration),
 //   u64 size of the whole file in bytes, u32 kernel type, u32 feature kind (0 joints, 1 fk),
 //   f64 gamma, f64 lower[d], f64 upper[d] (joint limits),
-//   for fk features only: f64 scale, u64 kinematics checksum, str robot, u32 joint count m,
+//   for fk features only: u64 kinematics checksum, str robot, u32 joint count m,
 //     str joint[m], u32 point count p, then p times (str link, f64 x, f64 y, f64 z),
 //   u64 support count n, f64 support configurations [n * d] (joint values, row by row),
 //   f64 weights [n], u32 CRC-32 of every preceding byte.
@@ -36,7 +36,6 @@ struct ModelFileHeader {
   std::size_t dim = 0;
   FeatureKind features = FeatureKind::JointScaling;
   KinematicsDescription kinematics;  ///< fk only
-  double scale = 1;                  ///< fk only
 };
 
 /// Reads and checks a whole model file (size, checksum) and returns its header. Throws FileError

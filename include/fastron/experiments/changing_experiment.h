@@ -20,6 +20,10 @@ struct ChangingOptions {
   /// Fastron's input. With task-space features a joint-space Fastron (FCL) runs beside them, so
   /// the paper's row stays in the table.
   FeatureKind features = FeatureKind::Kinematic;
+  /// Settings of the Fastron models on options.features (not of the joint-space row beside
+  /// them), for tuning; 0 keeps the default: the case's gamma and beta for joints,
+  /// defaultTrainParams for task space, defaultVariance for the active-learning spread.
+  double gamma = 0, beta = 0, variance = 0;
   std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
 };
 

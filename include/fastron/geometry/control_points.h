@@ -66,6 +66,14 @@ class RobotPointKinematics final : public PointKinematics {
   std::size_t steps() const { return chain_.steps.size(); }
 
  private:
+  /// A rigid transform as 12 scalars: rotation row by row, then translation. Composed with plain
+  /// scalar multiply-adds: for 3x3 matrices the compiler's scalar code beats Eigen's SIMD
+  /// shuffles, and a chain of frames stays in same-size loads and stores.
+  template <class T>
+  struct Frame {
+    std::array<T, 9> r;
+    std::array<T, 3> t;
+  };
   /// One actuated joint: a constant transform from the parent step's frame, then a rotation
   /// about (or translation along) the local z axis by the joint's value.
   template <class T>
@@ -73,13 +81,12 @@ class RobotPointKinematics final : public PointKinematics {
     int parent = -1;  ///< step whose frame this one's hangs off, -1 for the base
     int joint = 0;    ///< index into the configuration
     bool prismatic = false;
-    Eigen::Matrix<T, 3, 3> rotation;
-    Eigen::Matrix<T, 3, 1> translation;
+    Frame<T> fixed;
   };
   template <class T>
   struct Point {
     int step = -1;  ///< frame the point is fixed in, -1 for the base
-    Eigen::Matrix<T, 3, 1> local;
+    std::array<T, 3> local;
   };
   template <class T>
   struct Chain {
@@ -102,12 +109,12 @@ class RobotPointKinematics final : public PointKinematics {
 inline constexpr std::size_t kMaxKinematicSteps = 64;
 
 /// The model's features for `robot`: joint scaling by its limits, or the world positions of
-/// `points` (defaultControlPoints when empty) scaled by `scale`.
+/// `points` (defaultControlPoints when empty).
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind,
-                         std::vector<ControlPoint> points = {}, double scale = 1);
+                         std::vector<ControlPoint> points = {});
 /// The same with other joint limits than the robot's (e.g. a narrower range to sample).
 FeatureMap robotFeatures(const Robot& robot, FeatureKind kind, JointLimits limits,
-                         std::vector<ControlPoint> points = {}, double scale = 1);
+                         std::vector<ControlPoint> points = {});
 
 /// Loads a model file for `robot`: a task-space model gets kinematics built from `robot` and the
 /// control points the file records, and is refused (FileError naming the difference) when the

@@ -16,6 +16,10 @@ struct KinematicsData {
 
 KinematicsData makeKinematicsData(const Robot& robot);
 
+/// The transform from a joint's parent link to its child at joint value `value`: the joint's
+/// origin, then its motion (a rotation about, or a translation along, its axis; none if fixed).
+Eigen::Isometry3d jointTransform(const Joint& joint, double value);
+
 /// Fills data.linkPoses with every link's pose in the world, the root placed at `base`.
 /// q: robot.dof() values of the actuated joints, in order. Does not allocate.
 void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data,

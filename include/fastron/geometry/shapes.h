@@ -49,4 +49,8 @@ std::string describe(const Shape& shape);
 /// Radius of the smallest sphere about the shape's origin that contains it.
 double boundingRadius(const Shape& shape);
 
+/// Half the extents of the smallest box about the shape's origin, aligned with its frame, that
+/// contains it.
+Eigen::Vector3d halfExtents(const Shape& shape);
+
 }  // namespace fastron
