@@ -94,6 +94,59 @@ BENCHMARK(BM_ControlPoints<float>)
     ->ArgNames({"robot", "points"});
 BENCHMARK(BM_ControlPoints<double>)->ArgsProduct({{2, 4}, {3}})->ArgNames({"robot", "points"});
 
+// The same float positions for a batch of `batch` configurations at once (an edge check's
+// states), sixteen per pass with one configuration per SIMD lane; time per configuration.
+void BM_ControlPointsBatch(benchmark::State& state) {
+  const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
+  const RobotPointKinematics kinematics(
+      robot, defaultControlPoints(robot, {.maxPoints = static_cast<std::size_t>(state.range(1))}));
+  const auto batch = static_cast<std::size_t>(state.range(2));
+  const Configurations q = queries(robot);
+  std::vector<float> out(3 * kinematics.pointCount() * batch);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    kinematics.positionsBatch(q.row(static_cast<Eigen::Index>(i)).data(), batch, out.data());
+    benchmark::DoNotOptimize(out.data());
+    i = (i + batch) % (1024 - batch);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(batch));
+  state.SetLabel(robot.name() + ", " + std::to_string(kinematics.pointCount()) + " points");
+}
+BENCHMARK(BM_ControlPointsBatch)
+    ->ArgsProduct({{2, 4}, {4}, {4, 16, 64}})
+    ->ArgNames({"robot", "points", "batch"});
+
+// A whole task-space query on Baxter (4 automatic control points, gamma 40): |S| random support
+// configurations with random weights. batch 1: Model::score one configuration at a time;
+// batch 16: Model::scoreBatch (features for sixteen at once, kernel sums four per pass), the
+// path of edge checks. Time per configuration.
+void BM_TaskSpaceQuery(benchmark::State& state) {
+  const Robot robot = loadRobot("baxter");
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const auto batch = static_cast<std::size_t>(state.range(1));
+  Rng rng(13);
+  const Model model(robotFeatures(robot, FeatureKind::Kinematic),
+                    {KernelType::RationalQuadratic, 40},
+                    uniformConfigurations(robot.limits(), support, rng),
+                    Eigen::VectorXd::Random(static_cast<Eigen::Index>(support)));
+  const Configurations q = queries(robot);
+  std::vector<double> out(batch);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const double* rows = q.row(static_cast<Eigen::Index>(i)).data();
+    if (batch == 1) {
+      benchmark::DoNotOptimize(model.score(rows));
+    } else {
+      model.scoreBatch(rows, batch, out.data());
+      benchmark::DoNotOptimize(out.data());
+    }
+    i = (i + batch) % (1024 - batch);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(batch));
+  state.SetLabel("baxter, " + std::to_string(model.featureDim() / 3) + " points");
+}
+BENCHMARK(BM_TaskSpaceQuery)->ArgsProduct({{100, 400, 1000}, {1, 16}})->ArgNames({"S", "batch"});
+
 template <class Checker>
 void BM_Check(benchmark::State& state) {
   const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);

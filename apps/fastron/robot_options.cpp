@@ -48,8 +48,9 @@ void addFeatureKindOption(CLI::App& cmd, std::string& kind) {
 void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
   addFeatureKindOption(cmd, options.kind);
   cmd.add_option("--control-links", options.controlLinks,
-                 "fk: links whose origins are the control points, comma-separated (default: "
-                 "chosen automatically, see docs/algorithms.md)")
+                 "fk: control points, comma-separated: LINK (the link's origin) or LINK@X:Y:Z (a "
+                 "point in the link's frame, metres); default: chosen automatically, see "
+                 "docs/algorithms.md")
       ->delimiter(',');
   cmd.add_option("--control-points", options.automatic.maxPoints,
                  "fk: at most this many automatic control points (0: all)")
@@ -69,7 +70,7 @@ FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot
   }
   std::vector<ControlPoint> points = options.controlLinks.empty()
                                          ? defaultControlPoints(robot, options.automatic)
-                                         : linkOriginPoints(robot, options.controlLinks);
+                                         : namedControlPoints(robot, options.controlLinks);
   return robotFeatures(robot, kind, std::move(points));
 }
 

@@ -65,6 +65,20 @@ void FeatureMap::map(const double* q, float* x) const {
   mapTo(q, x);
 }
 
+void FeatureMap::mapBatch(const double* q, std::size_t n, float* x) const {
+  if (kind_ == FeatureKind::Kinematic) {
+    kinematics_->positionsBatch(q, n, x);
+    return;
+  }
+  const std::size_t dof = configurationDim();
+  for (std::size_t i = 0; i < n; ++i) mapTo(q + i * dof, x + i * featureDim_);
+}
+
+void PointKinematics::positionsBatch(const double* q, std::size_t n, float* out) const {
+  const std::size_t dofs = dof(), coordinates = 3 * pointCount();
+  for (std::size_t i = 0; i < n; ++i) positions(q + i * dofs, out + i * coordinates);
+}
+
 Eigen::MatrixXd FeatureMap::map(const Configurations& q) const {
   if (static_cast<std::size_t>(q.cols()) != configurationDim()) {
     throw InvalidArgument("configurations have " + std::to_string(q.cols()) +

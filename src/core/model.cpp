@@ -42,6 +42,8 @@ float kernelSum(const float* soa, const float* weights, std::size_t padded, std:
 // kQueries kernel sums in one pass over the support set: each block of support coordinates is
 // loaded once for all of them (the batch and edge queries of motion planning).
 constexpr std::size_t kQueries = 4;
+// Configurations whose features are computed together (one per lane of the batched kinematics).
+constexpr std::size_t kFeatureBatch = 16;
 
 template <KernelType type>
 std::array<float, kQueries> kernelSums(const float* soa, const float* weights, std::size_t padded,
@@ -103,14 +105,20 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
   }
 }
 
-void Model::toFeatures(const double* q, float* x) const {
-  for (std::size_t j = 0; j < dim(); ++j) {
+void Model::toFeatures(const double* q, std::size_t n, float* x, std::size_t firstRow) const {
+  for (std::size_t j = 0; j < n * dim(); ++j) {
     if (!std::isfinite(q[j])) {
-      throw InvalidArgument("configuration value [" + std::to_string(j) + "] is not finite (" +
-                            std::to_string(q[j]) + ")");
+      throw InvalidArgument(
+          "configuration value [" + std::to_string(j % dim()) + "] is not finite (" +
+          std::to_string(q[j]) + ")" +
+          (n > 1 ? " in configuration " + std::to_string(firstRow + j / dim()) : ""));
     }
   }
-  features_.map(q, x);
+  if (n == 1) {
+    features_.map(q, x);
+  } else {
+    features_.mapBatch(q, n, x);
+  }
 }
 
 float Model::scoreInputFloat(const float* x) const {
@@ -126,7 +134,7 @@ float Model::scoreInputFloat(const float* x) const {
 double Model::score(const double* q) const {
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): toFeatures fills it
   std::array<float, kMaxFeatureDimension> x;
-  toFeatures(q, x.data());
+  toFeatures(q, 1, x.data(), 0);
   return scoreInputFloat(x.data());
 }
 
@@ -146,48 +154,65 @@ double Model::scoreExact(const double* q) const {
   return f;
 }
 
-void Model::scoreGroup(const double* q, std::size_t count, float* out) const {
+void Model::scoreGroup(const float* xs, std::size_t count, float* out) const {
   if (count == 1) {  // a group of four costs 1.6 single queries: not worth it for one
-    out[0] = static_cast<float>(score(q));
+    out[0] = scoreInputFloat(xs);
     return;
   }
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled below
-  std::array<float, kQueries * kMaxFeatureDimension> xs;
   const std::size_t d = featureDim();
-  for (std::size_t k = 0; k < count; ++k) toFeatures(q + k * dim(), xs.data() + k * d);
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled below
+  std::array<float, kQueries * kMaxFeatureDimension> group;
+  std::copy_n(xs, count * d, group.data());
   // A short group repeats its last query: the lanes are computed anyway.
   for (std::size_t k = count; k < kQueries; ++k) {
-    std::copy_n(xs.data() + (count - 1) * d, d, xs.data() + k * d);
+    std::copy_n(xs + (count - 1) * d, d, group.data() + k * d);
   }
   const auto gamma = static_cast<float>(kernel_.gamma);
   const auto sums =
       kernel_.type == KernelType::RationalQuadratic
           ? kernelSums<KernelType::RationalQuadratic>(supportSoa_.data(), weightsF_.data(),
-                                                      paddedCount_, d, xs.data(), gamma)
+                                                      paddedCount_, d, group.data(), gamma)
           : kernelSums<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_, d,
-                                             xs.data(), gamma);
+                                             group.data(), gamma);
   std::copy_n(sums.begin(), count, out);
 }
 
-std::size_t Model::firstInCollision(const double* q, std::size_t n) const {
-  std::array<float, kQueries> f;
-  for (std::size_t i = 0; i < n; i += kQueries) {
-    const std::size_t count = std::min(kQueries, n - i);
-    scoreGroup(q + i * dim(), count, f.data());
-    for (std::size_t k = 0; k < count; ++k) {
-      if (f[k] > 0) return i + k;
+template <class Visit>
+void Model::scoreInGroups(const double* q, std::size_t n, Visit visit) const {
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): toFeatures fills what is read
+  std::array<float, kFeatureBatch * kMaxFeatureDimension> xs;
+  std::array<float, kQueries> f{};
+  const std::size_t d = featureDim();
+  for (std::size_t i = 0; i < n; i += kFeatureBatch) {
+    const std::size_t batch = std::min(kFeatureBatch, n - i);
+    toFeatures(q + i * dim(), batch, xs.data(), i);
+    for (std::size_t g = 0; g < batch; g += kQueries) {
+      const std::size_t count = std::min(kQueries, batch - g);
+      scoreGroup(xs.data() + g * d, count, f.data());
+      if (visit(i + g, count, f.data())) return;
     }
   }
-  return n;
+}
+
+std::size_t Model::firstInCollision(const double* q, std::size_t n) const {
+  std::size_t hit = n;
+  scoreInGroups(q, n, [&](std::size_t first, std::size_t count, const float* f) {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (f[k] > 0) {
+        hit = first + k;
+        return true;
+      }
+    }
+    return false;
+  });
+  return hit;
 }
 
 void Model::scoreBatch(const double* q, std::size_t n, double* out) const {
-  std::array<float, kQueries> f;
-  for (std::size_t i = 0; i < n; i += kQueries) {
-    const std::size_t count = std::min(kQueries, n - i);
-    scoreGroup(q + i * dim(), count, f.data());
-    std::copy_n(f.begin(), count, out + i);
-  }
+  scoreInGroups(q, n, [&](std::size_t first, std::size_t count, const float* f) {
+    std::copy_n(f, count, out + first);
+    return false;
+  });
 }
 
 Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {

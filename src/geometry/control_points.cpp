@@ -3,7 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <string_view>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -213,12 +215,35 @@ std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
   return points;
 }
 
-std::vector<ControlPoint> linkOriginPoints(const Robot& robot,
-                                           const std::vector<std::string>& links) {
+std::vector<ControlPoint> namedControlPoints(const Robot& robot,
+                                             const std::vector<std::string>& specs) {
   std::vector<ControlPoint> points;
-  for (const auto& link : links) {
-    robot.linkIndex(link);  // throws naming an unknown link
-    points.push_back({link, Eigen::Vector3d::Zero()});
+  for (const std::string& spec : specs) {
+    const std::size_t at = spec.find('@');
+    ControlPoint point{spec.substr(0, at), Eigen::Vector3d::Zero()};
+    robot.linkIndex(point.link);  // throws naming an unknown link
+    if (at != std::string::npos) {
+      const std::string_view offset = std::string_view(spec).substr(at + 1);
+      std::size_t start = 0;
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::size_t end = axis < 2 ? offset.find(':', start) : offset.size();
+        const std::string_view field = end == std::string_view::npos
+                                           ? offset.substr(start)
+                                           : offset.substr(start, end - start);
+        double value = 0.0;
+        const auto [last, error] =
+            std::from_chars(field.data(), field.data() + field.size(), value);
+        if (end == std::string_view::npos || error != std::errc() ||
+            last != field.data() + field.size() || field.empty() || !std::isfinite(value)) {
+          throw InvalidArgument("control point '" + spec +
+                                "': expected LINK or LINK@X:Y:Z (an offset in the link's frame, "
+                                "metres, three finite numbers)");
+        }
+        point.offset[axis] = value;
+        start = end + 1;
+      }
+    }
+    points.push_back(std::move(point));
   }
   return points;
 }
@@ -370,6 +395,72 @@ void RobotPointKinematics::place(const double* q, T* out) const {
       position[i] = f.r[3 * i] * p.local[0] + f.r[3 * i + 1] * p.local[1] +
                     f.r[3 * i + 2] * p.local[2] + f.t[i];
     }
+  }
+}
+
+void RobotPointKinematics::placeLanes(const double* q, std::size_t count, float* out) const {
+  using Lanes = TrigLanes;
+  using LaneFrame = std::array<Lanes, 12>;  // r row by row, then t: one lane per configuration
+  const Chain<float>& c = chainF_;
+  const std::size_t n = c.steps.size();
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): each step's frame is filled in order
+  std::array<LaneFrame, kMaxKinematicSteps> frames;
+  for (std::size_t s = 0; s < n; ++s) {
+    const Step<float>& step = c.steps[s];
+    Lanes value = Lanes::Zero();  // lanes past `count` turn by 0 and are never written out
+    for (std::size_t l = 0; l < count; ++l) {
+      value[static_cast<Eigen::Index>(l)] =
+          static_cast<float>(q[l * dof_ + static_cast<std::size_t>(step.joint)]);
+    }
+    LaneFrame& f = frames[s];
+    if (step.parent >= 0) {  // parent (per lane) times the constant transform (broadcast)
+      const LaneFrame& a = frames[static_cast<std::size_t>(step.parent)];
+      const Frame<float>& b = step.fixed;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          f[3 * i + j] = a[3 * i] * b.r[j] + a[3 * i + 1] * b.r[3 + j] + a[3 * i + 2] * b.r[6 + j];
+        }
+        f[9 + i] = a[3 * i] * b.t[0] + a[3 * i + 1] * b.t[1] + a[3 * i + 2] * b.t[2] + a[9 + i];
+      }
+    } else {
+      for (int k = 0; k < 9; ++k) f[k] = Lanes::Constant(step.fixed.r[k]);
+      for (int i = 0; i < 3; ++i) f[9 + i] = Lanes::Constant(step.fixed.t[i]);
+    }
+    if (step.prismatic) {
+      for (int i = 0; i < 3; ++i) f[9 + i] += value * f[3 * i + 2];
+    } else {  // f * Rz(value): only the x and y columns turn
+      const Lanes co = value.cos(), si = value.sin();
+      for (int i = 0; i < 3; ++i) {
+        const Lanes x = f[3 * i], y = f[3 * i + 1];
+        f[3 * i] = co * x + si * y;
+        f[3 * i + 1] = co * y - si * x;
+      }
+    }
+  }
+  const std::size_t coordinates = 3 * c.points.size();
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    const Point<float>& p = c.points[k];
+    for (int i = 0; i < 3; ++i) {
+      Lanes position;
+      if (p.step < 0) {
+        position = Lanes::Constant(p.local[static_cast<std::size_t>(i)]);
+      } else {
+        const LaneFrame& f = frames[static_cast<std::size_t>(p.step)];
+        position = f[3 * i] * p.local[0] + f[3 * i + 1] * p.local[1] + f[3 * i + 2] * p.local[2] +
+                   f[9 + i];
+      }
+      for (std::size_t l = 0; l < count; ++l) {
+        out[l * coordinates + 3 * k + static_cast<std::size_t>(i)] =
+            position[static_cast<Eigen::Index>(l)];
+      }
+    }
+  }
+}
+
+void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float* out) const {
+  const std::size_t coordinates = 3 * pointCount();
+  for (std::size_t b = 0; b < n; b += kTrigLanes) {
+    placeLanes(q + b * dof_, std::min(kTrigLanes, n - b), out + b * coordinates);
   }
 }
 

@@ -49,10 +49,18 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
   KinematicsData data = makeKinematicsData(robot);
   std::vector<double> exact(3 * points.size());
   std::vector<float> fast(3 * points.size());
+  // The batched path, over 200 rows: twelve full blocks of sixteen lanes and a part-filled one.
+  const std::size_t stride = 3 * points.size();
+  std::vector<float> batch(static_cast<std::size_t>(q.rows()) * stride);
+  kinematics.positionsBatch(q.data(), static_cast<std::size_t>(q.rows()), batch.data());
+  std::vector<float> single(stride);  // a batch of one
+  kinematics.positionsBatch(q.data(), 1, single.data());
+  for (std::size_t k = 0; k < stride; ++k) EXPECT_EQ(single[k], batch[k]);
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     forwardKinematics(robot, q.row(i).data(), data);
     kinematics.positions(q.row(i).data(), exact.data());
     kinematics.positions(q.row(i).data(), fast.data());
+    const float* batched = batch.data() + static_cast<std::size_t>(i) * stride;
     for (std::size_t p = 0; p < points.size(); ++p) {
       const Eigen::Vector3d expected =
           data.linkPoses[static_cast<std::size_t>(robot.linkIndex(points[p].link))] *
@@ -60,6 +68,8 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
       for (int a = 0; a < 3; ++a) {
         EXPECT_NEAR(exact[3 * p + a], expected[a], 1e-12) << robot.name() << " " << points[p].link;
         EXPECT_NEAR(fast[3 * p + a], expected[a], 2e-5) << robot.name() << " " << points[p].link;
+        EXPECT_NEAR(batched[3 * p + a], expected[a], 2e-5)
+            << robot.name() << " " << points[p].link << " row " << i;
       }
     }
   }
@@ -81,7 +91,7 @@ TEST(ControlPoints, HeldJointsAndASubsetOfActuatedJoints) {
   baxter.setHeldPosition("right_w1", 0.7);  // not actuated: folded into a constant transform
   expectPositionsMatchForwardKinematics(baxter, defaultControlPoints(baxter));
   expectPositionsMatchForwardKinematics(
-      baxter, linkOriginPoints(baxter, {"right_hand", "right_lower_elbow"}));
+      baxter, namedControlPoints(baxter, {"right_hand", "right_lower_elbow"}));
 }
 
 TEST(ControlPoints, AutomaticChoiceIsStableAndDocumented) {
@@ -105,9 +115,24 @@ TEST(ControlPoints, AutomaticChoiceIsStableAndDocumented) {
 
 TEST(ControlPoints, RefusesUnknownLinksAndNoPoints) {
   const Robot baxter = loadRobot("baxter");
-  EXPECT_THAT(messageOf<InvalidArgument>([&] { linkOriginPoints(baxter, {"no_such_link"}); }),
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { namedControlPoints(baxter, {"no_such_link"}); }),
               HasSubstr("no_such_link"));
   EXPECT_THROW(RobotPointKinematics(baxter, {}), InvalidArgument);
+  for (const std::string spec : {"right_hand@0.1:0", "right_hand@0.1:0:x", "right_hand@1:2:3:4",
+                                 "right_hand@", "right_hand@nan:0:0", "right_hand@::"}) {
+    EXPECT_THAT(messageOf<InvalidArgument>([&] { namedControlPoints(baxter, {spec}); }),
+                HasSubstr("'" + spec + "': expected LINK or LINK@X:Y:Z"))
+        << spec;
+  }
+}
+
+TEST(ControlPoints, NamedPointsTakeAnOffsetInTheLinkFrame) {
+  const Robot baxter = loadRobot("baxter");
+  const auto points = namedControlPoints(baxter, {"right_hand", "right_wrist@0.1:-0.02:3e-2"});
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0], (ControlPoint{"right_hand", Eigen::Vector3d::Zero()}));
+  EXPECT_EQ(points[1], (ControlPoint{"right_wrist", Eigen::Vector3d(0.1, -0.02, 0.03)}));
+  expectPositionsMatchForwardKinematics(baxter, points);
 }
 
 class TaskSpaceModelFile : public test::TempDir {
@@ -145,6 +170,29 @@ TEST_F(TaskSpaceModelFile, RoundTripWithTheRobot) {
   }
 }
 
+// Batches take the sixteen-lane kinematics; single queries the one-configuration path. Both are
+// float, so they agree to rounding, and the edge query finds the same first collision.
+TEST_F(TaskSpaceModelFile, BatchAndEdgeQueriesAgreeWithSingleQueries) {
+  const Robot baxter = loadRobot("baxter");
+  const Model model = trainedOn(baxter);
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(baxter.limits(), 300, rng);
+  const Eigen::VectorXd batch = model.scoreBatch(q);
+  std::size_t firstHit = 300;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const double single = model.score(q.row(i).data());
+    EXPECT_NEAR(batch[i], single, 1e-4 * (1 + std::abs(single))) << "row " << i;
+    if (firstHit == 300 && single > 0) firstHit = static_cast<std::size_t>(i);
+  }
+  ASSERT_LT(firstHit, 300u) << "the test needs a row predicted in collision";
+  EXPECT_EQ(model.firstInCollision(q.data(), 300), firstHit);
+
+  Configurations bad = q.topRows(20);
+  bad(17, 2) = std::nan("");
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { model.scoreBatch(bad); }),
+              HasSubstr("configuration value [2] is not finite (nan) in configuration 17"));
+}
+
 TEST_F(TaskSpaceModelFile, EveryOtherRobotIsRefusedByName) {
   const Robot baxter = loadRobot("baxter");
   saveModel(trainedOn(baxter), path("m.fastron"));
@@ -177,7 +225,7 @@ TEST_F(TaskSpaceModelFile, EveryOtherRobotIsRefusedByName) {
 
   // Other control points.
   const auto other = std::make_shared<RobotPointKinematics>(
-      original, linkOriginPoints(original, {"right_hand", "right_wrist"}));
+      original, namedControlPoints(original, {"right_hand", "right_wrist"}));
   EXPECT_THAT(messageOf<FileError>([&] { loadModel(file, 7, other); }),
               HasSubstr("control points"));
 }
@@ -269,7 +317,7 @@ TEST(TaskSpaceFeatures, ClaimOneHoldsInFeatureSpace) {
 TEST(TaskSpaceFeatures, CoincidingFeaturesWithOppositeLabelsCannotBothBeRight) {
   const Robot baxter = loadRobot("baxter");
   const auto features = robotFeatures(baxter, FeatureKind::Kinematic,
-                                      linkOriginPoints(baxter, {"right_wrist", "right_hand"}));
+                                      namedControlPoints(baxter, {"right_wrist", "right_hand"}));
   Configurations q(2, 7);
   q.row(0) << 0.1, -0.3, 0.2, 1.0, 0.3, 0.4, -1.0;
   q.row(1) = q.row(0);

@@ -50,6 +50,10 @@ class PointKinematics {
   virtual void positions(const double* q, double* out) const = 0;
   /// Float version of positions() for the query path; may be computed in float.
   virtual void positions(const double* q, float* out) const = 0;
+  /// Float positions of n configurations, q row by row (n * dof() values), out row by row
+  /// (n * 3 * pointCount()): the path for batches of queries such as edge checks. The default
+  /// places them one by one; an implementation may compute many at once.
+  virtual void positionsBatch(const double* q, std::size_t n, float* out) const;
   virtual KinematicsDescription description() const = 0;
 };
 
@@ -90,6 +94,8 @@ class FeatureMap {
   /// hot path). `x` receives featureDim() values.
   void map(const double* q, double* x) const;
   void map(const double* q, float* x) const;
+  /// Float features of n configurations, q and x row by row (not checked: the hot path).
+  void mapBatch(const double* q, std::size_t n, float* x) const;
   /// Features of every row; throws InvalidArgument on a wrong column count or a non-finite value.
   Eigen::MatrixXd map(const Configurations& q) const;
 

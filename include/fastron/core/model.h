@@ -55,8 +55,9 @@ class Model {
   double scoreExact(const double* q) const;
 
   /// Index of the first of n configurations (row by row in `q`, n * dim() values) that the model
-  /// predicts in collision, or n when it predicts all free. Scores four configurations per pass
-  /// over the support set and stops after the pass with the first hit, so callers order the rows
+  /// predicts in collision, or n when it predicts all free. Computes the features of sixteen
+  /// configurations at once, scores four per pass over the support set and stops after the pass
+  /// with the first hit, so callers order the rows
   /// to find collisions early (e.g. bisection order along a motion).
   std::size_t firstInCollision(const double* q, std::size_t n) const;
 
@@ -68,10 +69,15 @@ class Model {
 
  private:
   float scoreInputFloat(const float* x) const;
-  /// f of `count` (1 to 4) consecutive configurations of q, in one pass over the support set.
-  void scoreGroup(const double* q, std::size_t count, float* out) const;
-  /// Features of q in float; throws InvalidArgument on a non-finite joint value.
-  void toFeatures(const double* q, float* x) const;
+  /// f of `count` (1 to 4) consecutive feature rows of xs, in one pass over the support set.
+  void scoreGroup(const float* xs, std::size_t count, float* out) const;
+  /// Scores the n configurations of q in groups of up to four (features sixteen at a time),
+  /// calling visit(first row, count, scores) for each group until it returns true.
+  template <class Visit>
+  void scoreInGroups(const double* q, std::size_t n, Visit visit) const;
+  /// Float features of n configurations (q and x row by row, n at most 16); throws
+  /// InvalidArgument on a non-finite joint value, naming its row as firstRow + its index.
+  void toFeatures(const double* q, std::size_t n, float* x, std::size_t firstRow) const;
 
   FeatureMap features_;
   Kernel kernel_;

@@ -37,10 +37,11 @@ struct ControlPointOptions {
 std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
                                                const ControlPointOptions& options = {});
 
-/// Control points at the origins of the named links, in order; throws InvalidArgument naming an
-/// unknown link.
-std::vector<ControlPoint> linkOriginPoints(const Robot& robot,
-                                           const std::vector<std::string>& links);
+/// Control points named by the user, in order: "LINK" is the link's origin, "LINK@X:Y:Z" the
+/// point at offset (X, Y, Z) metres in the link's frame. Throws InvalidArgument naming an unknown
+/// link or a malformed offset.
+std::vector<ControlPoint> namedControlPoints(const Robot& robot,
+                                             const std::vector<std::string>& specs);
 
 /// 64-bit FNV-1a hash of what the positions depend on: the links and joints in tree order with
 /// their types, origins, axes and held positions, and the actuated joints.
@@ -60,6 +61,9 @@ class RobotPointKinematics final : public PointKinematics {
   std::size_t pointCount() const override { return chain_.points.size(); }
   void positions(const double* q, double* out) const override;
   void positions(const double* q, float* out) const override;
+  /// Sixteen configurations per pass, one per SIMD lane: the frames of a step are computed for
+  /// all of them at once (structure of arrays), so a batch costs a fraction of single queries.
+  void positionsBatch(const double* q, std::size_t n, float* out) const override;
   KinematicsDescription description() const override { return description_; }
 
   /// Actuated joints that move at least one control point.
@@ -98,6 +102,8 @@ class RobotPointKinematics final : public PointKinematics {
   const Chain<T>& chain() const;
   template <class T>
   void place(const double* q, T* out) const;
+  /// Float positions of `count` (1 to 16) configurations, one per lane.
+  void placeLanes(const double* q, std::size_t count, float* out) const;
 
   std::size_t dof_ = 0;
   Chain<double> chain_;
