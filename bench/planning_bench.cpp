@@ -1,14 +1,17 @@
 // Time per planning query on Baxter's 7-joint arm among three boxes (RRT-Connect, 0.03 rad
-// edges): on a Fastron model alone, on FCL alone, and Fastron verified and repaired with FCL.
-// Twenty fixed queries between configurations both checkers find free; compare within a run.
+// edges, paths simplified): on a task-space Fastron model alone, on FCL alone, and Fastron
+// verified and repaired with FCL. Twenty fixed queries between configurations both checkers find
+// free; compare within a run. Also the exact check of the final paths, serial and parallel.
 
 #include <benchmark/benchmark.h>
 #include <ompl/util/Console.h>
 
 #include "fastron/core/active_learning.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/planning/parallel_check.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -31,8 +34,8 @@ const BaxterQueries& baxterQueries() {
     b.fcl = std::make_shared<const FclChecker>(
         baxter, loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml"));
     ProxyParams params;
-    params.train = {.kernel = {.gamma = 5}, .beta = 500, .maxIterations = 20000};
-    ProxyCollisionDetector proxy(b.fcl, b.limits, params);
+    params.train = defaultTrainParams(FeatureKind::Kinematic);
+    ProxyCollisionDetector proxy(b.fcl, robotFeatures(baxter, FeatureKind::Kinematic), params);
     proxy.initialize(3000);
     for (int i = 0; i < 3; ++i) proxy.step();
     b.model = proxy.model();
@@ -83,6 +86,30 @@ void BM_PlanOnFastronVerifiedWithFcl(benchmark::State& state) {
     return planVerified(b.model, b.fcl, b.limits, start, goal, kOptions).solved();
   });
 }
+
+// The exact check of each query's path planned on FCL (valid: every state is checked), with
+// checkPath (threads 0 here) or checkPathParallel on 1 or 2 threads.
+void BM_CheckPath(benchmark::State& state) {
+  const BaxterQueries& b = baxterQueries();
+  static const std::vector<Path> paths = [&] {
+    std::vector<Path> out;
+    for (const auto& [start, goal] : b.queries) {
+      out.push_back(planMotion(b.fcl, b.limits, start, goal, kOptions).path);
+    }
+    return out;
+  }();
+  const auto threads = static_cast<unsigned>(state.range(0));
+  std::size_t i = 0, invalid = 0;
+  for (auto _ : state) {
+    const PathCheck check = threads == 0
+                                ? checkPath(*b.fcl, paths[i], kOptions.resolution)
+                                : checkPathParallel(*b.fcl, paths[i], kOptions.resolution, threads);
+    invalid += check.valid() ? 0 : 1;
+    i = (i + 1) % paths.size();
+  }
+  state.counters["invalid"] = static_cast<double>(invalid);
+}
+BENCHMARK(BM_CheckPath)->Arg(0)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_PlanOnFastron)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanOnFcl)->Unit(benchmark::kMicrosecond);

@@ -24,6 +24,7 @@ struct BenchOptions {
   std::string name, out, problems, features = "fk";
   std::size_t trials = 0;                    // 0: the experiment's default
   double timeLimit = 0, resolution = 0;      // 0: the experiment's default
+  double simplifyTime = -1;                  // < 0: the experiment's default
   double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
@@ -53,6 +54,7 @@ int runBench(const BenchOptions& o) {
     options.features = parseFeatureKind(o.features);
     if (o.timeLimit > 0) options.timeLimit = o.timeLimit;
     if (o.resolution > 0) options.resolution = o.resolution;
+    if (o.simplifyTime >= 0) options.simplifyTime = o.simplifyTime;
     if constexpr (requires { options.trials; }) {
       options.trials = o.trials ? o.trials : (o.quick ? 1 : defaultTrials);
     }
@@ -173,6 +175,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--resolution", o->resolution,
                   "planning experiments: joint-space step of edge checks")
       ->check(numberAbove(0));
+  cmd->add_option("--simplify-time", o->simplifyTime,
+                  "planning experiments: seconds of OMPL path simplification per plan, every "
+                  "checker alike (default 0.1; 0: off, the paper's setting)")
+      ->check(numberAbove(0, true));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);  // changing, sweep and the planning experiments
   cmd->add_option("--gamma", o->gamma, "changing: kernel width of the models on --features")

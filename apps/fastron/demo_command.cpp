@@ -87,6 +87,10 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--resolution", o->demo.resolution, "joint-space step of edge checks (rad)")
       ->capture_default_str()
       ->check(numberAbove(0));
+  cmd->add_option("--simplify-time", o->demo.simplifyTime,
+                  "seconds of OMPL path simplification per plan, every checker alike (0: off)")
+      ->capture_default_str()
+      ->check(numberAbove(0, true));
   cmd->add_option("--seed", o->demo.seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");

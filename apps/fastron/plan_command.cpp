@@ -34,7 +34,7 @@ struct PlanOptions {
   FeatureOptions features;
   std::size_t samples = 5000, updates = 3;
   std::optional<double> gamma, beta;
-  double resolution = 0.03, timeLimit = 10, padding = 0;
+  double resolution = 0.03, timeLimit = 10, padding = 0, simplifyTime = 0.1;
   std::uint64_t seed = 1;
   bool selfCollision = false;
 };
@@ -92,8 +92,10 @@ int runPlan(const PlanOptions& o) {
   }
   const CheckerOptions checkerOptions{o.selfCollision, o.padding};
   const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
-  const PlannerOptions options{
-      .type = parsePlannerType(o.planner), .resolution = o.resolution, .timeLimit = o.timeLimit};
+  const PlannerOptions options{.type = parsePlannerType(o.planner),
+                               .resolution = o.resolution,
+                               .timeLimit = o.timeLimit,
+                               .simplifyTime = o.simplifyTime};
   validate(options);
 
   std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
@@ -140,7 +142,8 @@ int runPlan(const PlanOptions& o) {
   std::cout << "planner  " << plannerName(options.type) << " on " << o.checker
             << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
-            << "time     plan " << duration(seconds(plan.planTime)) << ", verify "
+            << "time     plan " << duration(seconds(plan.planTime)) << " (of which simplify "
+            << duration(seconds(plan.simplifyTime)) << "), verify "
             << duration(seconds(plan.verifyTime)) << ", repair "
             << duration(seconds(plan.repairTime)) << ", total "
             << duration(seconds(plan.totalTime())) << '\n';
@@ -193,6 +196,10 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--time-limit", o->timeLimit, "seconds per planning query")
       ->capture_default_str()
       ->check(numberAbove(0));
+  cmd->add_option("--simplify-time", o->simplifyTime,
+                  "seconds of OMPL path simplification (0: the planner's path as found)")
+      ->capture_default_str()
+      ->check(numberAbove(0, true));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
   cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");

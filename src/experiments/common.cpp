@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include "fastron/core/error.h"
 
@@ -227,6 +228,15 @@ std::string featureSentence(FeatureKind kind) {
              ? "Fastron learns on task-space features: the world positions of the robot's "
                "automatic control points (docs/algorithms.md)."
              : "Fastron learns on joint values scaled to [-1, 1] (the paper's input).";
+}
+
+std::string simplificationSentence(double simplifyTime) {
+  if (simplifyTime <= 0) return "Paths are not simplified (the paper's setting).";
+  std::ostringstream s;
+  s << "Every method's path is simplified with OMPL's PathSimplifier for up to " << simplifyTime
+    << " s, on the checker that planned it (FCL pays for its simplification in exact checks; "
+       "Fastron's is checked on the model and then verified), as MoveIt does by default.";
+  return s.str();
 }
 
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,

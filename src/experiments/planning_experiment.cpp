@@ -32,9 +32,9 @@ using experiments::proxyParams;
 using experiments::sceneForTrial;
 using CheckerPtr = std::shared_ptr<const CollisionChecker>;
 
-const std::vector<std::string> kPlanColumns{"solved",    "status",   "plan_s",      "verify_s",
-                                            "repair_s",  "total_s",  "path_length", "waypoints",
-                                            "stretches", "fallback", "exact_ends",  "collides_fcl"};
+const std::vector<std::string> kPlanColumns{
+    "solved",      "status",    "plan_s",    "simplify_s", "verify_s",   "repair_s",    "total_s",
+    "path_length", "waypoints", "stretches", "fallback",   "exact_ends", "collides_fcl"};
 
 std::vector<std::string> columnsWith(std::vector<std::string> first,
                                      const std::vector<std::string>& last = {}) {
@@ -52,6 +52,7 @@ std::vector<std::string> planCells(const VerifiedPlan& plan, const CollisionChec
   return {solved ? "1" : "0",
           plan.failure.empty() ? toString(plan.status) : plan.failure,
           cell(seconds(plan.planTime)),
+          cell(seconds(plan.simplifyTime)),
           cell(seconds(plan.verifyTime)),
           cell(seconds(plan.repairTime)),
           cell(seconds(plan.totalTime())),
@@ -154,10 +155,10 @@ std::string progressLine(const std::string& what, std::size_t i, std::size_t n) 
 std::string planTable(const Table& r, const Table::Filter& where,
                       const std::vector<std::string>& planners) {
   std::ostringstream md;
-  md << "| Planner | Method | Success | Plan | Verify | Repair | Total | Path length (joint space) "
-        "| "
-        "Repaired stretches | Final paths colliding (FCL) |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| Planner | Method | Success | Plan (of which simplify) | Verify | Repair | Total | Path "
+        "length (joint space) | Repaired stretches | Plans repaired | Final paths colliding (FCL) "
+        "|\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
     for (const std::string& method : r.distinct("method", where)) {
       Table::Filter all = where;
@@ -177,11 +178,20 @@ std::string planTable(const Table& r, const Table::Filter& where,
       std::snprintf(rate, sizeof rate, "%.2f (%zu/%zu)",
                     static_cast<double>(solvedCount) / static_cast<double>(solved.size()),
                     solvedCount, solved.size());
+      const std::vector<double> stretches = r.numbers("stretches", ok);
+      const auto repaired =
+          std::count_if(stretches.begin(), stretches.end(), [](double s) { return s > 0; });
+      char repairedShare[64];
+      std::snprintf(repairedShare, sizeof repairedShare, "%.0f%%",
+                    stretches.empty() ? 0.0
+                                      : 100.0 * static_cast<double>(repaired) /
+                                            static_cast<double>(stretches.size()));
       md << "| " << planner << " | " << method << " | " << rate << " | "
-         << durationMeanStd(stat("plan_s")) << " | " << durationMeanStd(stat("verify_s")) << " | "
-         << durationMeanStd(stat("repair_s")) << " | " << durationMeanStd(stat("total_s")) << " | "
-         << meanStd(stat("path_length"), 2) << " | " << meanStd(stat("stretches"), 2) << " | "
-         << colliding << " of " << collides.size() << " |\n";
+         << durationMeanStd(stat("plan_s")) << " (" << durationMeanStd(stat("simplify_s")) << ") | "
+         << durationMeanStd(stat("verify_s")) << " | " << durationMeanStd(stat("repair_s")) << " | "
+         << durationMeanStd(stat("total_s")) << " | " << meanStd(stat("path_length"), 2) << " | "
+         << meanStd(stat("stretches"), 2) << " | " << repairedShare << " | " << colliding << " of "
+         << collides.size() << " |\n";
     }
   }
   return md.str();
@@ -255,8 +265,10 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
       const auto model = proxy.model();
       const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
       for (const PlannerType type : o.planners) {
-        const PlannerOptions options{
-            .type = type, .resolution = o.resolution, .timeLimit = o.timeLimit};
+        const PlannerOptions options{.type = type,
+                                     .resolution = o.resolution,
+                                     .timeLimit = o.timeLimit,
+                                     .simplifyTime = o.simplifyTime};
         for (const auto& [method, plan] :
              planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
           table.add(joined({name, std::to_string(trial), plannerName(type), method},
@@ -280,8 +292,9 @@ std::string planningReport(const Table& r, const PlanningOptions& o) {
         "plans are verified with FCL and invalid stretches replanned on FCL. Edges are checked "
         "every "
      << o.resolution << " rad; time limit " << o.timeLimit << " s per query; " << o.trials
-     << " trial(s), seed " << o.seed << (o.quick ? ", quick mode" : "")
-     << ". Times are means ± std over solved queries; 'Final paths colliding' re-checks every "
+     << " trial(s), seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
+     << simplificationSentence(o.simplifyTime)
+     << " Times are means ± std over solved queries; 'Final paths colliding' re-checks every "
         "final path with a separate FCL checker.\n\nThe paper (Figs. 13 and 14) found Fastron "
         "fastest with every planner even with verify and repair, up to 4 times faster than FCL "
         "with 7 joints and one box and up to 6 times faster initial plans with three boxes.\n";
@@ -336,8 +349,10 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
         sampleReaching(inShelf(0.14, 0.26), limits, rng, "the lower shelf, collision-free");
     const Eigen::VectorXd goal =
         sampleReaching(inShelf(0.34, 0.46), limits, rng, "the higher shelf, collision-free");
-    const PlannerOptions options{
-        .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
+    const PlannerOptions options{.type = PlannerType::Rrt,
+                                 .resolution = o.resolution,
+                                 .timeLimit = o.timeLimit,
+                                 .simplifyTime = o.simplifyTime};
     for (const auto& [method, plan] :
          planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
       table.add(joined(
@@ -357,8 +372,8 @@ std::string shelfReport(const Table& r, const ShelfOptions& o) {
         "Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL. Edges "
         "checked every "
      << o.resolution << " rad, time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "")
-     << ".\n\nThe paper (MATLAB): RRT with GJK 334.7 ms, with Fastron 119.7 ms including verify "
+     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
+     << "\n\nThe paper (MATLAB): RRT with GJK 334.7 ms, with Fastron 119.7 ms including verify "
         "and repair (2.8 times faster).\n\n"
      << planTable(r, {}, {"RRT"}) << speedups(r, {}, {"RRT"});
   return md.str();
@@ -413,8 +428,10 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
   bool towardTarget = true;
   const std::size_t ticks = o.quick ? 20 : o.ticks;
   const double stepLength = 0.05;  // joint units PSM3 moves along its plan per tick
-  const PlannerOptions options{
-      .type = PlannerType::Rrt, .resolution = o.resolution, .timeLimit = o.timeLimit};
+  const PlannerOptions options{.type = PlannerType::Rrt,
+                               .resolution = o.resolution,
+                               .timeLimit = o.timeLimit,
+                               .simplifyTime = o.simplifyTime};
   for (std::size_t tick = 0; tick < ticks; ++tick) {
     if (progress && tick % 20 == 0) progress("surgical: " + progressLine("tick", tick, ticks));
     scene.step();
@@ -464,8 +481,9 @@ std::string surgicalReport(const Table& r, const SurgicalOptions& o) {
      << o.padding
      << " m) updates in the background all along. Ticks where the instruments block PSM3 or its "
         "goal are skipped, as in the paper. Edges checked every "
-     << o.resolution << " joint units; seed " << o.seed << (o.quick ? ", quick mode" : "")
-     << ".\n\nThe paper (MATLAB): 56 Hz replanning with Fastron, 10 Hz with GJK.\n\n"
+     << o.resolution << " joint units; seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
+     << simplificationSentence(o.simplifyTime)
+     << "\n\nThe paper (MATLAB): 56 Hz replanning with Fastron, 10 Hz with GJK.\n\n"
      << "| Method | Replanning rate | Success | Mean total time |\n|---|---|---|---|\n";
   for (const std::string& method : r.distinct("method")) {
     const Summary total = summarize(r.numbers("total_s", {{"method", method}, {"solved", "1"}}));
@@ -570,8 +588,10 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     const auto model = proxy.model();
 
-    const PlannerOptions options{
-        .type = PlannerType::RrtConnect, .resolution = o.resolution, .timeLimit = o.timeLimit};
+    const PlannerOptions options{.type = PlannerType::RrtConnect,
+                                 .resolution = o.resolution,
+                                 .timeLimit = o.timeLimit,
+                                 .simplifyTime = o.simplifyTime};
     for (const auto& [method, plan] :
          planWithEachChecker(model, nullptr, fcl, limits, start, goal, options)) {
       table.add(joined({problem.id, "RRTConnect", method, note},
@@ -591,7 +611,7 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
      << " active-learning updates) and RRT-Connect plans with Fastron (verified and repaired with "
         "FCL) and with FCL. Edges checked every "
      << o.resolution << " rad, time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "") << ".\n\n"
+     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime) << "\n\n"
      << "| Problem | Method | Status | Plan | Verify | Repair | Total | Path length | Collides "
         "(FCL) | Training | Note |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   const std::size_t status = r.index("status"), plan = r.index("plan_s"),
@@ -664,8 +684,10 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     results.test.labels = labelConfigurations(audit, results.test.points, 1);
     const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
     const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
-    const PlannerOptions options{
-        .type = PlannerType::RrtConnect, .resolution = o.resolution, .timeLimit = o.timeLimit};
+    const PlannerOptions options{.type = PlannerType::RrtConnect,
+                                 .resolution = o.resolution,
+                                 .timeLimit = o.timeLimit,
+                                 .simplifyTime = o.simplifyTime};
     std::size_t updatesSoFar = 0;
     {
       const std::lock_guard lock(updateMutex);
@@ -714,7 +736,8 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
      << " ticks the boxes move and RRT-Connect plans a fresh query (start and goal on opposite "
         "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "
         "and invalid stretches replanned; edges are checked every "
-     << o.resolution << " rad; seed " << o.seed << ".\n\n## Model\n\n";
+     << o.resolution << " rad; seed " << o.seed << ". " << simplificationSentence(o.simplifyTime)
+     << "\n\n## Model\n\n";
   std::snprintf(line, sizeof line,
                 "- %zu background updates in %.1f s: %.1f updates/s, %.1f ms each (labelling + "
                 "training)\n",

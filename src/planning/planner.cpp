@@ -5,6 +5,7 @@
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
+#include <ompl/geometric/PathSimplifier.h>
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
@@ -63,6 +64,10 @@ void validate(const PlannerOptions& options) {
   if (!(options.timeLimit > 0) || !std::isfinite(options.timeLimit)) {
     throw InvalidArgument("planning time limit must be positive, got " +
                           std::to_string(options.timeLimit));
+  }
+  if (!(options.simplifyTime >= 0) || !std::isfinite(options.simplifyTime)) {
+    throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
+                          std::to_string(options.simplifyTime));
   }
 }
 
@@ -178,6 +183,12 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
     return finish(PlanStatus::Timeout);
   }
   auto& path = *problem->getSolutionPath()->as<og::PathGeometric>();
+  if (options.simplifyTime > 0) {
+    const auto simplifyBegan = std::chrono::steady_clock::now();
+    og::PathSimplifier(si).simplify(path,
+                                    ob::timedPlannerTerminationCondition(options.simplifyTime));
+    result.simplifyTime = std::chrono::steady_clock::now() - simplifyBegan;
+  }
   const auto dim = static_cast<Eigen::Index>(limits.dim());
   for (const ob::State* state : path.getStates()) {
     const double* values = state->as<ob::RealVectorStateSpace::StateType>()->values;

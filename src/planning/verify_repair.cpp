@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
+#include "fastron/planning/parallel_check.h"
 
 namespace fastron {
 namespace {
@@ -66,7 +67,7 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
   result.path = path;
   for (int round = 0; round < kRounds; ++round) {
     auto began = Clock::now();
-    const PathCheck check = checkPath(*exact, result.path, options.resolution);
+    const PathCheck check = checkPathParallel(*exact, result.path, options.resolution);
     result.verifyTime += Clock::now() - began;
     if (check.valid()) {
       result.status = PlanStatus::Solved;
@@ -157,6 +158,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   if (plan.solved()) {
     VerifiedPlan result = verifyAndRepair(plan.path, exact, limits, options);
     result.planTime = plan.time;
+    result.simplifyTime = plan.simplifyTime;
     result.substituteEnds = substituteEnds;
     return result;
   }
@@ -188,6 +190,7 @@ VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
   result.status = plan.status;
   result.path = plan.path;
   result.planTime = plan.time;
+  result.simplifyTime = plan.simplifyTime;
   if (!plan.solved()) result.failure = toString(plan.status);
   return result;
 }

@@ -18,6 +18,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
+#include "fastron/planning/parallel_check.h"
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
@@ -107,6 +108,51 @@ TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
   EXPECT_THROW(checkPath(*wall, {vec({0, 0, 0})}, 0.01), InvalidArgument);
 }
 
+// The parallel, bisection-ordered check gives checkPath's answer: on the wall, and on random
+// Baxter paths among three boxes (FCL, many invalid stretches), with 1, 2 and 3 threads.
+TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
+  const auto wall = wallChecker();
+  const Path wallPath{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    const PathCheck check = checkPathParallel(*wall, wallPath, 0.001, threads);
+    EXPECT_THAT(check.invalidWaypoints, ::testing::ElementsAre(2u));
+    EXPECT_THAT(check.invalidEdges, ::testing::ElementsAre(1u, 2u));
+  }
+  EXPECT_FALSE(checkPathParallel(*wall, {}, 0.01).valid());
+  EXPECT_THROW(checkPathParallel(*wall, {vec({0, 0, 0})}, 0.01), InvalidArgument);
+
+  const Robot baxter = loadRobot("baxter");
+  const FclChecker fcl(baxter, loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml"));
+  Rng rng(21);
+  std::size_t invalidEdges = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Configurations waypoints = uniformConfigurations(baxter.limits(), 2 + trial % 6, rng);
+    Path path;
+    for (Eigen::Index i = 0; i < waypoints.rows(); ++i) path.emplace_back(waypoints.row(i));
+    const PathCheck serial = checkPath(fcl, path, 0.05);
+    invalidEdges += serial.invalidEdges.size();
+    for (const unsigned threads : {1u, 2u, 3u}) {
+      const PathCheck parallel = checkPathParallel(fcl, path, 0.05, threads);
+      EXPECT_EQ(parallel.invalidWaypoints, serial.invalidWaypoints) << "trial " << trial;
+      EXPECT_EQ(parallel.invalidEdges, serial.invalidEdges) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(invalidEdges, 10u) << "the test needs colliding edges";
+}
+
+// A check that throws (here: a checker that fails on its 100th call) reaches the caller from
+// whichever thread met it, and the other threads stop.
+TEST(Motion, ParallelCheckRethrowsACheckersError) {
+  std::atomic<int> calls{0};
+  const FunctionChecker failing("failing", 2, [&](const double*) {
+    if (++calls == 100) throw Error("the checker failed");
+    return false;
+  });
+  const Path path{kStart, kGoal};
+  EXPECT_THAT(messageOf<Error>([&] { checkPathParallel(failing, path, 0.001, 2); }),
+              HasSubstr("the checker failed"));
+}
+
 TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
@@ -123,6 +169,40 @@ TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
     })) << plannerName(type);
     EXPECT_GT(pathLength(plan.path), 2.0) << "the path must go round the wall";
   }
+}
+
+// OMPL's PathSimplifier after every plan: the path stays valid under an independent check at a
+// finer resolution and gets close to the shortest way over the wall (2 sqrt(0.7^2 + 1.3^2) =
+// 2.95), which the raw RRT-Connect paths are not; the time it took is reported. A simplified path
+// hugs the wall's corner, and a check every 0.02 cannot see a corner cut between two checked
+// states; every point of the path is within 0.01 of a checked free state, so the finer check is
+// against the wall shrunk by that much: what discrete checking guarantees, and all it does.
+TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
+  const auto wall = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  double rawLength = 0, simplifiedLength = 0;
+  for (int query = 0; query < 10; ++query) {
+    const PlannerOptions raw{.resolution = 0.02, .timeLimit = 5, .simplifyTime = 0};
+    PlannerOptions simplified = raw;
+    simplified.simplifyTime = 0.1;
+    const PlanResult a = planMotion(wall, limits, kStart, kGoal, raw);
+    const PlanResult b = planMotion(wall, limits, kStart, kGoal, simplified);
+    ASSERT_TRUE(a.solved() && b.solved());
+    EXPECT_EQ(a.simplifyTime.count(), 0);
+    EXPECT_GT(b.simplifyTime.count(), 0);
+    EXPECT_LE(b.simplifyTime, b.time);
+    EXPECT_TRUE(b.path.front().isApprox(kStart) && b.path.back().isApprox(kGoal));
+    EXPECT_TRUE(pathIsFree(
+        b.path, 0.002,
+        [](const Eigen::VectorXd& q) { return std::abs(q[0]) < 0.1 - 0.01 && q[1] < 0.5 - 0.01; }))
+        << "query " << query;
+    EXPECT_LT(pathLength(b.path), 2.95 * 1.3) << "query " << query;
+    rawLength += pathLength(a.path);
+    simplifiedLength += pathLength(b.path);
+  }
+  EXPECT_LT(simplifiedLength, 0.9 * rawLength);
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(PlannerOptions{.simplifyTime = -1}); }),
+              HasSubstr("path simplification time must be 0 (off) or positive, got -1"));
 }
 
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {

@@ -63,6 +63,8 @@ std::string methodRow(const Table& results, const std::string& method, const Tab
 
 /// A sentence for reports saying what Fastron learned on.
 std::string featureSentence(FeatureKind kind);
+/// A sentence for reports saying whether and how long paths were simplified.
+std::string simplificationSentence(double simplifyTime);
 
 /// Formats a number for a CSV cell (full precision, "nan" for NaN).
 std::string cell(double value);

@@ -23,6 +23,8 @@ struct PlanningOptions {
   std::vector<PlannerType> planners = allPlannerTypes();
   double timeLimit = 10;     ///< seconds per planning query (and per repaired stretch)
   double resolution = 0.03;  ///< joint-space step of edge checks (rad)
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
 };
@@ -42,6 +44,8 @@ struct ShelfOptions {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
   double resolution = 0.03;
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
 };
 
 /// UR3 from the lower to the higher shelf with RRT: one row per (trial, method), columns as
@@ -55,7 +59,9 @@ struct SurgicalOptions {
   bool quick = false;
   double timeLimit = 1;
   double resolution = 0.01;  ///< joint units (rad, and m for the insertion)
-  double padding = 0.005;    ///< PSM3 padding of the model's oracle (paper: a padded PSM3)
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
+  double padding = 0.005;  ///< PSM3 padding of the model's oracle (paper: a padded PSM3)
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
 };
@@ -77,6 +83,8 @@ struct MotionBenchOptions {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
   double resolution = 0.03;
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
 };
 
 /// Each problem: Fastron trained on the scene, RRT-Connect with Fastron (verified and repaired)
@@ -95,6 +103,8 @@ struct DemoOptions {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 5;
   double resolution = 0.03;
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
 };
 
 /// `fastron demo`: the paper in one run.

@@ -31,6 +31,10 @@ struct PlannerOptions {
   double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
   double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
   double timeLimit = 10;     ///< seconds per planning query
+  /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (vertex reduction,
+  /// shortcutting, B-spline smoothing; every change checked with the same collision source as the
+  /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
+  double simplifyTime = 0.1;
 };
 
 /// Throws InvalidArgument naming the field when an option is out of range.
@@ -59,13 +63,15 @@ std::string toString(PlanStatus status);
 
 struct PlanResult {
   PlanStatus status = PlanStatus::Timeout;
-  Path path;  ///< start to goal when solved, empty otherwise
-  std::chrono::nanoseconds time{0};
+  Path path;                                 ///< start to goal when solved, empty otherwise
+  std::chrono::nanoseconds time{0};          ///< everything, simplification included
+  std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
   bool solved() const { return status == PlanStatus::Solved; }
 };
 
-/// Plans from start to goal with `source` deciding collisions. Only an exact solution counts
-/// (OMPL's approximate solutions are reported as Timeout). Throws InvalidArgument when start or
+/// Plans from start to goal with `source` deciding collisions, then simplifies the path for at
+/// most options.simplifyTime seconds. Only an exact solution counts (OMPL's approximate solutions
+/// are reported as Timeout). Throws InvalidArgument when start or
 /// goal has the wrong size, a non-finite value or a value outside the joint limits.
 PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
                       const Eigen::VectorXd& start, const Eigen::VectorXd& goal,

@@ -16,10 +16,11 @@ struct VerifiedPlan {
   PlanStatus status =
       PlanStatus::Timeout;  ///< Solved only when `path` is valid under the exact checker
   Path path;
-  std::chrono::nanoseconds planTime{0};    ///< the approximate checker's plan
-  std::chrono::nanoseconds verifyTime{0};  ///< exact checks of the plan, and of the repaired path
-  std::chrono::nanoseconds repairTime{0};  ///< replanning of the invalid stretches
-  std::size_t invalidStretches = 0;        ///< stretches cut out and replanned
+  std::chrono::nanoseconds planTime{0};      ///< the approximate checker's plan, simplified
+  std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
+  std::chrono::nanoseconds verifyTime{0};    ///< exact checks of the plan, and of the repaired path
+  std::chrono::nanoseconds repairTime{0};    ///< replanning of the invalid stretches
+  std::size_t invalidStretches = 0;          ///< stretches cut out and replanned
   /// The whole motion was planned on the exact checker: the approximate plan failed, or one of
   /// its stretches could not be bridged.
   bool wholePathReplanned = false;
@@ -32,7 +33,8 @@ struct VerifiedPlan {
   std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
 };
 
-/// Checks `path` (start to goal) with `exact` at options.resolution; cuts out each invalid stretch
+/// Checks `path` (start to goal) with `exact` at options.resolution (checkPathParallel: every
+/// core, bisection order); cuts out each invalid stretch
 /// (from the last valid waypoint before it to the first valid one after it), replans it with the
 /// same planner on `exact` (a quarter of the time limit; when that fails, the whole motion with
 /// the full limit), splices the pieces and checks the whole path again (up to three rounds).
