@@ -87,6 +87,9 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--resolution", o->demo.resolution, "joint-space step of edge checks (rad)")
       ->capture_default_str()
       ->check(numberAbove(0));
+  cmd->add_option("--learn-from-verification", o->demo.learnFromVerification,
+                  "feed the exact answers of verification and repair to the model's next update")
+      ->capture_default_str();
   cmd->add_option("--simplify-time", o->demo.simplifyTime,
                   "seconds of OMPL path simplification per plan, every checker alike (0: off)")
       ->capture_default_str()

@@ -698,6 +698,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
                        cell(counts.accuracy()).substr(0, 5) + ", plans";
     for (const auto& [method, plan] :
          planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
+      if (method == "Fastron" && o.learnFromVerification) proxy.addObservations(plan.exactAnswers);
       results.ticks.add(
           joined({std::to_string(tick), "RRTConnect", method},
                  joined(planCells(plan, audit, o.resolution),
@@ -737,6 +738,10 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
         "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "
         "and invalid stretches replanned; edges are checked every "
      << o.resolution << " rad; seed " << o.seed << ". " << simplificationSentence(o.simplifyTime)
+     << (o.learnFromVerification
+             ? " Every exact answer of a Fastron plan's verification and repair is fed to the "
+               "model's next update (learning from verification)."
+             : " Verification answers are not fed back to the model.")
      << "\n\n## Model\n\n";
   std::snprintf(line, sizeof line,
                 "- %zu background updates in %.1f s: %.1f updates/s, %.1f ms each (labelling + "

@@ -65,6 +65,10 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("planning time limit must be positive, got " +
                           std::to_string(options.timeLimit));
   }
+  if (!(options.approximateShare > 0) || !(options.approximateShare <= 1)) {
+    throw InvalidArgument("approximateShare must be in (0, 1], got " +
+                          std::to_string(options.approximateShare));
+  }
   if (!(options.simplifyTime >= 0) || !std::isfinite(options.simplifyTime)) {
     throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
                           std::to_string(options.simplifyTime));

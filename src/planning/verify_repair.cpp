@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
+#include "fastron/core/recording_checker.h"
 #include "fastron/planning/parallel_check.h"
 
 namespace fastron {
@@ -129,12 +130,15 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
   return result;
 }
 
-VerifiedPlan planVerified(const CollisionSource& approximate,
-                          const std::shared_ptr<const CollisionChecker>& exact,
-                          const JointLimits& limits, const Eigen::VectorXd& start,
-                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
-  checkExact(exact, limits);
-  PlanResult plan = planMotion(approximate, limits, start, goal, options);
+namespace {
+
+VerifiedPlan planAndRepair(const CollisionSource& approximate,
+                           const std::shared_ptr<const CollisionChecker>& exact,
+                           const JointLimits& limits, const Eigen::VectorXd& start,
+                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  PlannerOptions approximateOptions = options;
+  approximateOptions.timeLimit = options.timeLimit * options.approximateShare;
+  PlanResult plan = planMotion(approximate, limits, start, goal, approximateOptions);
   bool substituteEnds = false;
   if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&
       freeUnder(exact, start) && freeUnder(exact, goal)) {
@@ -146,7 +150,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
     const auto goalNear = substituteFor(goal, approximate, exact, limits);
     if (startNear && goalNear) {
       const auto spent = plan.time;
-      plan = planMotion(approximate, limits, *startNear, *goalNear, options);
+      plan = planMotion(approximate, limits, *startNear, *goalNear, approximateOptions);
       plan.time += spent;
       if (plan.solved()) {
         if (!startNear->isApprox(start)) plan.path.insert(plan.path.begin(), start);
@@ -178,6 +182,19 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   result.repairTime += repairTime;
   result.wholePathReplanned = true;
   result.substituteEnds = substituteEnds;
+  return result;
+}
+
+}  // namespace
+
+VerifiedPlan planVerified(const CollisionSource& approximate,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  checkExact(exact, limits);
+  const auto recorder = std::make_shared<RecordingChecker>(exact);
+  VerifiedPlan result = planAndRepair(approximate, recorder, limits, start, goal, options);
+  result.exactAnswers = recorder->take();
   return result;
 }
 

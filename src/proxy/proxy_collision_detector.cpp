@@ -88,7 +88,59 @@ StepReport ProxyCollisionDetector::step() {
   const auto split = labels.begin() + support;
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(split, labels.end()));
+
+  std::vector<double> observedValues;
+  Labels observedLabels;
+  {
+    const std::lock_guard pending(pendingMutex_);
+    observedValues.swap(pendingValues_);
+    observedLabels.swap(pendingLabels_);
+  }
+  if (!observedLabels.empty()) {
+    trainer_.addPoints(Eigen::Map<const Configurations>(
+                           observedValues.data(), static_cast<Eigen::Index>(observedLabels.size()),
+                           static_cast<Eigen::Index>(features_.configurationDim())),
+                       observedLabels);
+    report.observed = observedLabels.size();
+  }
   return finish(report, start);
+}
+
+void ProxyCollisionDetector::addObservations(const Dataset& answers) {
+  const std::size_t dim = features_.configurationDim();
+  if (answers.size() == 0) return;
+  if (answers.dim() != dim || static_cast<std::size_t>(answers.points.rows()) != answers.size()) {
+    throw InvalidArgument("observations have " + std::to_string(answers.dim()) + " columns and " +
+                          std::to_string(answers.points.rows()) + " rows for " +
+                          std::to_string(answers.size()) + " labels; the model has " +
+                          std::to_string(dim) + " joints");
+  }
+  if (!answers.points.allFinite()) {
+    throw InvalidArgument("observations must be finite (found NaN or inf)");
+  }
+  for (std::size_t i = 0; i < answers.size(); ++i) {
+    if (answers.labels[i] != 1 && answers.labels[i] != -1) {
+      throw InvalidArgument("observation " + std::to_string(i) + " has label " +
+                            std::to_string(answers.labels[i]) + ", expected +1 or -1");
+    }
+  }
+  const std::lock_guard pending(pendingMutex_);
+  const std::size_t room = params_.maxPendingObservations > pendingLabels_.size()
+                               ? params_.maxPendingObservations - pendingLabels_.size()
+                               : 0;
+  const std::size_t taken = std::min(room, answers.size());
+  for (std::size_t i = 0; i < taken; ++i) {
+    const auto row = answers.points.row(static_cast<Eigen::Index>(i));
+    pendingValues_.insert(pendingValues_.end(), row.data(), row.data() + dim);
+  }
+  pendingLabels_.insert(pendingLabels_.end(), answers.labels.begin(),
+                        answers.labels.begin() + static_cast<std::ptrdiff_t>(taken));
+  dropped_ += answers.size() - taken;
+}
+
+std::size_t ProxyCollisionDetector::droppedObservations() const {
+  const std::lock_guard pending(pendingMutex_);
+  return dropped_;
 }
 
 std::shared_ptr<const Model> ProxyCollisionDetector::model() const {

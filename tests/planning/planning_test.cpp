@@ -205,6 +205,49 @@ TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
               HasSubstr("path simplification time must be 0 (off) or positive, got -1"));
 }
 
+// Every exact answer of a verified plan is returned, and nothing else: one row per call the exact
+// checker received, with its answer.
+TEST_F(Planning, VerifiedPlansReturnEveryExactAnswer) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  // A model-like source that misses the lower half of the wall: plans through it get repaired.
+  const auto approximate = std::make_shared<FunctionChecker>("half wall", 2, [](const double* q) {
+    return std::abs(q[0]) < 0.1 && q[1] > -0.2 && q[1] < 0.5;
+  });
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5};
+  std::size_t repaired = 0;
+  for (int query = 0; query < 5; ++query) {
+    exact->resetCallCount();
+    const VerifiedPlan plan = planVerified(approximate, exact, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plan.failure;
+    repaired += plan.invalidStretches;
+    EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+    ASSERT_EQ(static_cast<std::size_t>(plan.exactAnswers.points.rows()), plan.exactAnswers.size());
+    for (std::size_t i = 0; i < plan.exactAnswers.size(); ++i) {
+      const double* q = plan.exactAnswers.points.row(static_cast<Eigen::Index>(i)).data();
+      EXPECT_EQ(plan.exactAnswers.labels[i], inWall(q) ? 1 : -1);
+    }
+  }
+  EXPECT_GT(repaired, 0u) << "the test needs plans through the missed half";
+}
+
+// A source that closes the only passage finds no path however long it searches: the exact
+// fallback starts after approximateShare of the time limit, not after all of it.
+TEST_F(Planning, HopelessApproximatePlansAreTimeBoxed) {
+  const auto exact = wallChecker();
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 4, .approximateShare = 0.05};
+  const VerifiedPlan plan = planVerified(closed, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_TRUE(plan.wholePathReplanned);
+  EXPECT_LT(plan.planTime, std::chrono::milliseconds(1000)) << "0.2 s of a 4 s limit";
+  EXPECT_GE(plan.planTime, std::chrono::milliseconds(150));
+  EXPECT_THROW(validate(PlannerOptions{.approximateShare = 0}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.approximateShare = 1.5}), InvalidArgument);
+}
+
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

@@ -14,6 +14,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/proxy/labelling.h"
+#include "temp_dir.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -113,6 +114,59 @@ TEST(ProxyCollisionDetector, SameSeedSameModel) {
   // Another seed, another model (compared by size first: Eigen compares equal shapes only).
   EXPECT_TRUE(a->supportConfigurations().rows() != c->supportConfigurations().rows() ||
               a->supportConfigurations() != c->supportConfigurations());
+}
+
+// Learning from verification: the answers given to addObservations are learned at the next step,
+// and (Algorithm 1 converging) every one of them is then classified as labelled. Here they are
+// deliberately the model's own misses, so they must change its answers.
+TEST(ProxyCollisionDetector, LearnsTheObservationsItIsGiven) {
+  MovingBalls world(2, 4);
+  ProxyParams p = params(30);
+  p.maxPendingObservations = 400;
+  ProxyCollisionDetector proxy(world.checker(2), JointLimits::unitBox(2), p);
+  proxy.initialize(300);  // a coarse model: it misses some of what it is asked next
+  const Configurations probe = test::uniformPoints(5000, 2, 77);
+  Dataset misses;
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < probe.rows() && rows.size() < 300; ++i) {
+    const bool hit = world.inCollision(probe.row(i).data());
+    if (hit != proxy.model()->inCollision(probe.row(i).data())) rows.push_back(i);
+  }
+  ASSERT_GT(rows.size(), 20u) << "the test needs a model that misses";
+  misses.points = probe(rows, Eigen::all);
+  for (const Eigen::Index i : rows) {
+    misses.labels.push_back(world.inCollision(probe.row(i).data()) ? 1 : -1);
+  }
+  proxy.addObservations(misses);
+  const std::size_t support = proxy.model()->supportCount();
+  const StepReport report = proxy.step();
+  EXPECT_EQ(report.observed, rows.size());
+  EXPECT_EQ(report.labelled, support + report.added) << "observations are not labelled again";
+  ASSERT_EQ(report.update.stopReason, StopReason::Converged);
+  const auto model = proxy.model();
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(model->inCollision(misses.points.row(static_cast<Eigen::Index>(k)).data()),
+              misses.labels[k] > 0)
+        << "observation " << k;
+  }
+  EXPECT_EQ(proxy.step().observed, 0u) << "observations are learned once";
+
+  // The queue is bounded: beyond maxPendingObservations answers are dropped and counted.
+  proxy.addObservations(misses);
+  proxy.addObservations(misses);
+  EXPECT_EQ(proxy.droppedObservations(), 2 * rows.size() - 400);
+  EXPECT_EQ(proxy.step().observed, 400u);
+
+  Dataset bad = misses;
+  bad.labels[3] = 0;
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { proxy.addObservations(bad); }),
+              ::testing::HasSubstr("observation 3 has label 0, expected +1 or -1"));
+  bad = misses;
+  bad.points(1, 1) = std::nan("");
+  EXPECT_THROW(proxy.addObservations(bad), InvalidArgument);
+  bad.points = Configurations::Zero(static_cast<Eigen::Index>(misses.size()), 3);
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { proxy.addObservations(bad); }),
+              ::testing::HasSubstr("observations have 3 columns"));
 }
 
 TEST(ProxyCollisionDetector, RefusesMisuse) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "fastron/core/dataset.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -29,6 +30,10 @@ struct VerifiedPlan {
   /// were planned on the exact checker.
   bool substituteEnds = false;
   std::string failure;  ///< why no valid path was found (empty when solved)
+  /// planVerified: every answer the exact checker gave (verification, repair, the ends), one row
+  /// per call, label +1 in collision / -1 free: labelled configurations where the planner needed
+  /// them, for the model's next update (ProxyCollisionDetector::addObservations).
+  Dataset exactAnswers;
   bool solved() const { return status == PlanStatus::Solved; }
   std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
 };
@@ -42,12 +47,14 @@ struct VerifiedPlan {
 VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
 
-/// Plans with `approximate` (e.g. a Fastron model), then verifies and repairs with `exact`. When
+/// Plans with `approximate` (e.g. a Fastron model) for at most options.approximateShare of the time
+/// limit, then verifies and repairs with `exact`. When
 /// the approximate checker thinks the start or goal collides but the exact one finds both free, it
 /// plans between configurations near them that both find free, and the repair bridges the true
 /// ends on the exact checker (`substituteEnds`). When the approximate plan fails, the whole motion
 /// is planned on the exact checker and counted as repair. Start and goal must be free under
-/// `exact`, else the result is InvalidStart / InvalidGoal.
+/// `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is returned in
+/// `exactAnswers`.
 VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,

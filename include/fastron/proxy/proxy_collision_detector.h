@@ -13,6 +13,7 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/dataset.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 #include "fastron/core/trainer.h"
@@ -24,6 +25,9 @@ struct ProxyParams {
   ActiveLearningParams activeLearning{};
   std::uint64_t seed = 1;     ///< every random choice of the pipeline derives from it
   unsigned labelThreads = 0;  ///< threads labelling with the oracle; 0 = every hardware thread
+  /// Observations (addObservations) kept for the next step at most; later ones are dropped and
+  /// counted, so a caller that outpaces the updates cannot grow memory without bound.
+  std::size_t maxPendingObservations = 20000;
 };
 
 /// What one initialize() or step() did.
@@ -31,6 +35,7 @@ struct StepReport {
   UpdateReport update;
   std::size_t labelled = 0;  ///< oracle calls made (support points relabelled + new points)
   std::size_t added = 0;     ///< new points from sampling or active learning
+  std::size_t observed = 0;  ///< labelled configurations from addObservations learned in this step
   std::chrono::nanoseconds sampleTime{0}, labelTime{0}, total{0};
   std::uint64_t modelVersion = 0;  ///< 1 after initialize(), +1 per step()
 };
@@ -55,6 +60,17 @@ class ProxyCollisionDetector {
   /// One cycle for a changed environment: Algorithm 2 on the current support set, relabel the
   /// support set, label the new points, Algorithm 1. Throws Error before initialize().
   StepReport step();
+
+  /// Exact answers the caller already has (e.g. VerifiedPlan::exactAnswers from verifying and
+  /// repairing a plan on this model): the next step() learns them with its own points, without
+  /// asking the oracle again, so the model stops repeating a miss where the planner went. Safe
+  /// to call from any thread, also while the background thread runs. In a changing world the
+  /// labels are as old as the answers; the support points among them are relabelled at the step
+  /// after. Throws InvalidArgument on a wrong column count, a non-finite value or a label other
+  /// than +1 / -1; beyond params.maxPendingObservations waiting answers the rest are dropped
+  /// (droppedObservations()).
+  void addObservations(const Dataset& answers);
+  std::size_t droppedObservations() const;
 
   /// The latest published model. A model, once returned, never changes, so callers keep querying
   /// it without any lock while newer ones are built. Fetching it holds a mutex only for the copy
@@ -91,6 +107,10 @@ class ProxyCollisionDetector {
   // race that ThreadSanitizer reports. A mutex around the pointer copy is as cheap, and correct.
   mutable std::mutex modelMutex_;
   std::shared_ptr<const Model> model_;
+  mutable std::mutex pendingMutex_;  // for the three below only
+  std::vector<double> pendingValues_;
+  Labels pendingLabels_;
+  std::size_t dropped_ = 0;
   std::mutex pauseMutex_;              // for pause_ only
   std::condition_variable_any pause_;  // wakes the worker between steps when stopping
   std::jthread worker_;

@@ -1,0 +1,39 @@
+#pragma once
+// A collision checker that keeps every answer of another: exact answers computed for one purpose
+// (verifying and repairing a plan) become labelled configurations for the model's next update.
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "fastron/core/collision_checker.h"
+#include "fastron/core/dataset.h"
+
+namespace fastron {
+
+/// Answers with `inner` and records each configuration it was asked about with the answer (+1 in
+/// collision, -1 free), in the order given. Safe to call from many threads (a mutex around the
+/// record; the check itself runs outside it).
+class RecordingChecker final : public CollisionChecker {
+ public:
+  /// Throws InvalidArgument on a null `inner`.
+  explicit RecordingChecker(std::shared_ptr<const CollisionChecker> inner);
+
+  std::string name() const override { return inner_->name(); }
+  std::size_t dof() const override { return inner_->dof(); }
+
+  /// Every answer recorded so far; the record is emptied.
+  Dataset take();
+  std::size_t recorded() const;
+
+ protected:
+  bool check(const double* q) const override;
+
+ private:
+  std::shared_ptr<const CollisionChecker> inner_;
+  mutable std::mutex mutex_;
+  mutable std::vector<double> values_;  // dof() per answer
+  mutable Labels labels_;
+};
+
+}  // namespace fastron
