@@ -70,6 +70,22 @@ std::vector<std::string> joined(std::vector<std::string> first,
   return first;
 }
 
+/// The exact answers `model` disagrees with: where it would have misled the planner.
+Dataset answersTheModelMissed(const Model& model, const Dataset& answers) {
+  std::vector<Eigen::Index> rows;
+  for (std::size_t i = 0; i < answers.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    if (model.inCollision(answers.points.row(row).data()) != (answers.labels[i] > 0)) {
+      rows.push_back(row);
+    }
+  }
+  Dataset missed;
+  missed.points = answers.points(rows, Eigen::all);
+  for (const Eigen::Index row : rows)
+    missed.labels.push_back(answers.labels[static_cast<std::size_t>(row)]);
+  return missed;
+}
+
 struct MethodPlan {
   std::string method;
   VerifiedPlan plan;
@@ -698,7 +714,9 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
                        cell(counts.accuracy()).substr(0, 5) + ", plans";
     for (const auto& [method, plan] :
          planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
-      if (method == "Fastron" && o.learnFromVerification) proxy.addObservations(plan.exactAnswers);
+      if (method == "Fastron" && o.learnFromVerification) {
+        proxy.addObservations(answersTheModelMissed(*model, plan.exactAnswers));
+      }
       results.ticks.add(
           joined({std::to_string(tick), "RRTConnect", method},
                  joined(planCells(plan, audit, o.resolution),
@@ -739,8 +757,8 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
         "and invalid stretches replanned; edges are checked every "
      << o.resolution << " rad; seed " << o.seed << ". " << simplificationSentence(o.simplifyTime)
      << (o.learnFromVerification
-             ? " Every exact answer of a Fastron plan's verification and repair is fed to the "
-               "model's next update (learning from verification)."
+             ? " The exact answers of a Fastron plan's verification and repair that the model got "
+               "wrong are fed to its next update (learning from verification)."
              : " Verification answers are not fed back to the model.")
      << "\n\n## Model\n\n";
   std::snprintf(line, sizeof line,

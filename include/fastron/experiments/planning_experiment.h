@@ -105,7 +105,8 @@ struct DemoOptions {
   double resolution = 0.03;
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
-  /// Feed every exact answer of verification and repair to the model's next update.
+  /// Feed the exact answers of verification and repair that the model got wrong to its next
+  /// update.
   bool learnFromVerification = true;
 };
 
