@@ -32,8 +32,9 @@ Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const
 /// The options that choose a model's features: --features, --control-links, --control-points.
 struct FeatureOptions {
   std::string kind = "fk";
-  std::vector<std::string> controlLinks;  ///< link origins as control points (default: automatic)
-  ControlPointOptions automatic;          ///< the automatic choice's cap and spacing
+  std::vector<std::string>
+      controlLinks;               ///< LINK or LINK@X:Y:Z per control point (default: automatic)
+  ControlPointOptions automatic;  ///< the automatic choice's cap and spacing
 };
 
 void addFeatureOptions(CLI::App& cmd, FeatureOptions& options);

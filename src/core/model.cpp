@@ -73,6 +73,23 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
       kernel_(kernel),
       configurations_(std::move(supportConfigurations)),
       weights_(std::move(weights)) {
+  validateSupport();
+  support_ = features_.map(configurations_);  // checks that the configurations are finite
+  buildQueryCopies();
+}
+
+Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigurations,
+             Eigen::MatrixXd supportFeatures, Eigen::VectorXd weights)
+    : features_(std::move(features)),
+      kernel_(kernel),
+      configurations_(std::move(supportConfigurations)),
+      support_(std::move(supportFeatures)),
+      weights_(std::move(weights)) {
+  validateSupport();
+  buildQueryCopies();
+}
+
+void Model::validateSupport() const {
   validate(kernel_);
   const std::size_t d = dim();
   if (d == 0 || d > kMaxDimension) {
@@ -88,9 +105,10 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
                           std::to_string(weights_.size()) + " weights");
   }
   if (!weights_.allFinite()) throw InvalidArgument("weights must be finite");
-  support_ = features_.map(configurations_);  // checks that the configurations are finite
-  const std::size_t featureCount = featureDim();
+}
 
+void Model::buildQueryCopies() {
+  const std::size_t featureCount = featureDim();
   const std::size_t n = supportCount();
   paddedCount_ = (n + kLanes - 1) / kLanes * kLanes;
   supportSoa_.assign(featureCount * paddedCount_, 0.0f);
@@ -114,11 +132,7 @@ void Model::toFeatures(const double* q, std::size_t n, float* x, std::size_t fir
           (n > 1 ? " in configuration " + std::to_string(firstRow + j / dim()) : ""));
     }
   }
-  if (n == 1) {
-    features_.map(q, x);
-  } else {
-    features_.mapBatch(q, n, x);
-  }
+  features_.mapBatch(q, n, x);
 }
 
 float Model::scoreInputFloat(const float* x) const {
@@ -159,21 +173,13 @@ void Model::scoreGroup(const float* xs, std::size_t count, float* out) const {
     out[0] = scoreInputFloat(xs);
     return;
   }
-  const std::size_t d = featureDim();
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled below
-  std::array<float, kQueries * kMaxFeatureDimension> group;
-  std::copy_n(xs, count * d, group.data());
-  // A short group repeats its last query: the lanes are computed anyway.
-  for (std::size_t k = count; k < kQueries; ++k) {
-    std::copy_n(xs + (count - 1) * d, d, group.data() + k * d);
-  }
   const auto gamma = static_cast<float>(kernel_.gamma);
   const auto sums =
       kernel_.type == KernelType::RationalQuadratic
           ? kernelSums<KernelType::RationalQuadratic>(supportSoa_.data(), weightsF_.data(),
-                                                      paddedCount_, d, group.data(), gamma)
-          : kernelSums<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_, d,
-                                             group.data(), gamma);
+                                                      paddedCount_, featureDim(), xs, gamma)
+          : kernelSums<KernelType::Gaussian>(supportSoa_.data(), weightsF_.data(), paddedCount_,
+                                             featureDim(), xs, gamma);
   std::copy_n(sums.begin(), count, out);
 }
 
@@ -186,6 +192,11 @@ void Model::scoreInGroups(const double* q, std::size_t n, Visit visit) const {
   for (std::size_t i = 0; i < n; i += kFeatureBatch) {
     const std::size_t batch = std::min(kFeatureBatch, n - i);
     toFeatures(q + i * dim(), batch, xs.data(), i);
+    // A short last group repeats its last row (the lanes are computed anyway); the buffer holds
+    // whole groups, so the copies stay inside it.
+    for (std::size_t k = batch; k % kQueries != 0; ++k) {
+      std::copy_n(xs.data() + (batch - 1) * d, d, xs.data() + k * d);
+    }
     for (std::size_t g = 0; g < batch; g += kQueries) {
       const std::size_t count = std::min(kQueries, batch - g);
       scoreGroup(xs.data() + g * d, count, f.data());

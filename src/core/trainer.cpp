@@ -261,15 +261,9 @@ std::shared_ptr<const Model> Trainer::model() const {
   for (Eigen::Index i = 0; i < alpha_.size(); ++i) {
     if (alpha_[i] != 0) support.push_back(i);
   }
-  const auto n = static_cast<Eigen::Index>(support.size());
-  Configurations configurations(n, q_.cols());
-  Eigen::VectorXd weights(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    configurations.row(k) = q_.row(support[static_cast<std::size_t>(k)]);
-    weights[k] = alpha_[support[static_cast<std::size_t>(k)]];
-  }
-  return std::make_shared<const Model>(features_, params_.kernel, std::move(configurations),
-                                       std::move(weights));
+  // The private constructor: make_shared cannot reach it.
+  return std::shared_ptr<const Model>(new Model(features_, params_.kernel, q_(support, Eigen::all),
+                                                x_(support, Eigen::all), alpha_(support)));
 }
 
 }  // namespace fastron

@@ -70,22 +70,6 @@ std::vector<std::string> joined(std::vector<std::string> first,
   return first;
 }
 
-/// The exact answers `model` disagrees with: where it would have misled the planner.
-Dataset answersTheModelMissed(const Model& model, const Dataset& answers) {
-  std::vector<Eigen::Index> rows;
-  for (std::size_t i = 0; i < answers.size(); ++i) {
-    const auto row = static_cast<Eigen::Index>(i);
-    if (model.inCollision(answers.points.row(row).data()) != (answers.labels[i] > 0)) {
-      rows.push_back(row);
-    }
-  }
-  Dataset missed;
-  missed.points = answers.points(rows, Eigen::all);
-  for (const Eigen::Index row : rows)
-    missed.labels.push_back(answers.labels[static_cast<std::size_t>(row)]);
-  return missed;
-}
-
 struct MethodPlan {
   std::string method;
   VerifiedPlan plan;
@@ -715,7 +699,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     for (const auto& [method, plan] :
          planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
       if (method == "Fastron" && o.learnFromVerification) {
-        proxy.addObservations(answersTheModelMissed(*model, plan.exactAnswers));
+        proxy.addObservations(answersMissedBy(*model, plan.exactAnswers));
       }
       results.ticks.add(
           joined({std::to_string(tick), "RRTConnect", method},

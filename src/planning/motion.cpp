@@ -49,6 +49,16 @@ double pathLength(const Path& path) {
   return length;
 }
 
+void checkWaypointSizes(const Path& path, std::size_t dim) {
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (static_cast<std::size_t>(path[i].size()) != dim) {
+      throw InvalidArgument("path waypoint " + std::to_string(i) + " has " +
+                            std::to_string(path[i].size()) + " values, the checker expects " +
+                            std::to_string(dim));
+    }
+  }
+}
+
 PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution) {
   PathCheck check;
   if (path.empty()) {
@@ -56,12 +66,8 @@ PathCheck checkPath(const CollisionChecker& checker, const Path& path, double re
     return check;
   }
   const std::size_t dim = checker.dof();
+  checkWaypointSizes(path, dim);
   for (std::size_t i = 0; i < path.size(); ++i) {
-    if (static_cast<std::size_t>(path[i].size()) != dim) {
-      throw InvalidArgument("path waypoint " + std::to_string(i) + " has " +
-                            std::to_string(path[i].size()) + " values, the checker expects " +
-                            std::to_string(dim));
-    }
     if (checker.inCollision(std::span<const double>(path[i].data(), dim))) {
       check.invalidWaypoints.push_back(i);
     }

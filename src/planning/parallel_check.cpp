@@ -2,13 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <mutex>
 #include <span>
-#include <string>
-#include <thread>
 
-#include "fastron/core/error.h"
+#include "fastron/proxy/parallel_chunks.h"
 
 namespace fastron {
 namespace {
@@ -38,13 +34,7 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const Path& path, d
     return check;
   }
   const std::size_t dim = checker.dof();
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    if (static_cast<std::size_t>(path[i].size()) != dim) {
-      throw InvalidArgument("path waypoint " + std::to_string(i) + " has " +
-                            std::to_string(path[i].size()) + " values, the checker expects " +
-                            std::to_string(dim));
-    }
-  }
+  checkWaypointSizes(path, dim);
   const std::size_t edges = path.size() - 1;
   // Interior states of each edge in bisection order (motionStates' rows 1..n-1: row 0 is the
   // edge's end, a waypoint checked as such).
@@ -66,40 +56,15 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const Path& path, d
   }
 
   std::vector<std::atomic<bool>> waypointHit(path.size()), edgeHit(edges);
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex errorMutex;
-  const std::size_t total = order.size();
-  auto work = [&] {
-    try {
-      for (std::size_t begin = next.fetch_add(kChunk); begin < total;
-           begin = next.fetch_add(kChunk)) {
-        for (std::size_t k = begin; k < std::min(total, begin + kChunk); ++k) {
-          const Item& item = order[k];
-          if (!item.waypoint && edgeHit[item.index].load(std::memory_order_relaxed)) continue;
-          if (!checker.inCollision(std::span<const double>(item.q, dim))) continue;
-          (item.waypoint ? waypointHit : edgeHit)[item.index].store(true,
-                                                                    std::memory_order_relaxed);
-        }
-      }
-    } catch (...) {
-      const std::lock_guard lock(errorMutex);
-      if (!error) error = std::current_exception();
-      next.store(total);  // stop the other threads early
+  if (threads == 0 && order.size() < kParallelFrom) threads = 1;
+  forEachChunk(order.size(), kChunk, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Item& item = order[k];
+      if (!item.waypoint && edgeHit[item.index].load(std::memory_order_relaxed)) continue;
+      if (!checker.inCollision(std::span<const double>(item.q, dim))) continue;
+      (item.waypoint ? waypointHit : edgeHit)[item.index].store(true, std::memory_order_relaxed);
     }
-  };
-  if (threads == 0) {
-    threads = total < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
-  }
-  if (threads <= 1) {
-    work();
-  } else {
-    std::vector<std::jthread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-  }  // the pool joins here
-  if (error) std::rethrow_exception(error);
+  });
 
   for (std::size_t i = 0; i < path.size(); ++i) {
     if (waypointHit[i].load()) check.invalidWaypoints.push_back(i);

@@ -187,4 +187,20 @@ void ProxyCollisionDetector::stopBackground() {
   if (auto error = std::exchange(workerError_, nullptr)) std::rethrow_exception(error);
 }
 
+Dataset answersMissedBy(const Model& model, const Dataset& answers) {
+  Dataset missed;
+  missed.points.resize(0, static_cast<Eigen::Index>(model.dim()));
+  if (answers.size() == 0) return missed;
+  const Eigen::VectorXd scores = model.scoreBatch(answers.points);
+  std::vector<Eigen::Index> rows;
+  for (std::size_t i = 0; i < answers.size(); ++i) {
+    if ((scores[static_cast<Eigen::Index>(i)] > 0) != (answers.labels[i] > 0)) {
+      rows.push_back(static_cast<Eigen::Index>(i));
+      missed.labels.push_back(answers.labels[i]);
+    }
+  }
+  missed.points = answers.points(rows, Eigen::all);
+  return missed;
+}
+
 }  // namespace fastron

@@ -53,9 +53,17 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
   const std::size_t stride = 3 * points.size();
   std::vector<float> batch(static_cast<std::size_t>(q.rows()) * stride);
   kinematics.positionsBatch(q.data(), static_cast<std::size_t>(q.rows()), batch.data());
-  std::vector<float> single(stride);  // a batch of one
+  // A batch of one, and the lone last configuration of a batch of 17, take the scalar chain: the
+  // very numbers of positions().
+  std::vector<float> single(stride), scalar(stride), seventeen(17 * stride);
   kinematics.positionsBatch(q.data(), 1, single.data());
-  for (std::size_t k = 0; k < stride; ++k) EXPECT_EQ(single[k], batch[k]);
+  kinematics.positions(q.data(), scalar.data());
+  EXPECT_EQ(single, scalar);
+  kinematics.positionsBatch(q.data(), 17, seventeen.data());
+  kinematics.positions(q.row(16).data(), scalar.data());
+  EXPECT_EQ(std::vector<float>(seventeen.begin() + 16 * static_cast<std::ptrdiff_t>(stride),
+                               seventeen.end()),
+            scalar);
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     forwardKinematics(robot, q.row(i).data(), data);
     kinematics.positions(q.row(i).data(), exact.data());

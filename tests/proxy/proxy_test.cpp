@@ -133,6 +133,18 @@ TEST(ProxyCollisionDetector, LearnsTheObservationsItIsGiven) {
     if (hit != proxy.model()->inCollision(probe.row(i).data())) rows.push_back(i);
   }
   ASSERT_GT(rows.size(), 20u) << "the test needs a model that misses";
+  // answersMissedBy finds the same misses among the rows looked at.
+  Dataset looked;
+  looked.points = probe.topRows(rows.back() + 1);
+  for (Eigen::Index i = 0; i <= rows.back(); ++i) {
+    looked.labels.push_back(world.inCollision(probe.row(i).data()) ? 1 : -1);
+  }
+  const Dataset found = answersMissedBy(*proxy.model(), looked);
+  ASSERT_EQ(found.size(), rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    EXPECT_EQ(found.points.row(static_cast<Eigen::Index>(k)), probe.row(rows[k]));
+    EXPECT_EQ(found.labels[k], looked.labels[static_cast<std::size_t>(rows[k])]);
+  }
   misses.points = probe(rows, Eigen::all);
   for (const Eigen::Index i : rows) {
     misses.labels.push_back(world.inCollision(probe.row(i).data()) ? 1 : -1);

@@ -68,8 +68,19 @@ class Model {
   Eigen::VectorXd scoreBatch(const Configurations& q) const;
 
  private:
+  friend class Trainer;
+  /// For the trainer, which holds the support features already (computed from the same
+  /// configurations with the same map): no second forward kinematics per update.
+  Model(FeatureMap features, Kernel kernel, Configurations supportConfigurations,
+        Eigen::MatrixXd supportFeatures, Eigen::VectorXd weights);
+  /// Throws InvalidArgument on a bad kernel, dimension, size or weight.
+  void validateSupport() const;
+  /// The float structure-of-arrays copies the queries read.
+  void buildQueryCopies();
+
   float scoreInputFloat(const float* x) const;
-  /// f of `count` (1 to 4) consecutive feature rows of xs, in one pass over the support set.
+  /// f of the first `count` (1 to 4) of four consecutive feature rows of xs (a short group
+  /// padded by the caller), in one pass over the support set.
   void scoreGroup(const float* xs, std::size_t count, float* out) const;
   /// Scores the n configurations of q in groups of up to four (features sixteen at a time),
   /// calling visit(first row, count, scores) for each group until it returns true.

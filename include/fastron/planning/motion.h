@@ -38,6 +38,9 @@ struct PathCheck {
   bool valid() const { return invalidWaypoints.empty() && invalidEdges.empty(); }
 };
 
+/// Throws InvalidArgument naming the first waypoint that does not hold `dim` values.
+void checkWaypointSizes(const Path& path, std::size_t dim);
+
 /// Checks every waypoint, and every edge at `resolution`, with `checker`. An empty path is
 /// invalid (waypoint 0 is reported). Throws InvalidArgument on waypoints of the wrong dimension.
 PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution);

@@ -68,10 +68,10 @@ class ProxyCollisionDetector {
   /// labels are as old as the answers; the support points among them are relabelled at the step
   /// after. Measured in `fastron demo` (boxes move every tick): all ~300 answers of each plan
   /// made the model worse (accuracy 0.874 +- 0.173 against 0.965, 20% of plans repaired against
-  /// 8%: dense, stale points); only the answers the model got wrong left it as good and changed
-  /// nothing measurable, so feed those. Throws InvalidArgument on a wrong column count, a
-  /// non-finite value or a label other than +1 / -1; beyond params.maxPendingObservations waiting
-  /// answers the rest are dropped (droppedObservations()).
+  /// 8%: dense, stale points); only the answers the model got wrong (answersMissedBy) left it as
+  /// good and changed nothing measurable, so feed those. Throws InvalidArgument on a wrong column
+  /// count, a non-finite value or a label other than +1 / -1; beyond params.maxPendingObservations
+  /// waiting answers the rest are dropped (droppedObservations()).
   void addObservations(const Dataset& answers);
   std::size_t droppedObservations() const;
 
@@ -119,5 +119,9 @@ class ProxyCollisionDetector {
   std::jthread worker_;
   std::exception_ptr workerError_;
 };
+
+/// The rows of `answers` whose label `model` gets wrong: where it would have misled a planner.
+/// Throws InvalidArgument when the column count is not the model's dimension.
+Dataset answersMissedBy(const Model& model, const Dataset& answers);
 
 }  // namespace fastron
