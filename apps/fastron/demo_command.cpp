@@ -94,6 +94,14 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                   "seconds of OMPL path simplification per plan, every checker alike (0: off)")
       ->capture_default_str()
       ->check(numberAbove(0, true));
+  cmd->add_option("--band-miss-rate", o->demo.band.missRate,
+                  "Hybrid: colliding configurations the model may answer free (calibrated rate)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--band-false-alarm-rate", o->demo.band.falseAlarmRate,
+                  "Hybrid: free configurations the model may answer colliding (calibrated rate)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--seed", o->demo.seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");

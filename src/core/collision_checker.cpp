@@ -1,5 +1,7 @@
 #include "fastron/core/collision_checker.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "fastron/core/error.h"
@@ -20,6 +22,27 @@ std::vector<std::uint8_t> CollisionChecker::inCollisionBatch(const Configuration
         inCollision({q.row(i).data(), static_cast<std::size_t>(q.cols())});
   }
   return out;
+}
+
+std::size_t CollisionChecker::firstInCollision(const double* q, std::size_t n) const {
+  const std::size_t dim = dof();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::span<const double> row(q + i * dim, dim);
+    if (!std::ranges::all_of(row, [](double v) { return std::isfinite(v); })) {
+      checkConfiguration(row, dim, ("configuration " + std::to_string(i)).c_str());
+    }
+  }
+  const std::size_t first = checkFirst(q, n);
+  calls_.fetch_add(std::min(first + 1, n), std::memory_order_relaxed);
+  return first;
+}
+
+std::size_t CollisionChecker::checkFirst(const double* q, std::size_t n) const {
+  const std::size_t dim = dof();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (check(q + i * dim)) return i;
+  }
+  return n;
 }
 
 FunctionChecker::FunctionChecker(std::string name, std::size_t dof,

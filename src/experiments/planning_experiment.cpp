@@ -12,6 +12,7 @@
 #include "baxter_cases.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
+#include "fastron/core/hybrid_checker.h"
 #include "fastron/core/metrics.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
@@ -32,9 +33,10 @@ using experiments::proxyParams;
 using experiments::sceneForTrial;
 using CheckerPtr = std::shared_ptr<const CollisionChecker>;
 
-const std::vector<std::string> kPlanColumns{
-    "solved",      "status",    "plan_s",    "simplify_s", "verify_s",   "repair_s",    "total_s",
-    "path_length", "waypoints", "stretches", "fallback",   "exact_ends", "collides_fcl"};
+const std::vector<std::string> kPlanColumns{"solved",       "status",     "plan_s",   "simplify_s",
+                                            "verify_s",     "repair_s",   "total_s",  "path_length",
+                                            "waypoints",    "stretches",  "fallback", "exact_ends",
+                                            "collides_fcl", "exact_share"};
 
 std::vector<std::string> columnsWith(std::vector<std::string> first,
                                      const std::vector<std::string>& last = {}) {
@@ -43,9 +45,17 @@ std::vector<std::string> columnsWith(std::vector<std::string> first,
   return first;
 }
 
+struct MethodPlan {
+  std::string method;
+  VerifiedPlan plan;
+  /// Of the collision queries of the plan itself (before verification), the share FCL answered.
+  double exactShare = 0;
+};
+
 /// The plan's cells of a result row; `audit` is an FCL checker the planner never used.
-std::vector<std::string> planCells(const VerifiedPlan& plan, const CollisionChecker& audit,
+std::vector<std::string> planCells(const MethodPlan& method, const CollisionChecker& audit,
                                    double resolution) {
+  const VerifiedPlan& plan = method.plan;
   const bool solved = plan.solved();
   const double collides =
       solved ? (checkPath(audit, plan.path, resolution).valid() ? 0.0 : 1.0) : std::nan("");
@@ -61,7 +71,8 @@ std::vector<std::string> planCells(const VerifiedPlan& plan, const CollisionChec
           std::to_string(plan.invalidStretches),
           plan.wholePathReplanned ? "1" : "0",
           plan.substituteEnds ? "1" : "0",
-          cell(collides)};
+          cell(collides),
+          cell(method.exactShare)};
 }
 
 std::vector<std::string> joined(std::vector<std::string> first,
@@ -70,21 +81,22 @@ std::vector<std::string> joined(std::vector<std::string> first,
   return first;
 }
 
-struct MethodPlan {
-  std::string method;
-  VerifiedPlan plan;
-};
-
-/// Fastron and GJK (each verified and repaired with FCL), and FCL itself, on one query.
-std::vector<MethodPlan> planWithEachChecker(const std::shared_ptr<const Model>& model,
-                                            const CheckerPtr& gjk, const CheckerPtr& fcl,
-                                            const JointLimits& limits, const Eigen::VectorXd& start,
+/// Fastron, Hybrid (Fastron with FCL inside the model's calibrated band) and GJK, each verified
+/// and repaired with FCL, and FCL itself, on one query. Hybrid only when the band was calibrated.
+std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const CheckerPtr& gjk,
+                                            const CheckerPtr& fcl, const JointLimits& limits,
+                                            const Eigen::VectorXd& start,
                                             const Eigen::VectorXd& goal,
                                             const PlannerOptions& options) {
   std::vector<MethodPlan> plans;
-  plans.push_back({"Fastron", planVerified(model, fcl, limits, start, goal, options)});
-  if (gjk) plans.push_back({"GJK", planVerified(gjk, fcl, limits, start, goal, options)});
-  plans.push_back({"FCL", planExactly(fcl, limits, start, goal, options)});
+  plans.push_back({"Fastron", planVerified(model.model, fcl, limits, start, goal, options), 0});
+  if (model.calibration.colliding + model.calibration.free > 0) {
+    const auto hybrid = std::make_shared<HybridChecker>(model.model, fcl, model.calibration.band);
+    VerifiedPlan plan = planVerified(hybrid, fcl, limits, start, goal, options);
+    plans.push_back({"Hybrid", std::move(plan), hybrid->exactShare()});
+  }
+  if (gjk) plans.push_back({"GJK", planVerified(gjk, fcl, limits, start, goal, options), 0});
+  plans.push_back({"FCL", planExactly(fcl, limits, start, goal, options), 1});
   return plans;
 }
 
@@ -156,9 +168,9 @@ std::string planTable(const Table& r, const Table::Filter& where,
                       const std::vector<std::string>& planners) {
   std::ostringstream md;
   md << "| Planner | Method | Success | Plan (of which simplify) | Verify | Repair | Total | Path "
-        "length (joint space) | Repaired stretches | Plans repaired | Final paths colliding (FCL) "
-        "|\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "length (joint space) | Repaired stretches | Plans repaired | Plan queries FCL answered | "
+        "Final paths colliding (FCL) |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
     for (const std::string& method : r.distinct("method", where)) {
       Table::Filter all = where;
@@ -190,7 +202,8 @@ std::string planTable(const Table& r, const Table::Filter& where,
          << durationMeanStd(stat("plan_s")) << " (" << durationMeanStd(stat("simplify_s")) << ") | "
          << durationMeanStd(stat("verify_s")) << " | " << durationMeanStd(stat("repair_s")) << " | "
          << durationMeanStd(stat("total_s")) << " | " << meanStd(stat("path_length"), 2) << " | "
-         << meanStd(stat("stretches"), 2) << " | " << repairedShare << " | " << colliding << " of "
+         << meanStd(stat("stretches"), 2) << " | " << repairedShare << " | "
+         << meanStd(summarize(r.numbers("exact_share", all)), 3) << " | " << colliding << " of "
          << collides.size() << " |\n";
     }
   }
@@ -262,17 +275,19 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
       gjk->setScene(scene);
       audit.setScene(scene);
       for (int update = 0; update < 5; ++update) proxy.step();
-      const auto model = proxy.model();
+      const CalibratedModel calibrated = proxy.calibratedModel();
+      const auto& model = calibrated.model;
       const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
       for (const PlannerType type : o.planners) {
         const PlannerOptions options{.type = type,
                                      .resolution = o.resolution,
                                      .timeLimit = o.timeLimit,
                                      .simplifyTime = o.simplifyTime};
-        for (const auto& [method, plan] :
-             planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
+        for (const MethodPlan& each :
+             planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+          const auto& [method, plan, exactShare] = each;
           table.add(joined({name, std::to_string(trial), plannerName(type), method},
-                           joined(planCells(plan, audit, o.resolution),
+                           joined(planCells(each, audit, o.resolution),
                                   {std::to_string(model->supportCount())})));
         }
       }
@@ -322,7 +337,8 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
   if (progress) progress("shelf: training the model");
   proxy.initialize(o.quick ? 2000 : 8000);
   for (int update = 0; update < (o.quick ? 2 : 5); ++update) proxy.step();
-  const auto model = proxy.model();
+  const CalibratedModel calibrated = proxy.calibratedModel();
+  const auto& model = calibrated.model;
 
   // The end effector inside the shelf, above the lower board (start) or the upper one (goal),
   // reached through the open side: the wrist stays in front of the shelf, as a reach to pick or
@@ -353,11 +369,12 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
                                  .resolution = o.resolution,
                                  .timeLimit = o.timeLimit,
                                  .simplifyTime = o.simplifyTime};
-    for (const auto& [method, plan] :
-         planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
+    for (const MethodPlan& each :
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+      const auto& [method, plan, exactShare] = each;
       table.add(joined(
           {std::to_string(trial), "RRT", method},
-          joined(planCells(plan, audit, o.resolution), {std::to_string(model->supportCount())})));
+          joined(planCells(each, audit, o.resolution), {std::to_string(model->supportCount())})));
     }
   }
   return table;
@@ -441,12 +458,14 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
     audit.setScene(scene);
     const Eigen::VectorXd goal = towardTarget ? target : home;
     if (!freeUnder(*fcl, current) || !freeUnder(*fcl, goal)) continue;  // blocked
-    const auto model = proxy.model();
-    const auto plans = planWithEachChecker(model, gjk, fcl, limits, current, goal, options);
-    for (const auto& [method, plan] : plans) {
+    const CalibratedModel calibrated = proxy.calibratedModel();
+    const auto& model = calibrated.model;
+    const auto plans = planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options);
+    for (const MethodPlan& each : plans) {
+      const auto& [method, plan, exactShare] = each;
       table.add(
           joined({std::to_string(tick), "RRT", method},
-                 joined(planCells(plan, audit, o.resolution),
+                 joined(planCells(each, audit, o.resolution),
                         {std::to_string(model->supportCount()), std::to_string(updates.load())})));
     }
     // PSM3 follows the Fastron plan for one tick; at the goal it turns back.
@@ -586,16 +605,18 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) proxy.step();
     const double trainSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-    const auto model = proxy.model();
+    const CalibratedModel calibrated = proxy.calibratedModel();
+    const auto& model = calibrated.model;
 
     const PlannerOptions options{.type = PlannerType::RrtConnect,
                                  .resolution = o.resolution,
                                  .timeLimit = o.timeLimit,
                                  .simplifyTime = o.simplifyTime};
-    for (const auto& [method, plan] :
-         planWithEachChecker(model, nullptr, fcl, limits, start, goal, options)) {
+    for (const MethodPlan& each :
+         planWithEachChecker(calibrated, nullptr, fcl, limits, start, goal, options)) {
+      const auto& [method, plan, exactShare] = each;
       table.add(joined({problem.id, "RRTConnect", method, note},
-                       joined(planCells(plan, audit, o.resolution),
+                       joined(planCells(each, audit, o.resolution),
                               {std::to_string(model->supportCount()), cell(trainSeconds)})));
     }
   }
@@ -645,6 +666,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   FclChecker audit(robot, scene);
   ProxyParams params = proxyParams(c, o.seed, o.features);
   params.labelThreads = 1;  // the other core plans
+  params.band = o.band;
   // Before the proxy: its thread updates these until it is joined.
   std::mutex updateMutex;
   std::size_t updates = 0;
@@ -679,7 +701,8 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     fcl->setScene(scene);
     gjk->setScene(scene);
     audit.setScene(scene);
-    const auto model = proxy.model();
+    const CalibratedModel calibrated = proxy.calibratedModel();
+    const auto& model = calibrated.model;
     results.test.points = uniformConfigurations(limits, o.testPoints, rng);
     results.test.labels = labelConfigurations(audit, results.test.points, 1);
     const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
@@ -696,14 +719,15 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     std::string line = "tick " + std::to_string(tick) + "/" + std::to_string(o.ticks) + ": |S| " +
                        std::to_string(model->supportCount()) + ", accuracy " +
                        cell(counts.accuracy()).substr(0, 5) + ", plans";
-    for (const auto& [method, plan] :
-         planWithEachChecker(model, gjk, fcl, limits, start, goal, options)) {
+    for (const MethodPlan& each :
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+      const auto& [method, plan, exactShare] = each;
       if (method == "Fastron" && o.learnFromVerification) {
         proxy.addObservations(answersMissedBy(*model, plan.exactAnswers));
       }
       results.ticks.add(
           joined({std::to_string(tick), "RRTConnect", method},
-                 joined(planCells(plan, audit, o.resolution),
+                 joined(planCells(each, audit, o.resolution),
                         {std::to_string(model->supportCount()), cell(counts.accuracy()),
                          cell(counts.tpr()), cell(counts.tnr()), std::to_string(updatesSoFar)})));
       char part[64];

@@ -33,10 +33,11 @@ std::size_t firstCollision(const CollisionSource& source, const double* states, 
     return (*model)->firstInCollision(states, n);
   }
   const auto& checker = *std::get<std::shared_ptr<const CollisionChecker>>(source);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (checker.inCollision(std::span<const double>(states + i * dim, dim))) return i;
+  if (checker.dof() != dim) {
+    throw InvalidArgument("checker '" + checker.name() + "' has " + std::to_string(checker.dof()) +
+                          " dof, the states " + std::to_string(dim));
   }
-  return n;
+  return checker.firstInCollision(states, n);
 }
 
 std::string sourceName(const CollisionSource& source) {

@@ -24,6 +24,7 @@ ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionCh
                           std::to_string(features_.configurationDim()));
   }
   validate(params_.activeLearning);
+  validate(params_.band);
 }
 
 ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle,
@@ -36,12 +37,18 @@ ProxyCollisionDetector::~ProxyCollisionDetector() {
   if (worker_.joinable()) worker_.join();
 }
 
-StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start) {
+StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start,
+                                          const Configurations& heldOut,
+                                          const Labels& heldOutLabels) {
   report.update = trainer_.update();
   std::shared_ptr<const Model> next = trainer_.model();  // built outside the lock
+  if (!heldOutLabels.empty()) {
+    report.calibration = calibrateBand(next->scoreBatch(heldOut), heldOutLabels, params_.band);
+  }
   {
     const std::lock_guard lock(modelMutex_);
     model_.swap(next);
+    calibration_ = report.calibration;
   }  // the previous model is released here, outside the lock, if no reader holds it
   report.modelVersion = ++version_;
   report.total = Clock::now() - start;
@@ -52,15 +59,19 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   const std::lock_guard lock(stepMutex_);
   const auto start = Clock::now();
   StepReport report;
-  const Configurations q = uniformConfigurations(limits(), n, rng_);
+  const std::size_t calibration = params_.calibrationSamples;
+  const Configurations q = uniformConfigurations(limits(), n + calibration, rng_);
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
   const Labels labels = labelConfigurations(*oracle_, q, params_.labelThreads);
   report.labelTime = Clock::now() - labelStart;
-  report.labelled = report.added = n;
+  report.labelled = n + calibration;
+  report.added = n;
   trainer_ = Trainer(features_, params_.train);
-  trainer_.addPoints(q, labels);
-  return finish(report, start);
+  const auto learned = static_cast<Eigen::Index>(n);
+  trainer_.addPoints(q.topRows(learned), {labels.data(), n});
+  return finish(report, start, q.bottomRows(static_cast<Eigen::Index>(calibration)),
+                Labels(labels.begin() + learned, labels.end()));
 }
 
 StepReport ProxyCollisionDetector::step() {
@@ -71,12 +82,15 @@ StepReport ProxyCollisionDetector::step() {
 
   // The published model is the trainer's current support set: nothing changes the trainer between
   // steps (stepMutex_), so Algorithm 2 samples around it instead of building the same model again.
+  // Labelled together: the support set, the active-learning points, and uniform points held out
+  // of the new model to calibrate its band.
   const Configurations fresh = activeLearning(*model(), params_.activeLearning, rng_);
+  const Configurations calibration =
+      uniformConfigurations(limits(), params_.calibrationSamples, rng_);
   const auto support = static_cast<Eigen::Index>(trainer_.size());
-  Configurations all(support + fresh.rows(),
+  Configurations all(support + fresh.rows() + calibration.rows(),
                      static_cast<Eigen::Index>(features_.configurationDim()));
-  all.topRows(support) = trainer_.configurations();
-  all.bottomRows(fresh.rows()) = fresh;
+  all << trainer_.configurations(), fresh, calibration;
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
@@ -85,9 +99,10 @@ StepReport ProxyCollisionDetector::step() {
   report.labelled = labels.size();
   report.added = static_cast<std::size_t>(fresh.rows());
 
-  const auto split = labels.begin() + support;
+  const auto freshBegin = labels.begin() + support;
+  const auto calibrationBegin = freshBegin + fresh.rows();
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
-  trainer_.addPoints(fresh, Labels(split, labels.end()));
+  trainer_.addPoints(fresh, Labels(freshBegin, calibrationBegin));
 
   std::vector<double> observedValues;
   Labels observedLabels;
@@ -103,7 +118,7 @@ StepReport ProxyCollisionDetector::step() {
                        observedLabels);
     report.observed = observedLabels.size();
   }
-  return finish(report, start);
+  return finish(report, start, calibration, Labels(calibrationBegin, labels.end()));
 }
 
 void ProxyCollisionDetector::addObservations(const Dataset& answers) {
@@ -150,6 +165,16 @@ std::shared_ptr<const Model> ProxyCollisionDetector::model() const {
     current = model_;
   }
   if (!current) throw Error("ProxyCollisionDetector::model() called before initialize()");
+  return current;
+}
+
+CalibratedModel ProxyCollisionDetector::calibratedModel() const {
+  CalibratedModel current;
+  {
+    const std::lock_guard lock(modelMutex_);
+    current = {model_, calibration_};
+  }
+  if (!current.model) throw Error("ProxyCollisionDetector::model() called before initialize()");
   return current;
 }
 

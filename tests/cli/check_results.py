@@ -82,6 +82,10 @@ def check_plans(rows, methods, every_method_solves=True):
     for row in rows:
         if row["solved"] not in ("0", "1"):
             fail(f"solved must be 0 or 1: {row}")
+        share = value(row, "exact_share")
+        expected_share = {"Fastron": 0, "GJK": 0, "FCL": 1}.get(row["method"])
+        if not 0 <= share <= 1 or (expected_share is not None and share != expected_share):
+            fail(f"share of plan queries FCL answered out of place: {row}")
         if row["solved"] == "1":
             if value(row, "collides_fcl") != 0:
                 fail(f"a final path collides under FCL: {row}")
@@ -130,11 +134,11 @@ def main():
             if value(row, "grid_accuracy") < 0.8:
                 fail(f"{row['method']} grid accuracy {row['grid_accuracy']}")
     elif name in ("plan", "shelf", "surgical"):
-        check_plans(rows, ["Fastron", "GJK", "FCL"], every_method_solves=name != "shelf")
+        check_plans(rows, ["Fastron", "Hybrid", "GJK", "FCL"], every_method_solves=name != "shelf")
         if name == "plan" and {r["planner"] for r in rows} != {"RRT", "RRTConnect", "RRT*", "BIT*"}:
             fail(f"planners {sorted({r['planner'] for r in rows})}")
     elif name == "motion-bench":
-        check_plans(rows, ["Fastron", "FCL"])
+        check_plans(rows, ["Fastron", "Hybrid", "FCL"])
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:

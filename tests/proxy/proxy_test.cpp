@@ -52,6 +52,11 @@ ProxyParams params(double gamma, std::uint64_t seed = 1) {
   return p;
 }
 
+/// Points a step held out of its model to calibrate the band.
+std::size_t heldOut(const StepReport& report) {
+  return report.calibration.colliding + report.calibration.free;
+}
+
 double accuracy(const Model& model, const MovingBalls& world, std::size_t dim) {
   const Configurations q = test::uniformPoints(4000, dim, 99);
   Labels y(static_cast<std::size_t>(q.rows()));
@@ -83,18 +88,66 @@ TEST(ProxyCollisionDetector, TracksAMovingWorld) {
   MovingBalls world(2, 4);
   ProxyCollisionDetector proxy(world.checker(2), JointLimits::unitBox(2), params(30));
   const StepReport init = proxy.initialize(2000);
-  EXPECT_EQ(init.labelled, 2000u);
+  EXPECT_EQ(init.labelled, 3000u);
+  EXPECT_EQ(heldOut(init), 1000u);  // ProxyParams::calibrationSamples, for the band
   EXPECT_EQ(init.update.stopReason, StopReason::Converged);
   EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.95);
   for (int t = 0; t < 10; ++t) {
     world.move(0.02);
     const std::size_t support = proxy.model()->supportCount();
     const StepReport report = proxy.step();
-    EXPECT_EQ(report.labelled, support + 300);  // |S| + A_max collision checks (Sec. II-F)
+    // |S| + A_max collision checks (Sec. II-F), and the points held out for the band.
+    EXPECT_EQ(report.labelled, support + 300 + 1000);
     EXPECT_EQ(report.added, 300u);
+    EXPECT_EQ(heldOut(report), 1000u);
     EXPECT_EQ(report.modelVersion, static_cast<std::uint64_t>(t + 2));
   }
   EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.95);
+}
+
+// Each published model comes with a band calibrated on points it did not learn; on fresh
+// configurations of the world, few colliding ones fall below it, and the pair is consistent.
+TEST(ProxyCollisionDetector, PublishesABandCalibratedOnPointsItDidNotLearn) {
+  MovingBalls world(3, 6);
+  ProxyParams p = params(10);
+  p.band = {.missRate = 0.005, .falseAlarmRate = 0.05};
+  // About 11% of the space collides: 4000 held-out points give ~440 colliding ones, so the band
+  // sits at the third-lowest colliding score, not the lowest. With the default 1000 (~110
+  // colliding, the band at the lowest) 2.1% of fresh colliding configurations fell below it.
+  p.calibrationSamples = 4000;
+  ProxyCollisionDetector proxy(world.checker(3), JointLimits::unitBox(3), p);
+  proxy.initialize(2000);
+  StepReport last;
+  for (int t = 0; t < 5; ++t) {
+    world.move(0.01);
+    last = proxy.step();
+  }
+  const CalibratedModel current = proxy.calibratedModel();
+  EXPECT_EQ(current.model, proxy.model());
+  EXPECT_EQ(current.calibration.band.lower, last.calibration.band.lower);
+  EXPECT_LE(current.calibration.bandMissRate, 0.005);
+  EXPECT_LE(current.calibration.band.lower, 0);
+  EXPECT_GE(current.calibration.band.upper, 0);
+
+  const Configurations q = test::uniformPoints(20000, 3, 21);
+  const Eigen::VectorXd scores = current.model->scoreBatch(q);
+  std::size_t colliding = 0, missed = 0;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    if (!world.inCollision(q.row(i).data())) continue;
+    ++colliding;
+    if (scores[i] < current.calibration.band.lower) ++missed;
+  }
+  ASSERT_GT(colliding, 1000u);
+  EXPECT_LT(static_cast<double>(missed) / static_cast<double>(colliding), 0.01);
+
+  p.band.missRate = 2;
+  EXPECT_THROW(ProxyCollisionDetector(world.checker(3), JointLimits::unitBox(3), p),
+               InvalidArgument);
+  p.band.missRate = 0.005;
+  p.calibrationSamples = 0;
+  ProxyCollisionDetector uncalibrated(world.checker(3), JointLimits::unitBox(3), p);
+  EXPECT_EQ(heldOut(uncalibrated.initialize(500)), 0u);
+  EXPECT_EQ(uncalibrated.calibratedModel().calibration.band.lower, 0);
 }
 
 TEST(ProxyCollisionDetector, SameSeedSameModel) {
@@ -153,7 +206,8 @@ TEST(ProxyCollisionDetector, LearnsTheObservationsItIsGiven) {
   const std::size_t support = proxy.model()->supportCount();
   const StepReport report = proxy.step();
   EXPECT_EQ(report.observed, rows.size());
-  EXPECT_EQ(report.labelled, support + report.added) << "observations are not labelled again";
+  EXPECT_EQ(report.labelled, support + p.calibrationSamples + report.added)
+      << "observations are not labelled again";
   ASSERT_EQ(report.update.stopReason, StopReason::Converged);
   const auto model = proxy.model();
   for (std::size_t k = 0; k < rows.size(); ++k) {
@@ -339,11 +393,12 @@ TEST(ProxyCollisionDetector, BackgroundErrorsAreRethrownOnStop) {
   });
   ProxyCollisionDetector proxy(checker, JointLimits::unitBox(2), params(10));
   proxy.initialize(300);
+  const std::uint64_t initialCalls = checker->callCount();
   fail = true;
   proxy.startBackground();
   // Once a background step has called the failing oracle, that step ends with the error and
   // stopBackground() joins it.
-  while (checker->callCount() <= 300) std::this_thread::yield();
+  while (checker->callCount() <= initialCalls) std::this_thread::yield();
   EXPECT_THROW(proxy.stopBackground(), Error);
 }
 

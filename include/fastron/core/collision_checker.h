@@ -28,6 +28,10 @@ class CollisionChecker {
   bool inCollision(std::span<const double> q) const;
   /// One result per row of q (1 = in collision), on the calling thread.
   std::vector<std::uint8_t> inCollisionBatch(const Configurations& q) const;
+  /// Index of the first of n configurations (row by row in q, n * dof() values), in the order
+  /// given, that is in collision, or n when all are free. Counts one call per configuration up to
+  /// that one. Throws InvalidArgument naming the first row with a non-finite value.
+  std::size_t firstInCollision(const double* q, std::size_t n) const;
 
   std::uint64_t callCount() const { return calls_.load(std::memory_order_relaxed); }
   void resetCallCount() { calls_.store(0, std::memory_order_relaxed); }
@@ -35,6 +39,9 @@ class CollisionChecker {
  protected:
   /// The check itself, for dof() finite values.
   virtual bool check(const double* q) const = 0;
+  /// firstInCollision for n rows of finite values; by default check() on one row after the other.
+  /// A checker that answers many configurations at once faster overrides it.
+  virtual std::size_t checkFirst(const double* q, std::size_t n) const;
 
  private:
   mutable std::atomic<std::uint64_t> calls_{0};

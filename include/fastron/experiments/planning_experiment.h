@@ -10,6 +10,7 @@
 
 #include "fastron/core/dataset.h"
 #include "fastron/core/model.h"
+#include "fastron/core/uncertainty_band.h"
 #include "fastron/experiments/common.h"
 #include "fastron/planning/planner.h"
 
@@ -108,6 +109,8 @@ struct DemoOptions {
   /// Feed the exact answers of verification and repair that the model got wrong to its next
   /// update.
   bool learnFromVerification = true;
+  /// What the band of the Hybrid method (Fastron with FCL inside the band) is calibrated to.
+  BandTargets band{};
 };
 
 /// `fastron demo`: the paper in one run.

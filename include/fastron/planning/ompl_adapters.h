@@ -27,8 +27,9 @@ std::string sourceName(const CollisionSource& source);
 std::size_t sourceDof(const CollisionSource& source);
 
 /// Index of the first of n configurations of `dim` values (row by row in `states`) that the
-/// source finds in collision, or n: one batch through Model::firstInCollision for a model, one
-/// configuration after the other for a checker. The source must not be null.
+/// source finds in collision, or n: one batch through Model::firstInCollision for a model,
+/// CollisionChecker::firstInCollision for a checker (one configuration after the other for an
+/// exact checker; one scored batch for a HybridChecker). The source must not be null.
 std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
                            std::size_t dim);
 
@@ -44,7 +45,7 @@ class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
 
 /// Checks a straight-line motion at a fixed resolution (see motionStates): with a model, all the
 /// states of the edge are evaluated as one batch that stops at the first predicted collision;
-/// with an exact checker, one state after the other in the same order.
+/// with a checker, through CollisionChecker::firstInCollision in the same order.
 class ResolutionMotionValidator final : public ompl::base::MotionValidator {
  public:
   ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si, CollisionSource source,

@@ -17,6 +17,7 @@
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 #include "fastron/core/trainer.h"
+#include "fastron/core/uncertainty_band.h"
 
 namespace fastron {
 
@@ -28,6 +29,17 @@ struct ProxyParams {
   /// Observations (addObservations) kept for the next step at most; later ones are dropped and
   /// counted, so a caller that outpaces the updates cannot grow memory without bound.
   std::size_t maxPendingObservations = 20000;
+  /// Uniform configurations each initialize() / step() labels beside its training points and holds
+  /// out of its model to calibrate the model's uncertainty band. Uniform, as a sampling planner's
+  /// queries are: a share of the active-learning points, which crowd the support points, left 3.5%
+  /// of the colliding configurations below a band calibrated to 0.5% (tests/proxy). Not learned
+  /// afterwards: learning them grew the support set by a quarter (bench changing, 7dof-3boxes)
+  /// for no clear gain in accuracy. Enough that missRate * colliding ones >= 1 makes the target a
+  /// quantile rather than the smallest score. 0 turns calibration off (the band is then the
+  /// model's own boundary).
+  std::size_t calibrationSamples = 1000;
+  /// What the band of each published model is calibrated to.
+  BandTargets band{};
 };
 
 /// What one initialize() or step() did.
@@ -38,6 +50,13 @@ struct StepReport {
   std::size_t observed = 0;  ///< labelled configurations from addObservations learned in this step
   std::chrono::nanoseconds sampleTime{0}, labelTime{0}, total{0};
   std::uint64_t modelVersion = 0;  ///< 1 after initialize(), +1 per step()
+  BandCalibration calibration;     ///< the new model's band (calibrationSamples held-out points)
+};
+
+/// A published model with the uncertainty band calibrated for it (e.g. for a HybridChecker).
+struct CalibratedModel {
+  std::shared_ptr<const Model> model;
+  BandCalibration calibration;
 };
 
 class ProxyCollisionDetector {
@@ -79,6 +98,9 @@ class ProxyCollisionDetector {
   /// it without any lock while newer ones are built. Fetching it holds a mutex only for the copy
   /// of a shared_ptr. Throws Error before initialize().
   std::shared_ptr<const Model> model() const;
+  /// The latest published model together with its band (one consistent pair). Throws Error before
+  /// initialize().
+  CalibratedModel calibratedModel() const;
 
   /// Runs step() in a loop on a background thread, publishing each new model atomically.
   /// `onStep` (optional) is called on that thread after each step. Steps start at most once per
@@ -97,7 +119,9 @@ class ProxyCollisionDetector {
   const ProxyParams& params() const { return params_; }
 
  private:
-  StepReport finish(StepReport report, std::chrono::steady_clock::time_point start);
+  /// Trains, calibrates the new model's band on the held-out points and publishes both.
+  StepReport finish(StepReport report, std::chrono::steady_clock::time_point start,
+                    const Configurations& heldOut, const Labels& heldOutLabels);
 
   std::shared_ptr<const CollisionChecker> oracle_;
   FeatureMap features_;
@@ -110,6 +134,7 @@ class ProxyCollisionDetector {
   // race that ThreadSanitizer reports. A mutex around the pointer copy is as cheap, and correct.
   mutable std::mutex modelMutex_;
   std::shared_ptr<const Model> model_;
+  BandCalibration calibration_;      // of model_
   mutable std::mutex pendingMutex_;  // for the three below only
   std::vector<double> pendingValues_;
   Labels pendingLabels_;
