@@ -65,6 +65,10 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("planning time limit must be positive, got " +
                           std::to_string(options.timeLimit));
   }
+  if (!(options.stretchShare > 0) || !(options.stretchShare <= 1)) {
+    throw InvalidArgument("stretchShare must be in (0, 1], got " +
+                          std::to_string(options.stretchShare));
+  }
   if (!(options.approximateShare > 0) || !(options.approximateShare <= 1)) {
     throw InvalidArgument("approximateShare must be in (0, 1], got " +
                           std::to_string(options.approximateShare));

@@ -99,11 +99,11 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
       std::size_t j = i + 1;
       while (contains(check.invalidWaypoints, j)) ++j;
       ++result.invalidStretches;
-      // A stretch is short, so it gets a quarter of the time; a waypoint the approximate plan
-      // left in a pocket of free space may have no short way out, and then the whole motion is
-      // planned again on the exact checker.
+      // A stretch is short, so it gets options.stretchShare of the time; a waypoint the
+      // approximate plan left in a pocket of free space may have no short way out, and then the
+      // whole motion is planned again on the exact checker.
       PlannerOptions stretchOptions = options;
-      stretchOptions.timeLimit = options.timeLimit / 4;
+      stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
       const PlanResult bridge = planMotion(exact, limits, old[i], old[j], stretchOptions);
       if (!bridge.solved()) {
         const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);

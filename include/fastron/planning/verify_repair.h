@@ -41,9 +41,9 @@ struct VerifiedPlan {
 /// Checks `path` (start to goal) with `exact` at options.resolution (checkPathParallel: every
 /// core, bisection order); cuts out each invalid stretch
 /// (from the last valid waypoint before it to the first valid one after it), replans it with the
-/// same planner on `exact` (a quarter of the time limit; when that fails, the whole motion with
-/// the full limit), splices the pieces and checks the whole path again (up to three rounds).
-/// planTime is left 0.
+/// same planner on `exact` (options.stretchShare of the time limit; when that fails, the whole
+/// motion with the full limit), splices the pieces and checks the whole path again (up to three
+/// rounds). planTime is left 0.
 VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
 
