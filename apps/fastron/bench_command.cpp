@@ -28,6 +28,8 @@ struct BenchOptions {
   double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
+  RobotOptions robot;          // motion-bench only (default: panda)
+  bool selfCollision = false;  // motion-bench only
 };
 
 int runBench(const BenchOptions& o) {
@@ -36,6 +38,12 @@ int runBench(const BenchOptions& o) {
                                         : std::filesystem::path(o.out);
   if ((o.gamma > 0 || o.beta > 0 || o.variance > 0) && o.name != "changing") {
     throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
+  }
+  if ((o.robot.robot != "panda" || !o.robot.packagePaths.empty() || !o.robot.srdf.empty() ||
+       o.selfCollision) &&
+      o.name != "motion-bench") {
+    throw InvalidArgument(
+        "--robot, --package-path, --srdf and --self-collision go with the motion-bench experiment");
   }
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();
@@ -134,6 +142,10 @@ int runBench(const BenchOptions& o) {
     MotionBenchOptions bench;
     setPlanning(bench, 0);
     bench.problems = o.problems;
+    bench.robot = o.robot.robot;
+    for (const auto& p : o.robot.packagePaths) bench.packagePaths.emplace_back(p);
+    bench.srdf = o.robot.srdf;
+    bench.selfCollision = o.selfCollision;
     results = runMotionBench(bench, progress);
     report = motionBenchReport(results, bench);
   } else {
@@ -170,6 +182,16 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "experiment's own");
   cmd->add_option("--problems", o->problems,
                   "motion-bench: folder of MoveIt sceneNNNN.yaml / requestNNNN.yaml pairs");
+  o->robot.robot = "panda";
+  cmd->add_option("--robot", o->robot.robot,
+                  "motion-bench: a shipped robot (e.g. panda-mesh) or a URDF file")
+      ->capture_default_str();
+  cmd->add_option("--package-path", o->robot.packagePaths,
+                  "motion-bench: folder searched for the robot's package:// meshes (repeatable)");
+  cmd->add_option("--srdf", o->robot.srdf,
+                  "motion-bench: MoveIt SRDF whose disable_collisions pairs are skipped");
+  cmd->add_flag("--self-collision", o->selfCollision,
+                "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped)");
   cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")
       ->check(numberAbove(0));
   cmd->add_option("--resolution", o->resolution,

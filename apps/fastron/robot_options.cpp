@@ -15,12 +15,14 @@ void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required) {
       ->delimiter(',');
   cmd.add_option("--package-path", options.packagePaths,
                  "folder searched for package:// and relative mesh paths (repeatable)");
+  cmd.add_option("--srdf", options.srdf,
+                 "MoveIt SRDF: its disable_collisions pairs are skipped in self-collision checks");
 }
 
 Robot loadRobotFromOptions(const RobotOptions& options) {
   UrdfOptions urdf;
   for (const auto& p : options.packagePaths) urdf.searchPaths.emplace_back(p);
-  Robot robot = loadRobot(options.robot, urdf);
+  Robot robot = loadRobot(options.robot, urdf, options.srdf);
   if (!options.joints.empty()) robot.setActuatedJoints(options.joints);
   return robot;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The options that choose a robot: --robot, --joints, --package-path.
+// The options that choose a robot: --robot, --joints, --package-path, --srdf.
 
 #include <CLI/CLI.hpp>
 
@@ -16,6 +16,7 @@ struct RobotOptions {
   std::string robot;
   std::vector<std::string> joints;
   std::vector<std::string> packagePaths;
+  std::string srdf;  ///< a MoveIt SRDF whose disabled collisions apply
 };
 
 void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required = true);

@@ -21,6 +21,9 @@ int runRobots(const std::string& only) {
     std::cout << entry.name << ": " << entry.description << '\n';
     std::cout << "  urdf " << entry.urdf.string() << ", " << robot.links().size() << " links, "
               << robot.shapes().size() << " collision shapes\n";
+    if (!entry.srdf.empty()) std::cout << "  srdf " << entry.srdf.string() << '\n';
+    std::cout << "  link pairs skipped by self-collision checks besides adjacent ones: "
+              << robot.allowedCollisions().size() << '\n';
     const JointLimits limits = robot.limits();
     std::cout << "  actuated joints (" << robot.dof() << "):\n";
     for (std::size_t j = 0; j < robot.dof(); ++j) {
@@ -44,8 +47,9 @@ std::string percent(std::size_t count, std::size_t of) {
   return text;
 }
 
-int runSurvey(const std::string& nameOrPath, const SelfCollisionOptions& options) {
-  const Robot robot = loadRobot(nameOrPath);
+int runSurvey(const std::string& nameOrPath, const UrdfOptions& urdf, const std::string& srdf,
+              const SelfCollisionOptions& options) {
+  const Robot robot = loadRobot(nameOrPath, urdf, srdf);
   std::cerr << "sampling " << options.samples << " configurations of " << robot.name() << "...\n";
   const SelfCollisionSurvey survey = surveySelfCollisions(robot, options);
   std::cout << robot.name() << ": self-collisions over " << survey.samples
@@ -102,11 +106,22 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "random seed of the survey")->capture_default_str();
-  cmd->callback([only, survey, options, &exitCode] {
+  auto packagePaths = std::make_shared<std::vector<std::string>>();
+  auto srdf = std::make_shared<std::string>();
+  cmd->add_option("--package-path", *packagePaths,
+                  "survey: folder searched for package:// and relative mesh paths (repeatable)");
+  cmd->add_option("--srdf", *srdf,
+                  "survey: MoveIt SRDF whose disable_collisions pairs are not surveyed");
+  cmd->callback([only, survey, options, packagePaths, srdf, &exitCode] {
     if (*survey) {
       if (only->empty()) throw InvalidArgument("--self-collisions needs a robot name or URDF file");
-      exitCode = runSurvey(*only, *options);
+      UrdfOptions urdf;
+      for (const auto& p : *packagePaths) urdf.searchPaths.emplace_back(p);
+      exitCode = runSurvey(*only, urdf, *srdf, *options);
       return;
+    }
+    if (!packagePaths->empty() || !srdf->empty()) {
+      throw InvalidArgument("--package-path and --srdf go with --self-collisions");
     }
     if (!only->empty()) loadRobot(*only);  // a clear error for an unknown name
     exitCode = runRobots(*only);

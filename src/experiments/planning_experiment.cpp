@@ -20,6 +20,7 @@
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/geometry/urdf.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -576,9 +577,10 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   Table table{columnsWith({"problem", "planner", "method", "note"}, {"support", "train_s"}), {}};
   std::vector<Problem> problems = problemsIn(o.problems);
   if (o.quick && problems.size() > 2) problems.resize(2);
-  Robot robot = loadRobot(o.robot);
+  Robot robot = loadRobot(o.robot, UrdfOptions{.searchPaths = o.packagePaths}, o.srdf);
   const JointLimits limits = robot.limits();
   const FeatureMap features = robotFeatures(robot, o.features);
+  const CheckerOptions checking{.selfCollision = o.selfCollision};
   for (std::size_t p = 0; p < problems.size(); ++p) {
     const Problem& problem = problems[p];
     if (progress)
@@ -595,8 +597,8 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     const Eigen::VectorXd goal =
         toVector(actuatedConfiguration(robot, request.goal, problem.request.string() + ": goal"));
     const std::string note = allowGrasp(robot, scene, goal);
-    auto fcl = std::make_shared<FclChecker>(robot, scene);
-    const FclChecker audit(robot, scene);
+    auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
+    const FclChecker audit(robot, scene, checking);
 
     ProxyCollisionDetector proxy(fcl, features,
                                  experimentProxyParams(o.features, 5, 500, o.seed + p));
@@ -627,6 +629,8 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
   std::ostringstream md;
   md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\n"
      << featureSentence(o.features) << " Robot " << o.robot
+     << (o.srdf.empty() ? "" : " with the disabled collisions of " + o.srdf.string())
+     << (o.selfCollision ? ", self-collision checked by FCL" : ", self-collision not checked")
      << "; for each problem Fastron is trained on the scene ("
      << (o.quick ? 1500 : o.trainingPoints) << " samples, then " << (o.quick ? 1 : o.updates)
      << " active-learning updates) and RRT-Connect plans with Fastron (verified and repaired with "

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/srdf.h"
 #include "yaml_reader.h"
 
 namespace fastron {
@@ -27,9 +28,10 @@ std::vector<RobotEntry> shippedRobots() {
       robot.name = r.text(entry.first, "robot name");
       const std::string what = "robot '" + robot.name + "'";
       const YAML::Node e = entry.second;
-      r.onlyKeys(e, {"urdf", "description", "joints", "held", "allowed_collisions"}, what);
+      r.onlyKeys(e, {"urdf", "srdf", "description", "joints", "held", "allowed_collisions"}, what);
       if (e["description"]) robot.description = r.text(e["description"], what + " description");
       robot.urdf = catalogue.parent_path() / r.text(r.required(e, "urdf", what), what + " urdf");
+      if (e["srdf"]) robot.srdf = catalogue.parent_path() / r.text(e["srdf"], what + " srdf");
       for (const auto& j : r.list(r.required(e, "joints", what), what + " joints"))
         robot.joints.push_back(r.text(j, what + " joint"));
       if (e["held"]) {
@@ -52,18 +54,25 @@ std::vector<RobotEntry> shippedRobots() {
   });
 }
 
-Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options) {
+Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options,
+                const std::filesystem::path& srdf) {
+  const auto withSrdf = [&](Robot robot) {
+    if (!srdf.empty()) robot.allowedCollisions().merge(loadSrdfDisabledCollisions(srdf, robot));
+    return robot;
+  };
   const std::filesystem::path asPath(nameOrPath);
   if (asPath.extension() == ".urdf" || std::filesystem::is_regular_file(asPath)) {
     if (!std::filesystem::is_regular_file(asPath))
       throw FileError(nameOrPath + ": URDF file not found");
-    return loadUrdf(asPath, options);
+    return withSrdf(loadUrdf(asPath, options));
   }
   std::string names;
   for (const RobotEntry& entry : shippedRobots()) {
     names += (names.empty() ? "" : ", ") + entry.name;
     if (entry.name != nameOrPath) continue;
-    Robot robot = loadUrdf(entry.urdf, options);
+    UrdfOptions shipped = options;
+    shipped.searchPaths.push_back(entry.urdf.parent_path());  // its package:// meshes
+    Robot robot = loadUrdf(entry.urdf, shipped);
     robot.setActuatedJoints(entry.joints);
     for (const auto& [joint, value] : entry.held) robot.setHeldPosition(joint, value);
     for (const auto& [a, b] : entry.allowedCollisions) {
@@ -71,7 +80,10 @@ Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options) {
       robot.linkIndex(b);
       robot.allowedCollisions().allow(a, b);
     }
-    return robot;
+    if (!entry.srdf.empty()) {
+      robot.allowedCollisions().merge(loadSrdfDisabledCollisions(entry.srdf, robot));
+    }
+    return withSrdf(std::move(robot));
   }
   throw FileError("'" + nameOrPath + "' is neither a shipped robot (" + names +
                   ") nor a URDF file");

@@ -75,7 +75,11 @@ std::string surgicalReport(const Table& results, const SurgicalOptions& options)
 
 struct MotionBenchOptions {
   std::filesystem::path problems;  ///< folder of sceneNNNN.yaml / requestNNNN.yaml pairs
-  std::string robot = "panda";
+  std::string robot = "panda";     ///< a shipped robot or a URDF file (loadRobot)
+  std::vector<std::filesystem::path> packagePaths;  ///< where its package:// meshes are
+  std::filesystem::path srdf;  ///< an SRDF whose disabled collisions apply (empty: none)
+  bool selfCollision =
+      false;  ///< FCL (the oracle, the planner's and the audit) checks self-collision
   std::uint64_t seed = 1;
   bool quick = false;
   std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model

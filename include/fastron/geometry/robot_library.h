@@ -17,6 +17,7 @@ struct RobotEntry {
   std::vector<std::string> joints;                   ///< actuated, in order
   std::vector<std::pair<std::string, double>> held;  ///< positions of other joints
   std::vector<std::pair<std::string, std::string>> allowedCollisions;  ///< links touching by design
+  std::filesystem::path srdf;  ///< MoveIt SRDF whose disabled collisions apply (empty: none)
 };
 
 /// The project's data folder: $FASTRON_DATA_DIR if set, else the source tree's data/.
@@ -25,8 +26,11 @@ std::filesystem::path dataDirectory();
 /// Every shipped robot, from data/robots/robots.yaml.
 std::vector<RobotEntry> shippedRobots();
 
-/// A shipped robot by name (its catalogue joints actuated), or else a URDF file (every movable
-/// joint actuated). Throws FileError when it is neither, naming the shipped robots.
-Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options = {});
+/// A shipped robot by name (its catalogue joints actuated, its allowed pairs and SRDF applied;
+/// package:// meshes found beside its URDF), or else a URDF file (every movable joint actuated).
+/// A non-empty `srdf` adds that file's disabled collisions (loadSrdfDisabledCollisions). Throws
+/// FileError when it is neither, naming the shipped robots.
+Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options = {},
+                const std::filesystem::path& srdf = {});
 
 }  // namespace fastron
