@@ -1,27 +1,15 @@
 #include "fastron/geometry/srdf.h"
 
-#include <tinyxml.h>
-
-#include <fstream>
-#include <sstream>
-
 #include "fastron/core/error.h"
+#include "xml_reader.h"
+#include "yaml_reader.h"  // readText
 
 namespace fastron {
 
 AllowedCollisionMatrix parseSrdfDisabledCollisions(const std::string& xml,
                                                    const std::string& source, const Robot& robot) {
   TiXmlDocument document;
-  document.Parse(xml.c_str());
-  if (document.Error()) {
-    const int row = document.ErrorRow();  // 0 when the text is not XML at all
-    throw FileError(source + (row > 0 ? ":" + std::to_string(row) : "") +
-                    ": malformed XML: " + document.ErrorDesc());
-  }
-  const TiXmlElement* root = document.RootElement();
-  if (root == nullptr || root->ValueStr() != "robot") {
-    throw FileError(source + ": not an SRDF file (the root element is not <robot>)");
-  }
+  const TiXmlElement* root = detail::parseRobotXml(xml, source, "an SRDF file", document);
   const char* name = root->Attribute("name");
   if (name != nullptr && std::string(name) != robot.name()) {
     throw FileError(source + ":" + std::to_string(root->Row()) + ": the SRDF is for robot '" +
@@ -50,11 +38,7 @@ AllowedCollisionMatrix parseSrdfDisabledCollisions(const std::string& xml,
 
 AllowedCollisionMatrix loadSrdfDisabledCollisions(const std::filesystem::path& file,
                                                   const Robot& robot) {
-  std::ifstream in(file);
-  if (!in) throw FileError(file.string() + ": cannot open SRDF file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseSrdfDisabledCollisions(text.str(), file.string(), robot);
+  return parseSrdfDisabledCollisions(detail::readText(file, "SRDF file"), file.string(), robot);
 }
 
 }  // namespace fastron

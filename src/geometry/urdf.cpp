@@ -1,7 +1,6 @@
 #include "fastron/geometry/urdf.h"
 
 #include <console_bridge/console.h>
-#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
@@ -12,6 +11,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/mesh_loader.h"
+#include "xml_reader.h"
 
 namespace fastron {
 namespace {
@@ -230,16 +230,7 @@ void mergeCapsules(std::vector<LinkShape>& shapes) {
 Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOptions& options,
                 const std::filesystem::path& baseDirectory) {
   TiXmlDocument document;
-  document.Parse(xml.c_str());
-  if (document.Error()) {
-    const int row = document.ErrorRow();  // 0 when the text is not XML at all
-    throw FileError(source + (row > 0 ? ":" + std::to_string(row) : "") +
-                    ": malformed XML: " + document.ErrorDesc());
-  }
-  const TiXmlElement* robotElement = document.RootElement();
-  if (robotElement == nullptr || robotElement->ValueStr() != "robot") {
-    throw FileError(source + ": not a URDF file (the root element is not <robot>)");
-  }
+  const TiXmlElement* robotElement = detail::parseRobotXml(xml, source, "a URDF file", document);
   const std::map<std::string, std::size_t> collisionCounts = validateXml(robotElement, source);
 
   urdf::ModelInterfaceSharedPtr model;

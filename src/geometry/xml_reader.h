@@ -1,0 +1,34 @@
+#pragma once
+// Internal to the geometry layer: reading the XML robot descriptions (URDF, SRDF) with errors that
+// name the file and the line.
+
+#include <tinyxml.h>
+
+#include <string>
+
+#include "fastron/core/error.h"
+
+namespace fastron::detail {
+
+/// Parses `xml` into `document` and returns its <robot> root; throws FileError naming `source`
+/// (and the line where TinyXML knows it) on malformed XML, or saying that it is not `what`
+/// (e.g. "a URDF file") when the root is not <robot>.
+inline const TiXmlElement* parseRobotXml(const std::string& xml, const std::string& source,
+                                         const char* what, TiXmlDocument& document) {
+  document.Parse(xml.c_str());
+  if (document.Error()) {
+    std::string where = source;
+    if (const int row = document.ErrorRow(); row > 0) {  // 0 when the text is not XML at all
+      where += ':';
+      where += std::to_string(row);
+    }
+    throw FileError(where + ": malformed XML: " + document.ErrorDesc());
+  }
+  const TiXmlElement* root = document.RootElement();
+  if (root == nullptr || root->ValueStr() != "robot") {
+    throw FileError(source + ": not " + what + " (the root element is not <robot>)");
+  }
+  return root;
+}
+
+}  // namespace fastron::detail
