@@ -253,8 +253,10 @@ std::vector<std::string> plannerNames(const std::vector<PlannerType>& types) {
 }  // namespace
 
 Table runPlanning(const PlanningOptions& o, const Progress& progress) {
-  Table table{columnsWith({"case", "trial", "planner", "method"}, {"support"}), {}};
+  Table table{columnsWith({"case", "trial", "planner", "method"}, {"support", "accuracy", "tpr"}),
+              {}};
   const std::size_t initial = o.quick ? 1000 : 3000;
+  const std::size_t testPoints = o.quick ? 300 : 1000;
   for (const std::string& name : o.cases) {
     const auto c = caseFor(name);
     const Robot robot = baxterWithJoints(c.joints);
@@ -278,6 +280,9 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
       for (int update = 0; update < 5; ++update) proxy.step();
       const CalibratedModel calibrated = proxy.calibratedModel();
       const auto& model = calibrated.model;
+      // The model's accuracy beside its speed: fresh configurations, labelled by the audit FCL.
+      const Configurations test = uniformConfigurations(limits, testPoints, rng);
+      const ConfusionCounts counts = evaluate(*model, test, labelConfigurations(audit, test, 1));
       const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
       for (const PlannerType type : o.planners) {
         const PlannerOptions options{.type = type,
@@ -289,7 +294,8 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
           const auto& [method, plan, exactShare] = each;
           table.add(joined({name, std::to_string(trial), plannerName(type), method},
                            joined(planCells(each, audit, o.resolution),
-                                  {std::to_string(model->supportCount())})));
+                                  {std::to_string(model->supportCount()), cell(counts.accuracy()),
+                                   cell(counts.tpr())})));
         }
       }
     }
@@ -316,7 +322,11 @@ std::string planningReport(const Table& r, const PlanningOptions& o) {
         "with 7 joints and one box and up to 6 times faster initial plans with three boxes.\n";
   const auto planners = plannerNames(o.planners);
   for (const std::string& name : o.cases) {
-    md << "\n## " << name << "\n\n"
+    const Table::Filter fastron{{"case", name}, {"method", "Fastron"}, {"planner", planners[0]}};
+    md << "\n## " << name << "\n\nModel (per trial, against FCL on fresh uniform configurations): "
+       << "|S| " << meanStd(summarize(r.numbers("support", fastron)), 0) << ", accuracy "
+       << meanStd(summarize(r.numbers("accuracy", fastron)), 3) << ", TPR "
+       << meanStd(summarize(r.numbers("tpr", fastron)), 3) << ".\n\n"
        << planTable(r, {{"case", name}}, planners) << speedups(r, {{"case", name}}, planners);
   }
   return md.str();
