@@ -12,8 +12,11 @@
 #include "fastron/core/error.h"
 #include "fastron/experiments/changing_experiment.h"
 #include "fastron/experiments/cspace_experiment.h"
+#include "fastron/experiments/motion_bench_experiment.h"
 #include "fastron/experiments/planning_experiment.h"
+#include "fastron/experiments/shelf_experiment.h"
 #include "fastron/experiments/static_experiment.h"
+#include "fastron/experiments/surgical_experiment.h"
 #include "plotting.h"
 #include "robot_options.h"
 

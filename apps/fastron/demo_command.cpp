@@ -10,7 +10,7 @@
 #include "commands.h"
 #include "fastron/core/dataset.h"
 #include "fastron/core/model_file.h"
-#include "fastron/experiments/planning_experiment.h"
+#include "fastron/experiments/demo_experiment.h"
 #include "plotting.h"
 #include "robot_options.h"
 

@@ -1,0 +1,55 @@
+#pragma once
+// `fastron demo`: the paper in one run (Baxter's 7-joint arm among three moving boxes).
+
+#include <memory>
+
+#include <string>
+#include <vector>
+#include "fastron/core/dataset.h"
+#include "fastron/core/model.h"
+#include "fastron/core/uncertainty_band.h"
+
+#include "fastron/experiments/common.h"
+#include "fastron/planning/planner.h"
+
+namespace fastron {
+
+struct DemoOptions {
+  std::size_t ticks = 150;   ///< obstacle moves, each followed by a fresh planning query
+  double tickSeconds = 0.1;  ///< a tick lasts at least this long (sensing at 10 Hz)
+  std::uint64_t seed = 1;
+  std::size_t initialPoints = 3000;
+  std::size_t testPoints = 1000;  ///< fresh configurations scoring the model at each tick
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
+  double timeLimit = 5;
+  double resolution = 0.03;
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
+  /// Feed the exact answers of verification and repair that the model got wrong to its next
+  /// update.
+  bool learnFromVerification = true;
+  /// What the band of the Hybrid method (Fastron with FCL inside the band) is calibrated to.
+  BandTargets band{};
+};
+
+/// `fastron demo`: the paper in one run.
+struct DemoResults {
+  /// One row per (tick, method): runPlanning's plan columns plus support, accuracy, tpr, tnr
+  /// (the current model against FCL) and updates (background model updates so far).
+  Table ticks;
+  std::shared_ptr<const Model> model;  ///< the last model
+  Dataset test;                        ///< the last tick's test configurations, FCL labels
+  double fastronQuerySeconds = 0, gjkQuerySeconds = 0, fclQuerySeconds = 0;
+  std::size_t updates = 0;       ///< background updates during the run
+  double meanUpdateSeconds = 0;  ///< labelling + training, per update
+  double elapsedSeconds = 0;     ///< of the planning loop
+};
+
+/// Baxter's 7-joint arm among three moving boxes: the model updates on a background thread from
+/// FCL labels while, at every tick, the boxes move and RRT-Connect plans a fresh query with
+/// Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL.
+DemoResults runDemo(const DemoOptions& options, const Progress& progress);
+std::string demoReport(const DemoResults& results, const DemoOptions& options);
+
+}  // namespace fastron

@@ -1,0 +1,29 @@
+#pragma once
+// The UR3 reaching from the lower to the higher shelf with RRT (paper, Sec. V-A).
+
+#include <string>
+#include <vector>
+
+#include "fastron/experiments/common.h"
+#include "fastron/planning/planner.h"
+
+namespace fastron {
+
+struct ShelfOptions {
+  std::size_t trials = 10;  ///< start/goal pairs
+  std::uint64_t seed = 1;
+  bool quick = false;
+  /// Fastron's input (task-space features by default; joints for the paper's model).
+  FeatureKind features = FeatureKind::Kinematic;
+  double timeLimit = 10;
+  double resolution = 0.03;
+  /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
+  double simplifyTime = 0.1;
+};
+
+/// UR3 from the lower to the higher shelf with RRT: one row per (trial, method), columns as
+/// runPlanning's.
+Table runShelf(const ShelfOptions& options, const Progress& progress);
+std::string shelfReport(const Table& results, const ShelfOptions& options);
+
+}  // namespace fastron

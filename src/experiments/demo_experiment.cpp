@@ -1,0 +1,164 @@
+#include "fastron/experiments/demo_experiment.h"
+
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "baxter_cases.h"
+#include "fastron/core/active_learning.h"
+#include "fastron/core/metrics.h"
+#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/proxy/labelling.h"
+#include "plan_rows.h"
+
+namespace fastron {
+
+using experiments::baxterWithJoints;
+using experiments::caseFor;
+using experiments::columnsWith;
+using experiments::joined;
+using experiments::MethodPlan;
+using experiments::oppositeEnds;
+using experiments::planCells;
+using experiments::plannerOptions;
+using experiments::planTable;
+using experiments::planWithEachChecker;
+using experiments::proxyParams;
+using experiments::sceneForTrial;
+using experiments::speedups;
+
+DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
+  const auto c = caseFor("7dof-3boxes");
+  const Robot robot = baxterWithJoints(c.joints);
+  const JointLimits limits = robot.limits();
+  Scene scene = sceneForTrial(c.scene, o.seed);
+  auto fcl = std::make_shared<FclChecker>(robot, scene);
+  auto gjk = std::make_shared<GjkChecker>(robot, scene);
+  FclChecker audit(robot, scene);
+  ProxyParams params = proxyParams(c, o.seed, o.features);
+  params.labelThreads = 1;  // the other core plans
+  params.band = o.band;
+  // Before the proxy: its thread updates these until it is joined.
+  std::mutex updateMutex;
+  std::size_t updates = 0;
+  double updateSeconds = 0;
+  ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features), params);
+  if (progress)
+    progress("training the first model on " + std::to_string(o.initialPoints) +
+             " FCL-labelled samples");
+  proxy.initialize(o.initialPoints);
+
+  DemoResults results;
+  results.ticks = Table{
+      columnsWith({"tick", "planner", "method"}, {"support", "accuracy", "tpr", "tnr", "updates"}),
+      {}};
+  // One update per tick: the boxes move once per tick, and updates on an unchanged world would
+  // only grow the support set (and the query time).
+  proxy.startBackground(
+      [&](const StepReport& report) {
+        const std::lock_guard lock(updateMutex);
+        ++updates;
+        updateSeconds += seconds(report.total);
+      },
+      std::chrono::duration_cast<std::chrono::nanoseconds>(
+          std::chrono::duration<double>(o.tickSeconds)));
+  Rng rng(o.seed);
+  const auto began = std::chrono::steady_clock::now();
+  for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
+    // Obstacles move at the pace of sensing, not of planning, so the model can follow them.
+    std::this_thread::sleep_until(
+        began + std::chrono::duration<double>(static_cast<double>(tick - 1) * o.tickSeconds));
+    scene.step();
+    fcl->setScene(scene);
+    gjk->setScene(scene);
+    audit.setScene(scene);
+    const CalibratedModel calibrated = proxy.calibratedModel();
+    const auto& model = calibrated.model;
+    results.test.points = uniformConfigurations(limits, o.testPoints, rng);
+    results.test.labels = labelConfigurations(audit, results.test.points, 1);
+    const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
+    const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
+    const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
+    std::size_t updatesSoFar = 0;
+    {
+      const std::lock_guard lock(updateMutex);
+      updatesSoFar = updates;
+    }
+    std::string line = "tick " + std::to_string(tick) + "/" + std::to_string(o.ticks) + ": |S| " +
+                       std::to_string(model->supportCount()) + ", accuracy " +
+                       cell(counts.accuracy()).substr(0, 5) + ", plans";
+    for (const MethodPlan& each :
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+      const auto& [method, plan, exactShare] = each;
+      if (method == "Fastron" && o.learnFromVerification) {
+        proxy.addObservations(answersMissedBy(*model, plan.exactAnswers));
+      }
+      results.ticks.add(
+          joined({std::to_string(tick), "RRTConnect", method},
+                 joined(planCells(each, audit, o.resolution),
+                        {std::to_string(model->supportCount()), cell(counts.accuracy()),
+                         cell(counts.tpr()), cell(counts.tnr()), std::to_string(updatesSoFar)})));
+      char part[64];
+      std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
+                    seconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
+      line += part;
+    }
+    if (progress && (tick % 10 == 0 || tick == 1)) progress(line);
+  }
+  proxy.stopBackground();
+  results.elapsedSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  results.updates = updates;
+  results.meanUpdateSeconds = updates ? updateSeconds / static_cast<double>(updates) : std::nan("");
+  results.model = proxy.model();
+  const Model& model = *results.model;
+  results.fastronQuerySeconds = meanSecondsPerCall(
+      results.test.points, [&](const double* q) { return model.inCollision(q); }, 0.05);
+  results.gjkQuerySeconds = meanSecondsPerCheck(results.test.points, *gjk, 0.05);
+  results.fclQuerySeconds = meanSecondsPerCheck(results.test.points, *fcl, 0.05);
+  return results;
+}
+
+std::string demoReport(const DemoResults& r, const DemoOptions& o) {
+  const Table& t = r.ticks;
+  std::ostringstream md;
+  char line[256];
+  md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"
+     << featureSentence(o.features) << ' '
+     << "The model updates on a background thread from FCL labels (500 active-learning points per "
+        "update); at each of "
+     << o.ticks
+     << " ticks the boxes move and RRT-Connect plans a fresh query (start and goal on opposite "
+        "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "
+        "and invalid stretches replanned; edges are checked every "
+     << o.resolution << " rad; seed " << o.seed << ". " << simplificationSentence(o.simplifyTime)
+     << (o.learnFromVerification
+             ? " The exact answers of a Fastron plan's verification and repair that the model got "
+               "wrong are fed to its next update (learning from verification)."
+             : " Verification answers are not fed back to the model.")
+     << "\n\n## Model\n\n";
+  std::snprintf(line, sizeof line,
+                "- %zu background updates in %.1f s: %.1f updates/s, %.1f ms each (labelling + "
+                "training)\n",
+                r.updates, r.elapsedSeconds, static_cast<double>(r.updates) / r.elapsedSeconds,
+                r.meanUpdateSeconds * 1e3);
+  md << line;
+  md << "- support points: " << meanStd(summarize(t.numbers("support", {{"method", "FCL"}})), 0)
+     << "; against FCL on " << o.testPoints << " fresh configurations per tick: accuracy "
+     << meanStd(summarize(t.numbers("accuracy", {{"method", "FCL"}})), 3) << ", TPR "
+     << meanStd(summarize(t.numbers("tpr", {{"method", "FCL"}})), 3) << ", TNR "
+     << meanStd(summarize(t.numbers("tnr", {{"method", "FCL"}})), 3) << "\n";
+  std::snprintf(
+      line, sizeof line, "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
+      durationText(r.fastronQuerySeconds).c_str(), durationText(r.gjkQuerySeconds).c_str(),
+      durationText(r.fclQuerySeconds).c_str(), r.fclQuerySeconds / r.fastronQuerySeconds);
+  md << line << "\n## Planning (RRT-Connect)\n\n"
+     << planTable(t, {}, {"RRTConnect"}) << speedups(t, {}, {"RRTConnect"});
+  return md.str();
+}
+
+}  // namespace fastron

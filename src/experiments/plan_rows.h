@@ -1,0 +1,107 @@
+#pragma once
+// What the planning experiments share (internal to the experiments library): the columns of a
+// plan's result row, planning one query with every checker, drawing free queries, and the
+// Markdown tables of plan results.
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fastron/core/collision_checker.h"
+#include "fastron/core/error.h"
+#include "fastron/core/joint_limits.h"
+#include "fastron/experiments/common.h"
+#include "fastron/planning/planner.h"
+#include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+
+namespace fastron::experiments {
+
+using CheckerPtr = std::shared_ptr<const CollisionChecker>;
+
+/// `first`, the columns of a plan (solved, status, plan_s, ..., collides_fcl, exact_share), then
+/// `last`.
+std::vector<std::string> columnsWith(std::vector<std::string> first,
+                                     const std::vector<std::string>& last = {});
+
+std::vector<std::string> joined(std::vector<std::string> first,
+                                const std::vector<std::string>& last);
+
+struct MethodPlan {
+  std::string method;
+  VerifiedPlan plan;
+  /// Of the collision queries of the plan itself (before verification), the share FCL answered.
+  double exactShare = 0;
+};
+
+/// The plan's cells of a result row; `audit` is an FCL checker the planner never used.
+std::vector<std::string> planCells(const MethodPlan& method, const CollisionChecker& audit,
+                                   double resolution);
+
+/// Fastron, Hybrid (Fastron with FCL inside the model's calibrated band) and GJK, each verified
+/// and repaired with FCL, and FCL itself, on one query. Hybrid only when the band was calibrated;
+/// GJK only when given.
+std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const CheckerPtr& gjk,
+                                            const CheckerPtr& fcl, const JointLimits& limits,
+                                            const Eigen::VectorXd& start,
+                                            const Eigen::VectorXd& goal,
+                                            const PlannerOptions& options);
+
+bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q);
+
+/// A configuration free under `checker` drawn by `sample`; throws Error after `attempts` tries.
+template <class Sample>
+Eigen::VectorXd sampleFree(const CollisionChecker& checker, Sample&& sample, const char* what,
+                           std::size_t attempts = 200000) {
+  for (std::size_t i = 0; i < attempts; ++i) {
+    const Eigen::VectorXd q = sample();
+    if (freeUnder(checker, q)) return q;
+  }
+  throw Error(std::string("found no collision-free ") + what + " in " + std::to_string(attempts) +
+              " samples");
+}
+
+Eigen::VectorXd uniformIn(const JointLimits& limits, Rng& rng);
+
+/// A uniform configuration for which `reaches` holds; throws Error naming `where` after 10^7 tries.
+template <class Reaches>
+Eigen::VectorXd sampleReaching(Reaches&& reaches, const JointLimits& limits, Rng& rng,
+                               const char* where) {
+  for (int i = 0; i < 10'000'000; ++i) {
+    Eigen::VectorXd q = uniformIn(limits, rng);
+    if (reaches(q)) return q;
+  }
+  throw Error(std::string("no configuration in 10^7 samples reaches ") + where);
+}
+
+/// Start and goal on opposite sides of the workspace: the first joint (the shoulder's yaw) in
+/// the lowest and the highest 30% of its range, the others uniform; both free under `fcl`.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> oppositeEnds(const JointLimits& limits,
+                                                         const CollisionChecker& fcl, Rng& rng);
+
+std::string progressLine(const std::string& what, std::size_t i, std::size_t n);
+
+/// The Markdown table of plan results of the rows matching `where`, one line per (planner,
+/// method): success rate, then means ± std over solved plans.
+std::string planTable(const Table& r, const Table::Filter& where,
+                      const std::vector<std::string>& planners);
+
+/// Per planner, FCL's total time over each other method's, from means and from medians over
+/// solved plans.
+std::string speedups(const Table& r, const Table::Filter& where,
+                     const std::vector<std::string>& planners);
+
+std::vector<std::string> plannerNames(const std::vector<PlannerType>& types);
+
+/// The planner options of an experiment's options `o` (resolution, time limit, simplification)
+/// for a planner of `type`.
+PlannerOptions plannerOptions(const auto& o, PlannerType type) {
+  return {.type = type,
+          .resolution = o.resolution,
+          .timeLimit = o.timeLimit,
+          .simplifyTime = o.simplifyTime};
+}
+
+}  // namespace fastron::experiments
