@@ -31,8 +31,9 @@ struct BenchOptions {
   double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
-  RobotOptions robot;          // motion-bench only (default: panda)
-  bool selfCollision = false;  // motion-bench only
+  RobotOptions robot;               // motion-bench only (default: panda)
+  bool selfCollision = false;       // motion-bench only
+  std::size_t queriesPerScene = 1;  // motion-bench only
 };
 
 int runBench(const BenchOptions& o) {
@@ -43,10 +44,11 @@ int runBench(const BenchOptions& o) {
     throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
   }
   if ((o.robot.robot != "panda" || !o.robot.packagePaths.empty() || !o.robot.srdf.empty() ||
-       o.selfCollision) &&
+       o.selfCollision || o.queriesPerScene != 1) &&
       o.name != "motion-bench") {
     throw InvalidArgument(
-        "--robot, --package-path, --srdf and --self-collision go with the motion-bench experiment");
+        "--robot, --package-path, --srdf, --self-collision and --queries-per-scene go with the "
+        "motion-bench experiment");
   }
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();
@@ -149,6 +151,7 @@ int runBench(const BenchOptions& o) {
     for (const auto& p : o.robot.packagePaths) bench.packagePaths.emplace_back(p);
     bench.srdf = o.robot.srdf;
     bench.selfCollision = o.selfCollision;
+    bench.queriesPerScene = o.queriesPerScene;
     results = runMotionBench(bench, progress);
     report = motionBenchReport(results, bench);
   } else {
@@ -193,6 +196,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "motion-bench: folder searched for the robot's package:// meshes (repeatable)");
   cmd->add_option("--srdf", o->robot.srdf,
                   "motion-bench: MoveIt SRDF whose disable_collisions pairs are skipped");
+  cmd->add_option("--queries-per-scene", o->queriesPerScene,
+                  "motion-bench: the request plus K-1 random free start/goal pairs per scene, on "
+                  "one model")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped)");
   cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
 #include "fastron/geometry/control_points.h"
@@ -22,32 +23,57 @@ using experiments::plannerOptions;
 using experiments::planTable;
 using experiments::planWithEachChecker;
 using experiments::progressLine;
+using experiments::sampleFree;
 using experiments::speedups;
+using experiments::uniformIn;
 
 namespace {
 
 struct Problem {
-  std::string id;
+  std::string family, id;
   std::filesystem::path scene, request;
 };
 
-/// The sceneNNNN.yaml files of `folder` that have a requestNNNN.yaml beside them, in order.
-std::vector<Problem> problemsIn(const std::filesystem::path& folder) {
-  if (!std::filesystem::is_directory(folder)) {
-    throw FileError(folder.string() + ": not a folder of sceneNNNN.yaml / requestNNNN.yaml files");
-  }
+/// The sceneNNNN.yaml files of `folder` that have a requestNNNN.yaml beside them, in order, as
+/// problems of `family`.
+std::vector<Problem> pairsIn(const std::filesystem::path& folder, const std::string& family) {
   std::vector<Problem> problems;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
     if (!name.starts_with("scene") || entry.path().extension() != ".yaml") continue;
     const std::string id = name.substr(5, name.size() - 10);
     const auto request = folder / ("request" + id + ".yaml");
-    if (std::filesystem::exists(request)) problems.push_back({id, entry.path(), request});
+    if (std::filesystem::exists(request)) problems.push_back({family, id, entry.path(), request});
   }
   std::sort(problems.begin(), problems.end(),
             [](const Problem& a, const Problem& b) { return a.id < b.id; });
+  return problems;
+}
+
+/// The problems of `folder`: its own scene/request pairs (one family, named after the folder), or
+/// else those of each sub-folder (a family each, in name order).
+std::vector<Problem> problemsIn(const std::filesystem::path& folder) {
+  if (!std::filesystem::is_directory(folder)) {
+    throw FileError(folder.string() + ": not a folder of sceneNNNN.yaml / requestNNNN.yaml files");
+  }
+  const std::filesystem::path absolute = std::filesystem::absolute(folder).lexically_normal();
+  const std::string name =
+      (absolute.has_filename() ? absolute : absolute.parent_path()).filename().string();
+  std::vector<Problem> problems = pairsIn(folder, name);
+  if (!problems.empty()) return problems;
+  std::vector<std::filesystem::path> families;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    if (entry.is_directory()) families.push_back(entry.path());
+  }
+  std::sort(families.begin(), families.end());
+  for (const auto& family : families) {
+    const std::vector<Problem> more = pairsIn(family, family.filename().string());
+    problems.insert(problems.end(), more.begin(), more.end());
+  }
   if (problems.empty()) {
-    throw FileError(folder.string() + ": no sceneNNNN.yaml with a matching requestNNNN.yaml");
+    throw FileError(folder.string() +
+                    ": no sceneNNNN.yaml with a matching requestNNNN.yaml, in it or in a folder "
+                    "in it");
   }
   return problems;
 }
@@ -79,9 +105,15 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
 }  // namespace
 
 Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
-  Table table{columnsWith({"problem", "planner", "method", "note"}, {"support", "train_s"}), {}};
+  if (o.queriesPerScene == 0) throw InvalidArgument("motion-bench: queries per scene must be >= 1");
+  Table table{columnsWith({"family", "problem", "query", "planner", "method", "note"},
+                          {"support", "train_s"}),
+              {}};
   std::vector<Problem> problems = problemsIn(o.problems);
-  if (o.quick && problems.size() > 2) problems.resize(2);
+  if (o.quick) {  // two problems of each family
+    std::map<std::string, std::size_t> kept;
+    std::erase_if(problems, [&](const Problem& p) { return ++kept[p.family] > 2; });
+  }
   Robot robot = loadRobot(o.robot, UrdfOptions{.searchPaths = o.packagePaths}, o.srdf);
   const JointLimits limits = robot.limits();
   const FeatureMap features = robotFeatures(robot, o.features);
@@ -90,7 +122,7 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     const Problem& problem = problems[p];
     if (progress)
       progress("motion-bench: " + progressLine("problem", p, problems.size()) + " (" +
-               problem.scene.filename().string() + ")");
+               problem.family + "/" + problem.scene.filename().string() + ")");
     Scene scene = loadScene(problem.scene);
     const PlanRequest request = loadMoveItRequest(problem.request);
     const auto toVector = [](const std::vector<double>& v) {
@@ -113,15 +145,25 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     const double trainSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     const CalibratedModel calibrated = proxy.calibratedModel();
-    const auto& model = calibrated.model;
+    const std::string support = std::to_string(calibrated.model->supportCount());
 
+    Rng rng(o.seed * 7919 + p);
     const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
-    for (const MethodPlan& each :
-         planWithEachChecker(calibrated, nullptr, fcl, limits, start, goal, options)) {
-      const auto& [method, plan, exactShare] = each;
-      table.add(joined({problem.id, "RRTConnect", method, note},
-                       joined(planCells(each, audit, o.resolution),
-                              {std::to_string(model->supportCount()), cell(trainSeconds)})));
+    for (std::size_t query = 0; query < o.queriesPerScene; ++query) {
+      // Query 0 is the request; the others join two configurations free under FCL.
+      const auto freeConfiguration = [&] {
+        return sampleFree(
+            *fcl, [&] { return uniformIn(limits, rng); }, "configuration");
+      };
+      const Eigen::VectorXd from = query == 0 ? start : freeConfiguration();
+      const Eigen::VectorXd to = query == 0 ? goal : freeConfiguration();
+      for (const MethodPlan& each :
+           planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options)) {
+        table.add(
+            joined({problem.family, problem.id, std::to_string(query), "RRTConnect", each.method,
+                    query == 0 ? note : ""},
+                   joined(planCells(each, audit, o.resolution), {support, cell(trainSeconds)})));
+      }
     }
   }
   return table;
@@ -135,30 +177,82 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
      << (o.selfCollision ? ", self-collision checked by FCL" : ", self-collision not checked")
      << "; for each problem Fastron is trained on the scene ("
      << (o.quick ? 1500 : o.trainingPoints) << " samples, then " << (o.quick ? 1 : o.updates)
-     << " active-learning updates) and RRT-Connect plans with Fastron (verified and repaired with "
-        "FCL) and with FCL. Edges checked every "
+     << " active-learning updates) and RRT-Connect plans with Fastron and Hybrid (verified and "
+        "repaired with FCL) and with FCL, "
+     << o.queriesPerScene << " quer" << (o.queriesPerScene == 1 ? "y" : "ies")
+     << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
+        "every "
      << o.resolution << " rad, time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime) << "\n\n"
-     << "| Problem | Method | Status | Plan | Verify | Repair | Total | Path length | Collides "
-        "(FCL) | Training | Note |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-  const std::size_t status = r.index("status"), plan = r.index("plan_s"),
-                    verify = r.index("verify_s"), repair = r.index("repair_s"),
-                    total = r.index("total_s"), length = r.index("path_length"),
-                    collides = r.index("collides_fcl"), train = r.index("train_s"),
-                    note = r.index("note");
-  const auto ms = [](const std::string& text) {
+     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
+     << " Training is reported beside the plans, not in them; the end-to-end time adds each "
+        "scene's training, shared by its queries.\n";
+
+  const auto statistic = [&](const Table::Filter& where, const char* column, bool median) {
+    const Summary s = summarize(r.numbers(column, where));
+    return median ? s.median : s.mean;
+  };
+  // Per family, and over all: medians and means of the total time per valid plan, training per
+  // scene, and Fastron's end-to-end time (total + training / queries per scene).
+  const auto summary = [&](const Table::Filter& where) {
+    std::ostringstream out;
+    out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"});
+    Table::Filter fastron = where;
+    fastron.emplace_back("method", "Fastron");
+    fastron.emplace_back("query", "0");
+    const double train = statistic(fastron, "train_s", true);
+    Table::Filter solved = where;
+    solved.emplace_back("solved", "1");
+    const auto total = [&](const char* method, bool median) {
+      Table::Filter f = solved;
+      f.emplace_back("method", method);
+      return statistic(f, "total_s", median);
+    };
+    const double share = train / static_cast<double>(o.queriesPerScene);
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "Training per scene: median %s (|S| median %.0f). End-to-end per query with %zu "
+                  "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
+                  "FCL %s (FCL / Fastron %.2fx).\n",
+                  durationText(train).c_str(), statistic(fastron, "support", true),
+                  o.queriesPerScene, o.queriesPerScene == 1 ? "y" : "ies",
+                  durationText(total("Fastron", true) + share).c_str(),
+                  durationText(total("Hybrid", true) + share).c_str(),
+                  durationText(total("FCL", true)).c_str(),
+                  total("FCL", true) / (total("Fastron", true) + share));
+    out << '\n' << line;
+    return out.str();
+  };
+  for (const std::string& family : r.distinct("family", {})) {
+    md << "\n## " << family << "\n\n" << summary({{"family", family}});
+  }
+  md << "\n## All families\n\n" << summary({});
+
+  md << "\n## The requests\n\n"
+     << "| Family | Problem | Method | Status | Plan | Verify | Repair | Total | Path length | "
+        "Collides (FCL) | Training | Note |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  const auto ms = [](double seconds) {
     char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.1f ms", std::stod(text) * 1e3);
+    std::snprintf(buffer, sizeof buffer, "%.1f ms", seconds * 1e3);
     return std::string(buffer);
   };
+  const auto text = [&](const std::vector<std::string>& row, const char* column) {
+    return row[r.index(column)];
+  };
+  const auto number = [&](const std::vector<std::string>& row, const char* column) {
+    return std::stod(text(row, column));
+  };
   for (const auto& row : r.rows) {
-    const bool fastron = row[r.index("method")] == "Fastron";
-    md << "| " << row[r.index("problem")] << " | " << row[r.index("method")] << " | " << row[status]
-       << " | " << ms(row[plan]) << " | " << ms(row[verify]) << " | " << ms(row[repair]) << " | "
-       << ms(row[total]) << " | " << row[length].substr(0, 5) << " | " << row[collides] << " | "
-       << (fastron ? ms(row[train]) : "—") << " | " << row[note] << " |\n";
+    if (text(row, "query") != "0") continue;
+    const bool fastron = text(row, "method") == "Fastron";
+    char length[32];
+    std::snprintf(length, sizeof length, "%.3f", number(row, "path_length"));
+    md << "| " << text(row, "family") << " | " << text(row, "problem") << " | "
+       << text(row, "method") << " | " << text(row, "status") << " | " << ms(number(row, "plan_s"))
+       << " | " << ms(number(row, "verify_s")) << " | " << ms(number(row, "repair_s")) << " | "
+       << ms(number(row, "total_s")) << " | " << length << " | " << text(row, "collides_fcl")
+       << " | " << (fastron ? ms(number(row, "train_s")) : "—") << " | " << text(row, "note")
+       << " |\n";
   }
-  md << "\n## Summary\n\n" << planTable(r, {}, {"RRTConnect"}) << speedups(r, {}, {"RRTConnect"});
   return md.str();
 }
 

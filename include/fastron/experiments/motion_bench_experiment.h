@@ -11,12 +11,18 @@
 namespace fastron {
 
 struct MotionBenchOptions {
-  std::filesystem::path problems;  ///< folder of sceneNNNN.yaml / requestNNNN.yaml pairs
-  std::string robot = "panda";     ///< a shipped robot or a URDF file (loadRobot)
+  /// A family: a folder of sceneNNNN.yaml / requestNNNN.yaml pairs; or a folder of families
+  /// (sub-folders of such pairs), each reported on its own and all together.
+  std::filesystem::path problems;
+  std::string robot = "panda";                      ///< a shipped robot or a URDF file (loadRobot)
   std::vector<std::filesystem::path> packagePaths;  ///< where its package:// meshes are
   std::filesystem::path srdf;  ///< an SRDF whose disabled collisions apply (empty: none)
-  bool selfCollision =
-      false;  ///< FCL (the oracle, the planner's and the audit) checks self-collision
+  /// FCL (the oracle, the planner's and the audit) also checks the robot against itself.
+  bool selfCollision = false;
+  /// Planning queries per scene: the request, then K - 1 start/goal pairs drawn uniformly and
+  /// free under FCL, all on the one model trained for the scene (a robot that stays in a scene
+  /// amortises the training).
+  std::size_t queriesPerScene = 1;
   std::uint64_t seed = 1;
   bool quick = false;
   std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model
@@ -29,9 +35,11 @@ struct MotionBenchOptions {
   double simplifyTime = 0.1;
 };
 
-/// Each problem: Fastron trained on the scene, RRT-Connect with Fastron (verified and repaired)
-/// and with FCL. One row per (problem, method). A goal that touches one object with the hand only
-/// is a grasp: hand-object contacts are allowed (as MoveIt's touch links do), and `note` says so.
+/// Each problem: Fastron trained on the scene, then RRT-Connect with Fastron and Hybrid (verified
+/// and repaired) and with FCL on each query. One row per (family, problem, query, method); query 0
+/// is the request. A goal that touches objects with the hand only is a grasp: hand-object
+/// contacts are allowed (as MoveIt's touch links do), and `note` says so. Throws FileError naming
+/// the folder when it holds no problems, and the file of a problem that cannot be read.
 Table runMotionBench(const MotionBenchOptions& options, const Progress& progress);
 std::string motionBenchReport(const Table& results, const MotionBenchOptions& options);
 
