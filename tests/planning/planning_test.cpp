@@ -419,13 +419,16 @@ TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
   const JointLimits limits = JointLimits::unitBox(2);
   const PlannerOptions options{.resolution = 0.01, .timeLimit = 0.5};
   // It thinks the start collides, but a step away from it is free: the plan is made on it from
-  // there, and the step from the true start is bridged on the exact checker.
+  // a substitute that the exact checker reaches from the true start in a straight line, so the
+  // first edge needs no repair.
   const auto nearStart = std::make_shared<const FunctionChecker>(
       "near-start", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
   const VerifiedPlan substituted = planVerified(nearStart, wall, limits, kStart, kGoal, options);
   ASSERT_TRUE(substituted.solved()) << substituted.failure;
   EXPECT_TRUE(substituted.substituteEnds);
   EXPECT_FALSE(substituted.wholePathReplanned);
+  EXPECT_EQ(substituted.invalidStretches, 0u);
+  EXPECT_EQ(substituted.path.front(), kStart);
   EXPECT_TRUE(pathIsFree(substituted.path, 0.01,
                          [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
   // It thinks everything left of x = 0.85 collides, farther from the start than the substitute
@@ -445,6 +448,7 @@ TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
   const VerifiedPlan fromModel = planVerified(model, wall, limits, beside, kGoal, options);
   ASSERT_TRUE(fromModel.solved()) << fromModel.failure;
   EXPECT_TRUE(fromModel.substituteEnds);
+  EXPECT_EQ(fromModel.invalidStretches, 0u);
   EXPECT_TRUE(
       pathIsFree(fromModel.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
 }

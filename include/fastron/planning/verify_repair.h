@@ -26,8 +26,8 @@ struct VerifiedPlan {
   /// its stretches could not be bridged.
   bool wholePathReplanned = false;
   /// The approximate checker thought the start or goal collided while the exact one found them
-  /// free: it planned between free configurations near them, and the stretches from the true ends
-  /// were planned on the exact checker.
+  /// free: it planned between free configurations near them that the exact checker reaches from
+  /// the true ends in a straight line.
   bool substituteEnds = false;
   std::string failure;  ///< why no valid path was found (empty when solved)
   /// planVerified: every answer the exact checker gave (verification, repair, the ends), one row
@@ -50,11 +50,11 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
 /// Plans with `approximate` (e.g. a Fastron model) for at most options.approximateShare of the time
 /// limit, then verifies and repairs with `exact`. When
 /// the approximate checker thinks the start or goal collides but the exact one finds both free, it
-/// plans between configurations near them that both find free, and the repair bridges the true
-/// ends on the exact checker (`substituteEnds`). When the approximate plan fails, the whole motion
-/// is planned on the exact checker and counted as repair. Start and goal must be free under
-/// `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is returned in
-/// `exactAnswers`.
+/// plans between configurations near them that the approximate checker finds free and the exact
+/// one reaches from the true ends in a straight line (`substituteEnds`). When the approximate plan
+/// fails, the whole motion is planned on the exact checker and counted as repair. Start and goal
+/// must be free under `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is
+/// returned in `exactAnswers`.
 VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
