@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
@@ -104,6 +105,9 @@ struct FclChecker::Obstacles {
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // robot shapes that must not touch
   std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
+  // Mesh obstacles' FCL geometry by mesh, kept from one scene to the next (the mesh is held so
+  // that its address cannot name another mesh later).
+  std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, FclGeometry>> meshes;
 };
 
 struct FclChecker::Scratch {
@@ -134,10 +138,31 @@ FclChecker::~FclChecker() = default;
 void FclChecker::setScene(const Scene& scene) {
   auto next = std::make_shared<Obstacles>();
   next->robotBase = scene.robotBase;
+  const std::shared_ptr<const Obstacles> previous = obstacles();  // null in the constructor
+  const auto geometryOf = [&](const Shape& shape) -> FclGeometry {
+    const auto* mesh = std::get_if<Mesh>(&shape);
+    if (mesh == nullptr) return toFcl(shape);  // primitives cost nothing to make
+    if (const auto kept = next->meshes.find(mesh->mesh.get()); kept != next->meshes.end()) {
+      return kept->second.second;
+    }
+    FclGeometry geometry;
+    if (previous) {
+      if (const auto kept = previous->meshes.find(mesh->mesh.get());
+          kept != previous->meshes.end()) {
+        geometry = kept->second.second;
+      }
+    }
+    if (!geometry) {
+      geometry = toFcl(shape);
+      ++meshBuilds_;
+    }
+    next->meshes.emplace(mesh->mesh.get(), std::make_pair(mesh->mesh, geometry));
+    return geometry;
+  };
   std::vector<fcl::CollisionObjectd*> raw;
   for (std::size_t i = 0; i < scene.obstacles().size(); ++i) {
     const Obstacle& o = scene.obstacles()[i];
-    auto object = std::make_unique<fcl::CollisionObjectd>(toFcl(o.shape), toFcl(o.pose));
+    auto object = std::make_unique<fcl::CollisionObjectd>(geometryOf(o.shape), toFcl(o.pose));
     object->computeAABB();
     object->setUserData(reinterpret_cast<void*>(i + 1));
     raw.push_back(object.get());

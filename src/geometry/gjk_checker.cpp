@@ -56,8 +56,9 @@ ConvexBody ConvexBody::from(const Shape& shape) {
                  },
                  [&](const Mesh& m) {
                    body.kind = Kind::Hull;
-                   body.hull =
-                       std::make_shared<const std::vector<Eigen::Vector3d>>(m.mesh->vertices);
+                   // Shares the mesh's vertices (aliasing): moving a scene copies nothing.
+                   body.hull = std::shared_ptr<const std::vector<Eigen::Vector3d>>(
+                       m.mesh, &m.mesh->vertices);
                  },
              },
              shape);

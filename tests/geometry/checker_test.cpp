@@ -258,6 +258,50 @@ TEST(Checkers, SetSceneMovesTheObstacles) {
   EXPECT_TRUE(fcl.inCollision(q));
 }
 
+// A mesh obstacle's hierarchy is built once: moving the scene moves it, a second obstacle of the
+// same mesh shares it, and only another mesh builds another.
+TEST(Checkers, MovingAMeshObstacleKeepsItsHierarchy) {
+  auto cube = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < 8; ++i) {
+    cube->vertices.emplace_back((i & 1) ? 0.05 : -0.05, (i & 2) ? 0.05 : -0.05,
+                                (i & 4) ? 0.05 : -0.05);
+  }
+  for (const auto& t : std::vector<Eigen::Vector3i>{{0, 1, 3},
+                                                    {0, 3, 2},
+                                                    {4, 6, 7},
+                                                    {4, 7, 5},
+                                                    {0, 4, 5},
+                                                    {0, 5, 1},
+                                                    {2, 3, 7},
+                                                    {2, 7, 6},
+                                                    {0, 2, 6},
+                                                    {0, 6, 4},
+                                                    {1, 5, 7},
+                                                    {1, 7, 3}}) {
+    cube->triangles.push_back(t);
+  }
+  const Robot rod = loadRobot("rod2");
+  Scene scene;
+  scene.add({"cube", Mesh{cube}, makePose({0.3, 0, 0}), std::nullopt});
+  FclChecker fcl(rod, scene);
+  const std::vector<double> q{0, 0};
+  EXPECT_TRUE(fcl.inCollision(q));
+  EXPECT_EQ(fcl.meshHierarchiesBuilt(), 1u);
+  for (int step = 1; step <= 10; ++step) {
+    scene.setPose("cube", makePose({0.3, 0.03 * step, 0}));
+    fcl.setScene(scene);
+  }
+  EXPECT_FALSE(fcl.inCollision(q));  // moved 0.3 m aside
+  scene.add({"twin", Mesh{cube}, makePose({0.3, 0, 0}), std::nullopt});
+  fcl.setScene(scene);
+  EXPECT_TRUE(fcl.inCollision(q));
+  EXPECT_EQ(fcl.meshHierarchiesBuilt(), 1u);
+  scene.add(
+      {"other", Mesh{std::make_shared<TriangleMesh>(*cube)}, makePose({0, 0.5, 0}), std::nullopt});
+  fcl.setScene(scene);
+  EXPECT_EQ(fcl.meshHierarchiesBuilt(), 2u);
+}
+
 TEST(Checkers, RefuseBadConfigurationsAndOptions) {
   const Robot rod = loadRobot("rod2");
   const FclChecker fcl(rod, Scene{});

@@ -3,6 +3,7 @@
 // FCL 0.7 (libccd GJK solver) between the robot's links and the obstacles, with FCL's dynamic
 // AABB tree as broad phase, and optional self-collision.
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -33,8 +34,12 @@ class FclChecker final : public CollisionChecker {
   const Robot& robot() const { return robot_; }
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
-  /// other threads check: a check uses the obstacles it started with.
+  /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
+  /// volume hierarchy is built once per mesh (the same TriangleMesh object) and kept while the
+  /// scene still has it: moving a scene updates poses only.
   void setScene(const Scene& scene);
+  /// Mesh obstacle hierarchies built so far (once per distinct mesh the scenes held).
+  std::size_t meshHierarchiesBuilt() const { return meshBuilds_; }
 
   /// The first contact found, or nothing when q is free.
   std::optional<Contact> firstContact(std::span<const double> q) const;
@@ -63,6 +68,7 @@ class FclChecker final : public CollisionChecker {
   std::shared_ptr<const Geometry> geometry_;  // robot shapes as FCL geometry
   mutable std::mutex obstaclesMutex_;
   std::shared_ptr<const Obstacles> obstacles_;
+  std::atomic<std::size_t> meshBuilds_{0};
   mutable ScratchPool<Scratch> scratch_;
 };
 
