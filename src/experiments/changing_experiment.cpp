@@ -52,8 +52,13 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
       if (o.beta > 0) params.train.beta = o.beta;
       params.activeLearning.variance = o.variance;
+      // The paper's pipeline has no uncertainty band: its update times are compared without the
+      // calibration points (the planning experiments keep them for the Hybrid method).
+      params.calibrationSamples = 0;
+      ProxyParams jointParams = proxyParams(c, seed, FeatureKind::JointScaling);
+      jointParams.calibrationSamples = 0;
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
-          inJoints(fcl, limits, proxyParams(c, seed, FeatureKind::JointScaling));
+          inJoints(fcl, limits, jointParams);
       fromFcl.initialize(initial);
       fromGjk.initialize(initial);
       if (jointRow) inJoints.initialize(initial);

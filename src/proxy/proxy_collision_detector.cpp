@@ -174,7 +174,9 @@ CalibratedModel ProxyCollisionDetector::calibratedModel() const {
     const std::lock_guard lock(modelMutex_);
     current = {model_, calibration_};
   }
-  if (!current.model) throw Error("ProxyCollisionDetector::model() called before initialize()");
+  if (!current.model) {
+    throw Error("ProxyCollisionDetector::calibratedModel() called before initialize()");
+  }
   return current;
 }
 

@@ -45,7 +45,8 @@ struct ProxyParams {
 /// What one initialize() or step() did.
 struct StepReport {
   UpdateReport update;
-  std::size_t labelled = 0;  ///< oracle calls made (support points relabelled + new points)
+  /// Oracle calls made: support points relabelled, new points, and calibration points.
+  std::size_t labelled = 0;
   std::size_t added = 0;     ///< new points from sampling or active learning
   std::size_t observed = 0;  ///< labelled configurations from addObservations learned in this step
   std::chrono::nanoseconds sampleTime{0}, labelTime{0}, total{0};
