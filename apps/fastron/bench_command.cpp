@@ -34,6 +34,7 @@ struct BenchOptions {
   RobotOptions robot;               // motion-bench only (default: panda)
   bool selfCollision = false;       // motion-bench only
   std::size_t queriesPerScene = 1;  // motion-bench only
+  bool selfModel = false;           // motion-bench only
 };
 
 int runBench(const BenchOptions& o) {
@@ -44,7 +45,7 @@ int runBench(const BenchOptions& o) {
     throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
   }
   if ((o.robot.robot != "panda" || !o.robot.packagePaths.empty() || !o.robot.srdf.empty() ||
-       o.selfCollision || o.queriesPerScene != 1) &&
+       o.selfCollision || o.queriesPerScene != 1 || o.selfModel) &&
       o.name != "motion-bench") {
     throw InvalidArgument(
         "--robot, --package-path, --srdf, --self-collision and --queries-per-scene go with the "
@@ -152,6 +153,7 @@ int runBench(const BenchOptions& o) {
     bench.srdf = o.robot.srdf;
     bench.selfCollision = o.selfCollision;
     bench.queriesPerScene = o.queriesPerScene;
+    bench.selfModel = o.selfModel;
     results = runMotionBench(bench, progress);
     report = motionBenchReport(results, bench);
   } else {
@@ -201,6 +203,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "one model")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--self-model", o->selfModel,
+                "motion-bench with --self-collision: also plan on a self-collision model learned "
+                "once for the robot beside each scene's obstacle model (method 'Fastron split')");
   cmd->add_flag("--self-collision", o->selfCollision,
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped)");
   cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")

@@ -5,12 +5,14 @@
 #include <map>
 #include <sstream>
 
+#include "fastron/core/model_checker.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/urdf.h"
+#include "fastron/planning/verify_repair.h"
 #include "plan_rows.h"
 
 namespace fastron {
@@ -107,7 +109,7 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
 Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   if (o.queriesPerScene == 0) throw InvalidArgument("motion-bench: queries per scene must be >= 1");
   Table table{columnsWith({"family", "problem", "query", "planner", "method", "note"},
-                          {"support", "train_s"}),
+                          {"support", "train_s", "self_train_s"}),
               {}};
   std::vector<Problem> problems = problemsIn(o.problems);
   if (o.quick) {  // two problems of each family
@@ -118,6 +120,24 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   const JointLimits limits = robot.limits();
   const FeatureMap features = robotFeatures(robot, o.features);
   const CheckerOptions checking{.selfCollision = o.selfCollision};
+  if (o.selfModel && !o.selfCollision) {
+    throw InvalidArgument("motion-bench: a self-collision model needs self-collision checked");
+  }
+  // The robot's self-collision model, learned once: self-collision does not depend on the scene.
+  std::shared_ptr<const CollisionChecker> selfModel;
+  double selfTrainSeconds = 0;
+  if (o.selfModel) {
+    if (progress) progress("motion-bench: learning the robot's self-collisions");
+    const auto began = std::chrono::steady_clock::now();
+    ProxyCollisionDetector self(std::make_shared<FclChecker>(robot, Scene{}, checking),
+                                robotFeatures(robot, FeatureKind::JointScaling),
+                                experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed));
+    self.initialize(o.quick ? 2000 : o.selfTrainingPoints);
+    for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) self.step();
+    selfTrainSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    selfModel = std::make_shared<ModelChecker>(self.model(), "Fastron self");
+  }
   for (std::size_t p = 0; p < problems.size(); ++p) {
     const Problem& problem = problems[p];
     if (progress)
@@ -146,6 +166,22 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     const CalibratedModel calibrated = proxy.calibratedModel();
     const std::string support = std::to_string(calibrated.model->supportCount());
+    // The split source: this scene's obstacles (a model whose oracle ignores self-collision) and
+    // the robot's self-collision model.
+    std::shared_ptr<const CollisionChecker> split;
+    std::string splitSupport, splitTrain;
+    if (selfModel) {
+      const auto splitBegan = std::chrono::steady_clock::now();
+      ProxyCollisionDetector obstacles(std::make_shared<FclChecker>(robot, scene), features,
+                                       experimentProxyParams(o.features, 5, 500, o.seed + p));
+      obstacles.initialize(o.quick ? 1500 : o.trainingPoints);
+      for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) obstacles.step();
+      splitTrain = cell(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - splitBegan).count());
+      splitSupport = std::to_string(obstacles.model()->supportCount());
+      split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
+          std::make_shared<ModelChecker>(obstacles.model()), selfModel});
+    }
 
     Rng rng(o.seed * 7919 + p);
     const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
@@ -159,10 +195,18 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
       const Eigen::VectorXd to = query == 0 ? goal : freeConfiguration();
       for (const MethodPlan& each :
            planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options)) {
-        table.add(
-            joined({problem.family, problem.id, std::to_string(query), "RRTConnect", each.method,
-                    query == 0 ? note : ""},
-                   joined(planCells(each, audit, o.resolution), {support, cell(trainSeconds)})));
+        table.add(joined({problem.family, problem.id, std::to_string(query), "RRTConnect",
+                          each.method, query == 0 ? note : ""},
+                         joined(planCells(each, audit, o.resolution),
+                                {support, cell(trainSeconds), cell(selfTrainSeconds)})));
+      }
+      if (split) {
+        const MethodPlan each{"Fastron split", planVerified(split, fcl, limits, from, to, options),
+                              0};
+        table.add(joined({problem.family, problem.id, std::to_string(query), "RRTConnect",
+                          each.method, query == 0 ? note : ""},
+                         joined(planCells(each, audit, o.resolution),
+                                {splitSupport, splitTrain, cell(selfTrainSeconds)})));
       }
     }
   }
@@ -220,6 +264,23 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
                   durationText(total("FCL", true)).c_str(),
                   total("FCL", true) / (total("Fastron", true) + share));
     out << '\n' << line;
+    Table::Filter split = where;
+    split.emplace_back("method", "Fastron split");
+    split.emplace_back("query", "0");
+    if (!r.numbers("train_s", split).empty()) {
+      const double splitTrain = statistic(split, "train_s", true);
+      const double splitTotal = total("Fastron split", true);
+      std::snprintf(
+          line, sizeof line,
+          "Fastron split: obstacle model per scene median %s (|S| median %.0f), the "
+          "robot's self-collision model %s once; end-to-end per query %s without the "
+          "self-collision model (FCL / Fastron split %.2fx).\n",
+          durationText(splitTrain).c_str(), statistic(split, "support", true),
+          durationText(statistic(split, "self_train_s", true)).c_str(),
+          durationText(splitTotal + splitTrain / static_cast<double>(o.queriesPerScene)).c_str(),
+          total("FCL", true) / (splitTotal + splitTrain / static_cast<double>(o.queriesPerScene)));
+      out << line;
+    }
     return out.str();
   };
   for (const std::string& family : r.distinct("family", {})) {

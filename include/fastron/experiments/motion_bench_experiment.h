@@ -23,6 +23,11 @@ struct MotionBenchOptions {
   /// free under FCL, all on the one model trained for the scene (a robot that stays in a scene
   /// amortises the training).
   std::size_t queriesPerScene = 1;
+  /// With selfCollision: also plan on "Fastron split", a self-collision model learned once for
+  /// the robot (joint space, empty scene) beside each scene's model of obstacles only, verified
+  /// and repaired with FCL (self-collision included) like the rest.
+  bool selfModel = false;
+  std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
   std::uint64_t seed = 1;
   bool quick = false;
   std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model
