@@ -31,10 +31,11 @@ struct BenchOptions {
   double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
   std::uint64_t seed = 1;
   bool quick = false, plot = true;
-  RobotOptions robot;               // motion-bench only (default: panda)
-  bool selfCollision = false;       // motion-bench only
-  std::size_t queriesPerScene = 1;  // motion-bench only
-  bool selfModel = false;           // motion-bench only
+  RobotOptions robot;                  // motion-bench only (default: panda)
+  bool selfCollision = false;          // motion-bench only
+  std::size_t queriesPerScene = 1;     // motion-bench only
+  bool selfModel = false;              // motion-bench only
+  bool learnFromVerification = false;  // motion-bench only
 };
 
 int runBench(const BenchOptions& o) {
@@ -45,7 +46,7 @@ int runBench(const BenchOptions& o) {
     throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
   }
   if ((o.robot.robot != "panda" || !o.robot.packagePaths.empty() || !o.robot.srdf.empty() ||
-       o.selfCollision || o.queriesPerScene != 1 || o.selfModel) &&
+       o.selfCollision || o.queriesPerScene != 1 || o.selfModel || o.learnFromVerification) &&
       o.name != "motion-bench") {
     throw InvalidArgument(
         "--robot, --package-path, --srdf, --self-collision and --queries-per-scene go with the "
@@ -154,6 +155,7 @@ int runBench(const BenchOptions& o) {
     bench.selfCollision = o.selfCollision;
     bench.queriesPerScene = o.queriesPerScene;
     bench.selfModel = o.selfModel;
+    bench.learnFromVerification = o.learnFromVerification;
     results = runMotionBench(bench, progress);
     report = motionBenchReport(results, bench);
   } else {
@@ -203,6 +205,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "one model")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--learn-from-verification", o->learnFromVerification,
+                "motion-bench: between a scene's queries, the model learns the exact answers of "
+                "the last plan's verification and repair that it got wrong");
   cmd->add_flag("--self-model", o->selfModel,
                 "motion-bench with --self-collision: also plan on a self-collision model learned "
                 "once for the robot beside each scene's obstacle model (method 'Fastron split')");

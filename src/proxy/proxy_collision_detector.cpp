@@ -104,21 +104,43 @@ StepReport ProxyCollisionDetector::step() {
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(freshBegin, calibrationBegin));
 
-  std::vector<double> observedValues;
-  Labels observedLabels;
+  report.observed = addPendingObservations();
+  return finish(report, start, calibration, Labels(calibrationBegin, labels.end()));
+}
+
+std::size_t ProxyCollisionDetector::addPendingObservations() {
+  std::vector<double> values;
+  Labels labels;
   {
     const std::lock_guard pending(pendingMutex_);
-    observedValues.swap(pendingValues_);
-    observedLabels.swap(pendingLabels_);
+    values.swap(pendingValues_);
+    labels.swap(pendingLabels_);
   }
-  if (!observedLabels.empty()) {
-    trainer_.addPoints(Eigen::Map<const Configurations>(
-                           observedValues.data(), static_cast<Eigen::Index>(observedLabels.size()),
-                           static_cast<Eigen::Index>(features_.configurationDim())),
-                       observedLabels);
-    report.observed = observedLabels.size();
+  if (labels.empty()) return 0;
+  trainer_.addPoints(
+      Eigen::Map<const Configurations>(values.data(), static_cast<Eigen::Index>(labels.size()),
+                                       static_cast<Eigen::Index>(features_.configurationDim())),
+      labels);
+  return labels.size();
+}
+
+StepReport ProxyCollisionDetector::learnObservations() {
+  const std::lock_guard lock(stepMutex_);
+  if (version_ == 0) {
+    throw Error("ProxyCollisionDetector::learnObservations() called before initialize()");
   }
-  return finish(report, start, calibration, Labels(calibrationBegin, labels.end()));
+  const auto start = Clock::now();
+  StepReport report;
+  report.observed = addPendingObservations();
+  if (report.observed == 0) {
+    report.modelVersion = version_;
+    return report;
+  }
+  {
+    const std::lock_guard published(modelMutex_);
+    report.calibration = calibration_;  // kept: nothing new was held out
+  }
+  return finish(report, start, Configurations(0, 0), {});
 }
 
 void ProxyCollisionDetector::addObservations(const Dataset& answers) {

@@ -150,6 +150,40 @@ TEST(ProxyCollisionDetector, PublishesABandCalibratedOnPointsItDidNotLearn) {
   EXPECT_EQ(uncalibrated.calibratedModel().calibration.band.lower, 0);
 }
 
+// In a world that stands still, the observations are learned at once, without a single oracle
+// call, and the band stays the calibrated one.
+TEST(ProxyCollisionDetector, LearnsObservationsWithoutTheOracle) {
+  MovingBalls world(2, 4);
+  const auto checker = world.checker(2);
+  ProxyCollisionDetector proxy(checker, JointLimits::unitBox(2), params(30));
+  EXPECT_THROW(proxy.learnObservations(), Error);
+  proxy.initialize(300);
+  const auto before = proxy.calibratedModel();
+  EXPECT_EQ(proxy.learnObservations().observed, 0u);  // nothing waiting: the same model
+  EXPECT_EQ(proxy.model(), before.model);
+
+  const Configurations probe = test::uniformPoints(5000, 2, 77);
+  Dataset answers;
+  answers.points = probe;
+  for (Eigen::Index i = 0; i < probe.rows(); ++i) {
+    answers.labels.push_back(world.inCollision(probe.row(i).data()) ? 1 : -1);
+  }
+  const Dataset missed = answersMissedBy(*before.model, answers);
+  ASSERT_GT(missed.size(), 20u);
+  proxy.addObservations(missed);
+  const std::uint64_t calls = checker->callCount();
+  const StepReport report = proxy.learnObservations();
+  EXPECT_EQ(checker->callCount(), calls) << "no oracle call";
+  EXPECT_EQ(report.observed, missed.size());
+  EXPECT_EQ(report.modelVersion, 2u);
+  EXPECT_EQ(proxy.calibratedModel().calibration.band.lower, before.calibration.band.lower);
+  ASSERT_EQ(report.update.stopReason, StopReason::Converged);
+  for (std::size_t k = 0; k < missed.size(); ++k) {
+    const Eigen::Index row = static_cast<Eigen::Index>(k);
+    EXPECT_EQ(proxy.model()->inCollision(missed.points.row(row).data()), missed.labels[k] > 0);
+  }
+}
+
 TEST(ProxyCollisionDetector, SameSeedSameModel) {
   auto run = [](std::uint64_t seed) {
     MovingBalls world(3, 5);

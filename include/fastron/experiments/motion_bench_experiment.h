@@ -27,6 +27,10 @@ struct MotionBenchOptions {
   /// the robot (joint space, empty scene) beside each scene's model of obstacles only, verified
   /// and repaired with FCL (self-collision included) like the rest.
   bool selfModel = false;
+  /// Between a scene's queries, Fastron's model learns the exact answers of the last plan's
+  /// verification and repair that it got wrong (ProxyCollisionDetector::learnObservations: the
+  /// scene stands still, so no oracle call).
+  bool learnFromVerification = false;
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
   std::uint64_t seed = 1;
   bool quick = false;

@@ -93,6 +93,12 @@ class ProxyCollisionDetector {
   /// count, a non-finite value or a label other than +1 / -1; beyond params.maxPendingObservations
   /// waiting answers the rest are dropped (droppedObservations()).
   void addObservations(const Dataset& answers);
+  /// Learns the waiting observations (addObservations) now, without asking the oracle anything:
+  /// no relabelling and no active learning, for a world that has not moved since the last step
+  /// (a static scene between planning queries). The band stays the last calibrated one. Returns
+  /// the update's report (observed = 0 and no new model when nothing was waiting). Throws Error
+  /// before initialize().
+  StepReport learnObservations();
   std::size_t droppedObservations() const;
 
   /// The latest published model. A model, once returned, never changes, so callers keep querying
@@ -120,6 +126,8 @@ class ProxyCollisionDetector {
   const ProxyParams& params() const { return params_; }
 
  private:
+  /// Moves the waiting observations into the trainer (stepMutex_ held); returns how many.
+  std::size_t addPendingObservations();
   /// Trains, calibrates the new model's band on the held-out points and publishes both.
   StepReport finish(StepReport report, std::chrono::steady_clock::time_point start,
                     const Configurations& heldOut, const Labels& heldOutLabels);
