@@ -49,8 +49,8 @@ int runBench(const BenchOptions& o) {
        o.selfCollision || o.queriesPerScene != 1 || o.selfModel || o.learnFromVerification) &&
       o.name != "motion-bench") {
     throw InvalidArgument(
-        "--robot, --package-path, --srdf, --self-collision and --queries-per-scene go with the "
-        "motion-bench experiment");
+        "--robot, --package-path, --srdf, --self-collision, --self-model, --queries-per-scene "
+        "and --learn-from-verification go with the motion-bench experiment");
   }
   std::filesystem::create_directories(dir);
   const auto start = std::chrono::steady_clock::now();

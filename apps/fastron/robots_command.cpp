@@ -10,6 +10,7 @@
 #include "fastron/core/error.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/self_collision_survey.h"
+#include "robot_options.h"
 
 namespace fastron::cli {
 namespace {
@@ -47,9 +48,8 @@ std::string percent(std::size_t count, std::size_t of) {
   return text;
 }
 
-int runSurvey(const std::string& nameOrPath, const UrdfOptions& urdf, const std::string& srdf,
-              const SelfCollisionOptions& options) {
-  const Robot robot = loadRobot(nameOrPath, urdf, srdf);
+int runSurvey(const RobotOptions& robotOptions, const SelfCollisionOptions& options) {
+  const Robot robot = loadRobotFromOptions(robotOptions);
   std::cerr << "sampling " << options.samples << " configurations of " << robot.name() << "...\n";
   const SelfCollisionSurvey survey = surveySelfCollisions(robot, options);
   std::cout << robot.name() << ": self-collisions over " << survey.samples
@@ -106,21 +106,19 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "random seed of the survey")->capture_default_str();
-  auto packagePaths = std::make_shared<std::vector<std::string>>();
-  auto srdf = std::make_shared<std::string>();
-  cmd->add_option("--package-path", *packagePaths,
+  auto files = std::make_shared<RobotOptions>();  // the robot is the positional name
+  cmd->add_option("--package-path", files->packagePaths,
                   "survey: folder searched for package:// and relative mesh paths (repeatable)");
-  cmd->add_option("--srdf", *srdf,
+  cmd->add_option("--srdf", files->srdf,
                   "survey: MoveIt SRDF whose disable_collisions pairs are not surveyed");
-  cmd->callback([only, survey, options, packagePaths, srdf, &exitCode] {
+  cmd->callback([only, survey, options, files, &exitCode] {
     if (*survey) {
       if (only->empty()) throw InvalidArgument("--self-collisions needs a robot name or URDF file");
-      UrdfOptions urdf;
-      for (const auto& p : *packagePaths) urdf.searchPaths.emplace_back(p);
-      exitCode = runSurvey(*only, urdf, *srdf, *options);
+      files->robot = *only;
+      exitCode = runSurvey(*files, *options);
       return;
     }
-    if (!packagePaths->empty() || !srdf->empty()) {
+    if (!files->packagePaths.empty() || !files->srdf.empty()) {
       throw InvalidArgument("--package-path and --srdf go with --self-collisions");
     }
     if (!only->empty()) loadRobot(*only);  // a clear error for an unknown name

@@ -1,7 +1,8 @@
 #include "fastron/core/hybrid_checker.h"
 
+#include <algorithm>
+#include <array>
 #include <string>
-#include <vector>
 
 #include "fastron/core/error.h"
 
@@ -47,12 +48,17 @@ bool HybridChecker::check(const double* q) const {
 }
 
 std::size_t HybridChecker::checkFirst(const double* q, std::size_t n) const {
-  thread_local std::vector<double> scores;  // called per planner edge: no allocation
-  scores.resize(n);
-  model_->scoreBatch(q, n, scores.data());
+  // Scored sixteen at a time (one pass of the batched features), so that an edge whose first
+  // states already collide is not scored to its end.
+  constexpr std::size_t kChunk = 16;
+  std::array<double, kChunk> scores{};
   const std::size_t dim = dof();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (decide(q + i * dim, scores[i])) return i;
+  for (std::size_t begin = 0; begin < n; begin += kChunk) {
+    const std::size_t count = std::min(kChunk, n - begin);
+    model_->scoreBatch(q + begin * dim, count, scores.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      if (decide(q + (begin + k) * dim, scores[k])) return begin + k;
+    }
   }
   return n;
 }

@@ -48,17 +48,14 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       Scene scene = sceneForTrial(c.scene, seed);
       auto fcl = std::make_shared<FclChecker>(robot, scene);
       auto gjk = std::make_shared<GjkChecker>(robot, scene);
-      ProxyParams params = proxyParams(c, seed, o.features);
+      // The paper's pipeline has no uncertainty band: its update times are compared without the
+      // calibration points (the planning experiments keep them for the Hybrid method).
+      ProxyParams params = withoutBand(proxyParams(c, seed, o.features));
       if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
       if (o.beta > 0) params.train.beta = o.beta;
       params.activeLearning.variance = o.variance;
-      // The paper's pipeline has no uncertainty band: its update times are compared without the
-      // calibration points (the planning experiments keep them for the Hybrid method).
-      params.calibrationSamples = 0;
-      ProxyParams jointParams = proxyParams(c, seed, FeatureKind::JointScaling);
-      jointParams.calibrationSamples = 0;
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
-          inJoints(fcl, limits, jointParams);
+          inJoints(fcl, limits, withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
       fromFcl.initialize(initial);
       fromGjk.initialize(initial);
       if (jointRow) inJoints.initialize(initial);

@@ -223,6 +223,11 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
   return p;
 }
 
+ProxyParams withoutBand(ProxyParams params) {
+  params.calibrationSamples = 0;
+  return params;
+}
+
 std::string featureSentence(FeatureKind kind) {
   return kind == FeatureKind::Kinematic
              ? "Fastron learns on task-space features: the world positions of the robot's "

@@ -104,6 +104,14 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
   return note;
 }
 
+/// initialize(samples) then `updates` steps; the seconds they took.
+double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {
+  const auto began = std::chrono::steady_clock::now();
+  proxy.initialize(samples);
+  for (std::size_t u = 0; u < updates; ++u) proxy.step();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+}
+
 }  // namespace
 
 Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
@@ -124,18 +132,17 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     throw InvalidArgument("motion-bench: a self-collision model needs self-collision checked");
   }
   // The robot's self-collision model, learned once: self-collision does not depend on the scene.
+  const std::size_t samples = o.quick ? 1500 : o.trainingPoints;
+  const std::size_t updates = o.quick ? 1 : o.updates;
   std::shared_ptr<const CollisionChecker> selfModel;
   double selfTrainSeconds = 0;
   if (o.selfModel) {
     if (progress) progress("motion-bench: learning the robot's self-collisions");
-    const auto began = std::chrono::steady_clock::now();
-    ProxyCollisionDetector self(std::make_shared<FclChecker>(robot, Scene{}, checking),
-                                robotFeatures(robot, FeatureKind::JointScaling),
-                                experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed));
-    self.initialize(o.quick ? 2000 : o.selfTrainingPoints);
-    for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) self.step();
-    selfTrainSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    ProxyCollisionDetector self(
+        std::make_shared<FclChecker>(robot, Scene{}, checking),
+        robotFeatures(robot, FeatureKind::JointScaling),
+        withoutBand(experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed)));
+    selfTrainSeconds = train(self, o.quick ? 2000 : o.selfTrainingPoints, updates);
     selfModel = std::make_shared<ModelChecker>(self.model(), "Fastron self");
   }
   for (std::size_t p = 0; p < problems.size(); ++p) {
@@ -157,13 +164,9 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
     const FclChecker audit(robot, scene, checking);
 
-    ProxyCollisionDetector proxy(fcl, features,
-                                 experimentProxyParams(o.features, 5, 500, o.seed + p));
-    const auto began = std::chrono::steady_clock::now();
-    proxy.initialize(o.quick ? 1500 : o.trainingPoints);
-    for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) proxy.step();
-    const double trainSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    const ProxyParams params = experimentProxyParams(o.features, 5, 500, o.seed + p);
+    ProxyCollisionDetector proxy(fcl, features, params);
+    const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
     std::string support = std::to_string(calibrated.model->supportCount());
     // The split source: this scene's obstacles (a model whose oracle ignores self-collision) and
@@ -171,13 +174,9 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::shared_ptr<const CollisionChecker> split;
     std::string splitSupport, splitTrain;
     if (selfModel) {
-      const auto splitBegan = std::chrono::steady_clock::now();
       ProxyCollisionDetector obstacles(std::make_shared<FclChecker>(robot, scene), features,
-                                       experimentProxyParams(o.features, 5, 500, o.seed + p));
-      obstacles.initialize(o.quick ? 1500 : o.trainingPoints);
-      for (std::size_t u = 0; u < (o.quick ? 1 : o.updates); ++u) obstacles.step();
-      splitTrain = cell(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - splitBegan).count());
+                                       withoutBand(params));
+      splitTrain = cell(train(obstacles, samples, updates));
       splitSupport = std::to_string(obstacles.model()->supportCount());
       split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
           std::make_shared<ModelChecker>(obstacles.model()), selfModel});

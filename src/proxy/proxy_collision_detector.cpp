@@ -47,8 +47,8 @@ StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point s
   }
   {
     const std::lock_guard lock(modelMutex_);
-    model_.swap(next);
-    calibration_ = report.calibration;
+    published_.model.swap(next);
+    published_.calibration = report.calibration;
   }  // the previous model is released here, outside the lock, if no reader holds it
   report.modelVersion = ++version_;
   report.total = Clock::now() - start;
@@ -136,10 +136,7 @@ StepReport ProxyCollisionDetector::learnObservations() {
     report.modelVersion = version_;
     return report;
   }
-  {
-    const std::lock_guard published(modelMutex_);
-    report.calibration = calibration_;  // kept: nothing new was held out
-  }
+  report.calibration = calibratedModel().calibration;  // kept: nothing new was held out
   return finish(report, start, Configurations(0, 0), {});
 }
 
@@ -181,24 +178,16 @@ std::size_t ProxyCollisionDetector::droppedObservations() const {
 }
 
 std::shared_ptr<const Model> ProxyCollisionDetector::model() const {
-  std::shared_ptr<const Model> current;
-  {
-    const std::lock_guard lock(modelMutex_);
-    current = model_;
-  }
-  if (!current) throw Error("ProxyCollisionDetector::model() called before initialize()");
-  return current;
+  return calibratedModel().model;
 }
 
 CalibratedModel ProxyCollisionDetector::calibratedModel() const {
   CalibratedModel current;
   {
     const std::lock_guard lock(modelMutex_);
-    current = {model_, calibration_};
+    current = published_;
   }
-  if (!current.model) {
-    throw Error("ProxyCollisionDetector::calibratedModel() called before initialize()");
-  }
+  if (!current.model) throw Error("ProxyCollisionDetector: no model before initialize()");
   return current;
 }
 

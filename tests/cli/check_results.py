@@ -138,7 +138,9 @@ def main():
         if name == "plan" and {r["planner"] for r in rows} != {"RRT", "RRTConnect", "RRT*", "BIT*"}:
             fail(f"planners {sorted({r['planner'] for r in rows})}")
     elif name == "motion-bench":
-        check_plans(rows, ["Fastron", "Hybrid", "FCL"])
+        check_plans(rows, ["Fastron", "Hybrid", "FCL", "Fastron split"])
+        if "Fastron split: obstacle model per scene" not in report:
+            fail("report.md does not report the split model's training")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:

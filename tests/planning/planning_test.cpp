@@ -246,6 +246,8 @@ TEST_F(Planning, HopelessApproximatePlansAreTimeBoxed) {
   EXPECT_GE(plan.planTime, std::chrono::milliseconds(150));
   EXPECT_THROW(validate(PlannerOptions{.approximateShare = 0}), InvalidArgument);
   EXPECT_THROW(validate(PlannerOptions{.approximateShare = 1.5}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.stretchShare = 0}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.stretchShare = 1.5}), InvalidArgument);
 }
 
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {

@@ -85,6 +85,9 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
 /// `jointGamma`, `jointBeta` (the experiment's joint-space settings, e.g. the paper's) for joints.
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
                                   std::uint64_t seed);
+/// `params` with no calibration points (ProxyParams::calibrationSamples = 0): for a model that
+/// plans without an uncertainty band, or the paper's pipeline, which has none.
+ProxyParams withoutBand(ProxyParams params);
 
 /// Up to `maxCubes` cubes (at least one) of random size in [minSide, maxSide], centred in the
 /// upper half of the ball of radius `reach` around the robot's base, and clear of the base.

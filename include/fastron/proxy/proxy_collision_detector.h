@@ -142,8 +142,7 @@ class ProxyCollisionDetector {
   // Not std::atomic<std::shared_ptr>: libstdc++ 12 unlocks its load with relaxed order, a data
   // race that ThreadSanitizer reports. A mutex around the pointer copy is as cheap, and correct.
   mutable std::mutex modelMutex_;
-  std::shared_ptr<const Model> model_;
-  BandCalibration calibration_;      // of model_
+  CalibratedModel published_;        // the latest model and its band
   mutable std::mutex pendingMutex_;  // for the three below only
   std::vector<double> pendingValues_;
   Labels pendingLabels_;
