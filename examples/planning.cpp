@@ -34,7 +34,7 @@ int main() {
                                         .resolution = 0.03,  // rad between checked states
                                         .timeLimit = 5};
   const fastron::VerifiedPlan plan =
-      fastron::planVerified(proxy.model(), fcl, limits, start, goal, options);
+      fastron::planVerified(proxy.calibratedModel(), fcl, limits, start, goal, options);
   if (!plan.solved()) {
     std::cout << "no valid path: " << plan.failure << '\n';
     return 1;

@@ -114,11 +114,14 @@ int runPlan(const PlanOptions& o) {
     const auto gjk = std::make_shared<const GjkChecker>(robot, scene, checkerOptions);
     plan = planVerified(gjk, fcl, limits, start, goal, options);
   } else {
-    std::shared_ptr<const Model> model;
+    // A model read from a file has no calibrated band: the planner falls back from it to FCL
+    // directly. A model trained here plans on the model, then on the hybrid, then on FCL.
+    CalibratedModel calibrated;
     if (!o.model.empty()) {
-      model = std::make_shared<const Model>(loadModelFor(o.model, robot));
-      std::cout << "model    " << o.model << ", " << model->supportCount()
-                << " support points, features " << model->features().summary() << '\n';
+      calibrated.model = std::make_shared<const Model>(loadModelFor(o.model, robot));
+      const Model& model = *calibrated.model;
+      std::cout << "model    " << o.model << ", " << model.supportCount()
+                << " support points, features " << model.features().summary() << '\n';
     } else {
       const FeatureMap features = featuresFromOptions(o.features, robot);
       ProxyParams params = experimentProxyParams(features.kind(), 5, 500, o.seed);
@@ -128,19 +131,20 @@ int runPlan(const PlanOptions& o) {
       const auto began = std::chrono::steady_clock::now();
       proxy.initialize(o.samples);
       for (std::size_t u = 0; u < o.updates; ++u) proxy.step();
-      model = proxy.model();
+      calibrated = proxy.calibratedModel();
       std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
                 << " active-learning updates in "
                 << duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
                                 .count())
-                << ", " << model->supportCount() << " support points, features "
+                << ", " << calibrated.model->supportCount() << " support points, features "
                 << features.summary() << '\n';
     }
-    plan = planVerified(model, fcl, limits, start, goal, options);
+    plan = planVerified(calibrated, fcl, limits, start, goal, options);
   }
 
   std::cout << "planner  " << plannerName(options.type) << " on " << o.checker
             << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
+            << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
             << "time     plan " << duration(seconds(plan.planTime)) << " (of which simplify "
             << duration(seconds(plan.simplifyTime)) << "), verify "

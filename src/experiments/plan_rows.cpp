@@ -63,7 +63,7 @@ std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const 
                                             const Eigen::VectorXd& goal,
                                             const PlannerOptions& options) {
   std::vector<MethodPlan> plans;
-  plans.push_back({"Fastron", planVerified(model.model, fcl, limits, start, goal, options), 0});
+  plans.push_back({"Fastron", planVerified(model, fcl, limits, start, goal, options), 0});
   if (model.calibration.colliding + model.calibration.free > 0) {
     const auto hybrid = std::make_shared<HybridChecker>(model.model, fcl, model.calibration.band);
     VerifiedPlan plan = planVerified(hybrid, fcl, limits, start, goal, options);

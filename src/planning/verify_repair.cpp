@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
+#include "fastron/core/hybrid_checker.h"
 #include "fastron/core/recording_checker.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/parallel_check.h"
@@ -146,14 +147,20 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
 
 namespace {
 
-VerifiedPlan planAndRepair(const CollisionSource& approximate,
-                           const std::shared_ptr<const CollisionChecker>& exact,
-                           const JointLimits& limits, const Eigen::VectorXd& start,
-                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+/// A plan on an approximate source within options.approximateShare of the time limit.
+struct ApproximatePlan {
+  PlanResult plan;
+  bool substituteEnds = false;
+};
+
+ApproximatePlan planApproximately(const CollisionSource& approximate,
+                                  const std::shared_ptr<const CollisionChecker>& exact,
+                                  const JointLimits& limits, const Eigen::VectorXd& start,
+                                  const Eigen::VectorXd& goal, const PlannerOptions& options) {
   PlannerOptions approximateOptions = options;
   approximateOptions.timeLimit = options.timeLimit * options.approximateShare;
-  PlanResult plan = planMotion(approximate, limits, start, goal, approximateOptions);
-  bool substituteEnds = false;
+  ApproximatePlan result{planMotion(approximate, limits, start, goal, approximateOptions)};
+  PlanResult& plan = result.plan;
   if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&
       freeUnder(exact, start) && freeUnder(exact, goal)) {
     // The approximate checker is wrong about an end (a conservative model often is where the
@@ -169,17 +176,34 @@ VerifiedPlan planAndRepair(const CollisionSource& approximate,
         if (!startNear->isApprox(start)) plan.path.insert(plan.path.begin(), start);
         if (!goalNear->isApprox(goal)) plan.path.push_back(goal);
       }
-      substituteEnds = true;
+      result.substituteEnds = true;
     }
   }
-  if (plan.solved()) {
-    VerifiedPlan result = verifyAndRepair(plan.path, exact, limits, options);
-    result.planTime = plan.time;
-    result.simplifyTime = plan.simplifyTime;
-    result.substituteEnds = substituteEnds;
-    return result;
+  return result;
+}
+
+/// Plans on each source of `chain` in turn until one finds a path, then verifies and repairs it;
+/// when none does, plans the whole motion on the exact checker.
+VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
+                           const std::shared_ptr<const CollisionChecker>& exact,
+                           const JointLimits& limits, const Eigen::VectorXd& start,
+                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  std::chrono::nanoseconds planTime{0};
+  bool substituteEnds = false;
+  for (const CollisionSource& source : chain) {
+    const ApproximatePlan attempt = planApproximately(source, exact, limits, start, goal, options);
+    planTime += attempt.plan.time;
+    substituteEnds = substituteEnds || attempt.substituteEnds;
+    if (attempt.plan.solved()) {
+      VerifiedPlan result = verifyAndRepair(attempt.plan.path, exact, limits, options);
+      result.planTime = planTime;
+      result.simplifyTime = attempt.plan.simplifyTime;
+      result.substituteEnds = attempt.substituteEnds;
+      result.plannedOn = sourceName(source);
+      return result;
+    }
   }
-  // The approximate checker found no path (or thinks an end collides): plan it all exactly.
+  // No approximate source found a path (or each thinks an end collides): plan it all exactly.
   const auto began = Clock::now();
   const PlanResult exactPlan = planMotion(exact, limits, start, goal, options);
   const auto repairTime = Clock::now() - began;
@@ -191,10 +215,11 @@ VerifiedPlan planAndRepair(const CollisionSource& approximate,
     result.status = exactPlan.status;
     result.failure = toString(exactPlan.status) + " under " + exact->name();
   }
-  result.planTime = plan.time;
+  result.planTime = planTime;
   result.repairTime += repairTime;
   result.wholePathReplanned = true;
   result.substituteEnds = substituteEnds;
+  result.plannedOn = exact->name();
   return result;
 }
 
@@ -206,7 +231,24 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
   checkExact(exact, limits);
   const auto recorder = std::make_shared<RecordingChecker>(exact);
-  VerifiedPlan result = planAndRepair(approximate, recorder, limits, start, goal, options);
+  VerifiedPlan result = planAndRepair({approximate}, recorder, limits, start, goal, options);
+  result.exactAnswers = recorder->take();
+  return result;
+}
+
+VerifiedPlan planVerified(const CalibratedModel& model,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  checkExact(exact, limits);
+  if (!model.model) throw InvalidArgument("planVerified: the model is a null pointer");
+  const auto recorder = std::make_shared<RecordingChecker>(exact);
+  std::vector<CollisionSource> chain{model.model};
+  if (model.calibration.colliding + model.calibration.free > 0) {
+    chain.emplace_back(
+        std::make_shared<HybridChecker>(model.model, recorder, model.calibration.band));
+  }
+  VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options);
   result.exactAnswers = recorder->take();
   return result;
 }
@@ -221,6 +263,7 @@ VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
   result.path = plan.path;
   result.planTime = plan.time;
   result.simplifyTime = plan.simplifyTime;
+  result.plannedOn = exact->name();
   if (!plan.solved()) result.failure = toString(plan.status);
   return result;
 }

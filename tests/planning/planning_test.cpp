@@ -250,6 +250,54 @@ TEST_F(Planning, HopelessApproximatePlansAreTimeBoxed) {
   EXPECT_THROW(validate(PlannerOptions{.stretchShare = 1.5}), InvalidArgument);
 }
 
+// A model that closes the gap: planning falls back from it to the hybrid source, which asks the
+// exact checker inside the calibrated band, before planning the whole motion on the exact checker.
+TEST_F(Planning, AModelThatClosesThePassageFallsBackToItsHybridBeforeTheExactChecker) {
+  const auto exact = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const auto closedWall = [](const double* q) { return std::abs(q[0]) < 0.1; };
+  const Configurations q = test::uniformPoints(3000, 2, 11);
+  Labels y(static_cast<std::size_t>(q.rows()));
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
+    y[static_cast<std::size_t>(i)] = closedWall(q.row(i).data()) ? 1 : -1;
+  Trainer trainer(limits, {.kernel = {.gamma = 30}, .beta = 10});
+  trainer.addPoints(q, y);
+  trainer.update();
+  CalibratedModel model{trainer.model(), {}};
+  ASSERT_TRUE(model.model->inCollision(vec({0, 0.8}).data())) << "the model must close the gap";
+  // Held-out labels of the true world; no false alarm allowed, so the band covers the gap.
+  const Configurations heldOut = test::uniformPoints(4000, 2, 12);
+  Labels truth(static_cast<std::size_t>(heldOut.rows()));
+  for (Eigen::Index i = 0; i < heldOut.rows(); ++i)
+    truth[static_cast<std::size_t>(i)] = inWall(heldOut.row(i).data()) ? 1 : -1;
+  model.calibration = calibrateBand(model.model->scoreBatch(heldOut), truth, {.falseAlarmRate = 0});
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 4, .approximateShare = 0.05};
+  const VerifiedPlan plan = planVerified(model, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_EQ(plan.plannedOn, "Fastron+wall");
+  EXPECT_FALSE(plan.wholePathReplanned);
+  EXPECT_LT(plan.planTime, std::chrono::milliseconds(1500)) << "two shares of 0.2 s at most";
+  EXPECT_TRUE(
+      pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+  // The hybrid's exact answers are recorded with verification's.
+  std::size_t inGap = 0;
+  for (std::size_t i = 0; i < plan.exactAnswers.size(); ++i) {
+    const double* x = plan.exactAnswers.points.row(static_cast<Eigen::Index>(i)).data();
+    EXPECT_EQ(plan.exactAnswers.labels[i], inWall(x) ? 1 : -1);
+    inGap += std::abs(x[0]) < 0.1 && x[1] >= 0.5 ? 1 : 0;
+  }
+  EXPECT_GT(inGap, 0u) << "the hybrid asked the exact checker in the gap";
+  // Without a calibrated band there is no hybrid step: the model's failure goes to the exact
+  // checker directly.
+  const VerifiedPlan uncalibrated =
+      planVerified(CalibratedModel{model.model, {}}, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(uncalibrated.solved()) << uncalibrated.failure;
+  EXPECT_EQ(uncalibrated.plannedOn, "wall");
+  EXPECT_TRUE(uncalibrated.wholePathReplanned);
+  EXPECT_THROW(planVerified(CalibratedModel{}, exact, limits, kStart, kGoal, options),
+               InvalidArgument);
+}
+
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

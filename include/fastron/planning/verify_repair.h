@@ -9,6 +9,7 @@
 
 #include "fastron/core/dataset.h"
 #include "fastron/planning/planner.h"
+#include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron {
 
@@ -30,6 +31,9 @@ struct VerifiedPlan {
   /// the true ends in a straight line.
   bool substituteEnds = false;
   std::string failure;  ///< why no valid path was found (empty when solved)
+  /// The name of the source whose plan was verified (sourceName: "Fastron", the hybrid's
+  /// "Fastron+FCL", ...), or the exact checker's when the whole motion was planned on it.
+  std::string plannedOn;
   /// planVerified: every answer the exact checker gave (verification, repair, the ends), one row
   /// per call, label +1 in collision / -1 free: labelled configurations where the planner needed
   /// them, for the model's next update (ProxyCollisionDetector::addObservations).
@@ -56,6 +60,17 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
 /// must be free under `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is
 /// returned in `exactAnswers`.
 VerifiedPlan planVerified(const CollisionSource& approximate,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options);
+
+/// No hopeless waits on a model that closes a passage: plans on the model for
+/// options.approximateShare of the time limit; when that finds no path, on a HybridChecker of the
+/// model and `exact` inside the calibrated band (which reopens what the model closed with little
+/// confidence) for another approximateShare; only then on `exact` for the whole limit. The hybrid
+/// step is skipped when the band was never calibrated. Otherwise as planVerified above; the
+/// hybrid's exact answers are in `exactAnswers` too. Throws InvalidArgument on a null model.
+VerifiedPlan planVerified(const CalibratedModel& model,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options);
