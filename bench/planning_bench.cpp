@@ -1,4 +1,4 @@
-// Time per planning query on Baxter's 7-joint arm among three boxes (RRT-Connect, 0.03 rad
+// Time per planning query on Baxter's 7-joint arm among three boxes (RRT-Connect and BIT*, 0.03 rad
 // edges, paths simplified): on a task-space Fastron model alone, on FCL alone, and Fastron
 // verified and repaired with FCL. Twenty fixed queries between configurations both checkers find
 // free; compare within a run. Also the exact check of the final paths, serial and parallel.
@@ -57,33 +57,45 @@ const BaxterQueries& baxterQueries() {
 
 const PlannerOptions kOptions{.type = PlannerType::RrtConnect, .resolution = 0.03, .timeLimit = 10};
 
+/// kOptions with the planner of the benchmark's argument (0: RRT-Connect, 1: BIT*).
+PlannerOptions optionsFor(const benchmark::State& state) {
+  PlannerOptions options = kOptions;
+  options.type = state.range(0) == 0 ? PlannerType::RrtConnect : PlannerType::BitStar;
+  return options;
+}
+
 template <class Plan>
 void runQueries(benchmark::State& state, Plan&& plan) {
   const BaxterQueries& b = baxterQueries();
+  const PlannerOptions options = optionsFor(state);
+  state.SetLabel(plannerName(options.type));
   std::size_t i = 0, failed = 0;
   for (auto _ : state) {
     const auto& [start, goal] = b.queries[i];
-    failed += plan(b, start, goal) ? 0 : 1;
+    failed += plan(b, start, goal, options) ? 0 : 1;
     i = (i + 1) % b.queries.size();
   }
   state.counters["failed"] = static_cast<double>(failed);
 }
 
 void BM_PlanOnFastron(benchmark::State& state) {
-  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal) {
-    return planMotion(b.model, b.limits, start, goal, kOptions).solved();
+  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal,
+                       const PlannerOptions& options) {
+    return planMotion(b.model, b.limits, start, goal, options).solved();
   });
 }
 
 void BM_PlanOnFcl(benchmark::State& state) {
-  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal) {
-    return planMotion(b.fcl, b.limits, start, goal, kOptions).solved();
+  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal,
+                       const PlannerOptions& options) {
+    return planMotion(b.fcl, b.limits, start, goal, options).solved();
   });
 }
 
 void BM_PlanOnFastronVerifiedWithFcl(benchmark::State& state) {
-  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal) {
-    return planVerified(b.model, b.fcl, b.limits, start, goal, kOptions).solved();
+  runQueries(state, [](const BaxterQueries& b, const auto& start, const auto& goal,
+                       const PlannerOptions& options) {
+    return planVerified(b.model, b.fcl, b.limits, start, goal, options).solved();
   });
 }
 
@@ -111,9 +123,13 @@ void BM_CheckPath(benchmark::State& state) {
 }
 BENCHMARK(BM_CheckPath)->Arg(0)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMicrosecond);
 
-BENCHMARK(BM_PlanOnFastron)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PlanOnFcl)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PlanOnFastronVerifiedWithFcl)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlanOnFastron)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlanOnFcl)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PlanOnFastronVerifiedWithFcl)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("bitstar")
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fastron

@@ -1,5 +1,7 @@
 #include "fastron/core/recording_checker.h"
 
+#include <algorithm>
+
 #include "fastron/core/error.h"
 
 namespace fastron {
@@ -10,12 +12,19 @@ RecordingChecker::RecordingChecker(std::shared_ptr<const CollisionChecker> inner
 }
 
 bool RecordingChecker::check(const double* q) const {
+  return checkFirst(q, 1) == 0;
+}
+
+std::size_t RecordingChecker::checkFirst(const double* q, std::size_t n) const {
   const std::size_t dim = dof();
-  const bool hit = inner_->inCollision(std::span<const double>(q, dim));
+  const std::size_t first = inner_->firstInCollision(q, n);
+  const std::size_t answered = std::min(first + 1, n);  // the free ones, then the hit
   const std::lock_guard lock(mutex_);
-  values_.insert(values_.end(), q, q + dim);
-  labels_.push_back(hit ? std::int8_t{1} : std::int8_t{-1});
-  return hit;
+  values_.insert(values_.end(), q, q + answered * dim);
+  for (std::size_t i = 0; i < answered; ++i) {
+    labels_.push_back(i == first ? std::int8_t{1} : std::int8_t{-1});
+  }
+  return first;
 }
 
 Dataset RecordingChecker::take() {

@@ -138,7 +138,7 @@ FclChecker::~FclChecker() = default;
 void FclChecker::setScene(const Scene& scene) {
   auto next = std::make_shared<Obstacles>();
   next->robotBase = scene.robotBase;
-  const std::shared_ptr<const Obstacles> previous = obstacles();  // null in the constructor
+  const std::shared_ptr<const Obstacles> previous = obstacles_.get();  // null in the constructor
   const auto geometryOf = [&](const Shape& shape) -> FclGeometry {
     const auto* mesh = std::get_if<Mesh>(&shape);
     if (mesh == nullptr) return toFcl(shape);  // primitives cost nothing to make
@@ -173,13 +173,7 @@ void FclChecker::setScene(const Scene& scene) {
   next->manager.setup();
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
-  const std::lock_guard lock(obstaclesMutex_);
-  obstacles_ = std::move(next);
-}
-
-std::shared_ptr<const FclChecker::Obstacles> FclChecker::obstacles() const {
-  const std::lock_guard lock(obstaclesMutex_);
-  return obstacles_;
+  obstacles_.set(std::move(next));
 }
 
 // Forward kinematics, then every robot shape moved to its pose with its AABB updated.
@@ -193,10 +187,9 @@ void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
   }
 }
 
-std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) const {
-  const std::shared_ptr<const Obstacles> world = obstacles();
-  auto scratch = scratch_.lease();
-  placeRobot(*scratch, world->robotBase, q);
+std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scratch,
+                                           const double* q, bool wantContact) const {
+  placeRobot(scratch, world.robotBase, q);
   const auto& shapes = robot_.shapes();
   auto linkName = [&](std::size_t s) {
     return robot_.links()[static_cast<std::size_t>(shapes[s].link)].name;
@@ -204,15 +197,15 @@ std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) co
 
   for (std::size_t s = 0; s < shapes.size(); ++s) {
     CollideData data;
-    if (!world->allowed.empty()) data.allowed = world->allowed.data() + s * world->objects.size();
-    world->manager.collide(scratch->robotObjects[s].get(), &data, collideCallback);
+    if (!world.allowed.empty()) data.allowed = world.allowed.data() + s * world.objects.size();
+    world.manager.collide(scratch.robotObjects[s].get(), &data, collideCallback);
     if (data.hit != nullptr) {
       if (!wantContact) return Contact{};
-      return Contact{linkName(s), world->names[obstacleIndex(data.hit)], false};
+      return Contact{linkName(s), world.names[obstacleIndex(data.hit)], false};
     }
   }
-  for (const auto& [a, b] : world->selfPairs) {
-    if (shapesTouch(*scratch->robotObjects[a], *scratch->robotObjects[b]))
+  for (const auto& [a, b] : world.selfPairs) {
+    if (shapesTouch(*scratch.robotObjects[a], *scratch.robotObjects[b]))
       return Contact{linkName(a), linkName(b), true};
   }
   return std::nullopt;
@@ -220,7 +213,7 @@ std::optional<Contact> FclChecker::collide(const double* q, bool wantContact) co
 
 std::vector<Contact> FclChecker::selfContacts(std::span<const double> q) const {
   checkConfiguration(q, dof());
-  const std::shared_ptr<const Obstacles> world = obstacles();
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
   placeRobot(*scratch, world->robotBase, q.data());
   std::vector<Contact> contacts;
@@ -237,20 +230,32 @@ std::vector<Contact> FclChecker::selfContacts(std::span<const double> q) const {
 }
 
 bool FclChecker::check(const double* q) const {
-  return collide(q, false).has_value();
+  return checkFirst(q, 1) == 0;
+}
+
+// One read of the world and one scratch lease for the whole run: with two threads verifying a
+// path, locking both for every state cost a third of the parallel speed-up.
+std::size_t FclChecker::checkFirst(const double* q, std::size_t n) const {
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  auto scratch = scratch_.lease();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (collide(*world, *scratch, q + i * robot_.dof(), false)) return i;
+  }
+  return n;
 }
 
 std::optional<Contact> FclChecker::firstContact(std::span<const double> q) const {
   checkConfiguration(q, dof());
-  return collide(q.data(), true);
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  auto scratch = scratch_.lease();
+  return collide(*world, *scratch, q.data(), true);
 }
 
 double FclChecker::distance(std::span<const double> q) const {
   checkConfiguration(q, dof());
-  if (collide(q.data(), false)) return 0;
-  const std::shared_ptr<const Obstacles> world = obstacles();
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
-  placeRobot(*scratch, world->robotBase, q.data());
+  if (collide(*world, *scratch, q.data(), false)) return 0;  // the robot is placed
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {

@@ -154,31 +154,37 @@ void GjkChecker::setScene(const Scene& scene) {
   }
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
-  const std::lock_guard lock(worldMutex_);
-  world_ = std::move(next);
-}
-
-std::shared_ptr<const GjkChecker::World> GjkChecker::world() const {
-  const std::lock_guard lock(worldMutex_);
-  return world_;
+  world_.set(std::move(next));
 }
 
 bool GjkChecker::check(const double* q) const {
-  const std::shared_ptr<const World> w = world();
+  return checkFirst(q, 1) == 0;
+}
+
+// One read of the world and one scratch lease for the whole run, as FclChecker::checkFirst.
+std::size_t GjkChecker::checkFirst(const double* q, std::size_t n) const {
+  const std::shared_ptr<const World> world = world_.get();
   auto scratch = scratch_.lease();
-  forwardKinematics(robot_, q, scratch->kinematics, w->robotBase);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (collides(*world, *scratch, q + i * robot_.dof())) return i;
+  }
+  return n;
+}
+
+bool GjkChecker::collides(const World& world, Scratch& scratch, const double* q) const {
+  forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
   const auto& shapes = robot_.shapes();
+  const std::size_t count = world.obstacles.size();
   for (std::size_t s = 0; s < shapes.size(); ++s) {
-    scratch->robot[s].pose =
-        scratch->kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
-    const std::size_t count = w->obstacles.size();
+    scratch.robot[s].pose =
+        scratch.kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
     for (std::size_t o = 0; o < count; ++o) {
-      if (!w->allowed.empty() && w->allowed[s * count + o] != 0) continue;
-      if (gjkIntersect(scratch->robot[s], w->obstacles[o])) return true;
+      if (!world.allowed.empty() && world.allowed[s * count + o] != 0) continue;
+      if (gjkIntersect(scratch.robot[s], world.obstacles[o])) return true;
     }
   }
-  for (const auto& [a, b] : w->selfPairs) {
-    if (gjkIntersect(scratch->robot[a], scratch->robot[b])) return true;
+  for (const auto& [a, b] : world.selfPairs) {
+    if (gjkIntersect(scratch.robot[a], scratch.robot[b])) return true;
   }
   return false;
 }

@@ -2,27 +2,25 @@
 
 #include <algorithm>
 #include <atomic>
-#include <span>
 
 #include "fastron/proxy/parallel_chunks.h"
 
 namespace fastron {
 namespace {
 
-/// One state to check: a waypoint (index = waypoint) or an interior state of edge `index`.
+/// What a state to check is: a waypoint (index = waypoint) or an interior state of edge `index`.
 struct Item {
-  const double* q;
   std::size_t index;
   bool waypoint;
 };
 
-// With threads = 0, paths of fewer states stay on the calling thread: starting a thread, or waking
-// one from a pool, took 30 to 300 us on the project's 2-core machine (a virtual machine whose idle
-// core sleeps), as long as checking 200 states with FCL (BM_CheckPath: 159 us serial, 251 us on
-// two threads for Baxter paths of about 160 states).
-constexpr std::size_t kParallelFrom = 1024;
-// States handed to a thread at a time: small, so that the bisection order is kept roughly.
-constexpr std::size_t kChunk = 4;
+// With threads = 0, paths of fewer states stay on the calling thread: handing work to a sleeping
+// worker took about 12 us on the project's 2-core machine (its idle core sleeps), and a chunk
+// of states about as long.
+constexpr std::size_t kParallelFrom = 64;
+// States handed to a thread at a time: few, so that the bisection order is kept roughly, and
+// enough that a checker's batch path (one world read, one scratch lease) pays.
+constexpr std::size_t kChunk = 8;
 
 }  // namespace
 
@@ -45,24 +43,36 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const Path& path, d
     motionStates(path[e].data(), path[e + 1].data(), dim, n, interior[e]);
     deepest = std::max(deepest, n - 1);
   }
+  // The states in that order, one after the other, so that a chunk is one batch for the checker.
   std::vector<Item> order;
-  for (std::size_t i = 0; i < path.size(); ++i) order.push_back({path[i].data(), i, true});
+  std::vector<double> states;
+  const auto add = [&](const double* q, Item item) {
+    order.push_back(item);
+    states.insert(states.end(), q, q + dim);
+  };
+  for (std::size_t i = 0; i < path.size(); ++i) add(path[i].data(), {i, true});
   for (std::size_t level = 1; level <= deepest; ++level) {
     for (std::size_t e = 0; e < edges; ++e) {
-      if (level * dim < interior[e].size()) {
-        order.push_back({interior[e].data() + level * dim, e, false});
-      }
+      if (level * dim < interior[e].size()) add(interior[e].data() + level * dim, {e, false});
     }
   }
 
   std::vector<std::atomic<bool>> waypointHit(path.size()), edgeHit(edges);
+  const auto settled = [&](std::size_t k) {  // a state of an edge already found invalid
+    return !order[k].waypoint && edgeHit[order[k].index].load(std::memory_order_relaxed);
+  };
   if (threads == 0 && order.size() < kParallelFrom) threads = 1;
   forEachChunk(order.size(), kChunk, threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Item& item = order[k];
-      if (!item.waypoint && edgeHit[item.index].load(std::memory_order_relaxed)) continue;
-      if (!checker.inCollision(std::span<const double>(item.q, dim))) continue;
-      (item.waypoint ? waypointHit : edgeHit)[item.index].store(true, std::memory_order_relaxed);
+    for (std::size_t k = begin; k < end;) {
+      if (settled(k)) {
+        ++k;
+        continue;
+      }
+      const std::size_t hit = k + checker.firstInCollision(states.data() + k * dim, end - k);
+      if (hit == end) break;
+      (order[hit].waypoint ? waypointHit : edgeHit)[order[hit].index].store(
+          true, std::memory_order_relaxed);
+      k = hit + 1;
     }
   });
 

@@ -28,6 +28,9 @@ class RecordingChecker final : public CollisionChecker {
 
  protected:
   bool check(const double* q) const override;
+  /// One call of inner's firstInCollision (so the inner checker's batch path is kept) and one
+  /// record of every row it answered.
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
 
  private:
   std::shared_ptr<const CollisionChecker> inner_;

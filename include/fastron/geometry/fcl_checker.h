@@ -14,6 +14,7 @@
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"
+#include "fastron/geometry/snapshot.h"
 
 namespace fastron {
 
@@ -54,20 +55,21 @@ class FclChecker final : public CollisionChecker {
 
  protected:
   bool check(const double* q) const override;
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
 
  private:
   struct Geometry;
   struct Obstacles;
   struct Scratch;
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
-  std::optional<Contact> collide(const double* q, bool wantContact) const;
-  std::shared_ptr<const Obstacles> obstacles() const;
+  /// Places the robot at q in `scratch`, then the first contact with `world` or itself.
+  std::optional<Contact> collide(const Obstacles& world, Scratch& scratch, const double* q,
+                                 bool wantContact) const;
 
   Robot robot_;
   CheckerOptions options_;
   std::shared_ptr<const Geometry> geometry_;  // robot shapes as FCL geometry
-  mutable std::mutex obstaclesMutex_;
-  std::shared_ptr<const Obstacles> obstacles_;
+  Snapshot<Obstacles> obstacles_;
   std::atomic<std::size_t> meshBuilds_{0};
   mutable ScratchPool<Scratch> scratch_;
 };

@@ -11,6 +11,7 @@
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"
+#include "fastron/geometry/snapshot.h"
 
 namespace fastron {
 
@@ -43,17 +44,18 @@ class GjkChecker final : public CollisionChecker {
 
  protected:
   bool check(const double* q) const override;
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
 
  private:
   struct World;
   struct Scratch;
-  std::shared_ptr<const World> world() const;
+  /// Places the robot at q in `scratch`; true when it touches an obstacle of `world` or itself.
+  bool collides(const World& world, Scratch& scratch, const double* q) const;
 
   Robot robot_;
   CheckerOptions options_;
   std::vector<ConvexBody> robotBodies_;  // in their link frames (pose = shape origin)
-  mutable std::mutex worldMutex_;
-  std::shared_ptr<const World> world_;
+  Snapshot<World> world_;
   mutable ScratchPool<Scratch> scratch_;
 };
 

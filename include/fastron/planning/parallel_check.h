@@ -7,7 +7,7 @@
 namespace fastron {
 
 /// The same answer as checkPath (every invalid waypoint and edge), computed on `threads` threads
-/// (0: every core for paths of 1024 states or more, where starting threads pays; shorter ones on
+/// (0: every core for paths of 64 states or more, where waking a worker pays; shorter ones on
 /// the calling thread) in a global bisection order: the
 /// waypoints first, then every edge's midpoint, then its quarter points, and so on across the whole
 /// path, so that a colliding stretch is found after a few checks wherever it lies. An edge stops
