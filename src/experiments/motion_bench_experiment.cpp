@@ -198,8 +198,8 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         calibrated = proxy.calibratedModel();
         support = std::to_string(calibrated.model->supportCount());
       }
-      for (const MethodPlan& each :
-           planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options)) {
+      for (const MethodPlan& each : planWithEachChecker(calibrated, nullptr, fcl, limits, from, to,
+                                                        options, p * o.queriesPerScene + query)) {
         if (o.learnFromVerification && each.method == "Fastron") {
           proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
         }

@@ -41,13 +41,14 @@ std::vector<std::string> planCells(const MethodPlan& method, const CollisionChec
                                    double resolution);
 
 /// Fastron, Hybrid (Fastron with FCL inside the model's calibrated band) and GJK, each verified
-/// and repaired with FCL, and FCL itself, on one query. Hybrid only when the band was calibrated;
-/// GJK only when given.
+/// and repaired with FCL, and FCL itself, on one query; returned in that order. Hybrid only when
+/// the band was calibrated; GJK only when given. The methods take turns at planning first: method
+/// `turn` mod their count first (pass the query's index), so that none always meets cold caches.
 std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const CheckerPtr& gjk,
                                             const CheckerPtr& fcl, const JointLimits& limits,
                                             const Eigen::VectorXd& start,
                                             const Eigen::VectorXd& goal,
-                                            const PlannerOptions& options);
+                                            const PlannerOptions& options, std::size_t turn);
 
 bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q);
 

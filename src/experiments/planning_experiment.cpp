@@ -61,10 +61,11 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
       const Configurations test = uniformConfigurations(limits, testPoints, rng);
       const ConfusionCounts counts = evaluate(*model, test, labelConfigurations(audit, test, 1));
       const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
-      for (const PlannerType type : o.planners) {
+      for (std::size_t k = 0; k < o.planners.size(); ++k) {
+        const PlannerType type = o.planners[k];
         const PlannerOptions options = plannerOptions(o, type);
         for (const MethodPlan& each :
-             planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+             planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial + k)) {
           const auto& [method, plan, exactShare] = each;
           table.add(joined({name, std::to_string(trial), plannerName(type), method},
                            joined(planCells(each, audit, o.resolution),

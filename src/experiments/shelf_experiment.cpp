@@ -71,7 +71,7 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
         sampleReaching(inShelf(0.34, 0.46), limits, rng, "the higher shelf, collision-free");
     const PlannerOptions options = plannerOptions(o, PlannerType::Rrt);
     for (const MethodPlan& each :
-         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options)) {
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial)) {
       const auto& [method, plan, exactShare] = each;
       table.add(joined(
           {std::to_string(trial), "RRT", method},

@@ -88,7 +88,8 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
     if (!freeUnder(*fcl, current) || !freeUnder(*fcl, goal)) continue;  // blocked
     const CalibratedModel calibrated = proxy.calibratedModel();
     const auto& model = calibrated.model;
-    const auto plans = planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options);
+    const auto plans =
+        planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options, tick);
     for (const MethodPlan& each : plans) {
       const auto& [method, plan, exactShare] = each;
       table.add(
