@@ -13,10 +13,10 @@
 namespace fastron::experiments {
 namespace {
 
-const std::vector<std::string> kPlanColumns{"solved",       "status",     "plan_s",   "simplify_s",
-                                            "verify_s",     "repair_s",   "total_s",  "path_length",
-                                            "waypoints",    "stretches",  "fallback", "exact_ends",
-                                            "collides_fcl", "exact_share"};
+const std::vector<std::string> kPlanColumns{
+    "solved",   "status",     "plan_s",       "simplify_s",  "verify_s",
+    "repair_s", "total_s",    "path_length",  "waypoints",   "stretches",
+    "fallback", "exact_ends", "collides_fcl", "exact_share", "planned_on"};
 
 }  // namespace
 
@@ -47,7 +47,8 @@ std::vector<std::string> planCells(const MethodPlan& method, const CollisionChec
           plan.wholePathReplanned ? "1" : "0",
           plan.substituteEnds ? "1" : "0",
           cell(collides),
-          cell(method.exactShare)};
+          cell(method.exactShare),
+          plan.plannedOn};
 }
 
 std::vector<std::string> joined(std::vector<std::string> first,

@@ -21,7 +21,7 @@ namespace fastron::experiments {
 
 using CheckerPtr = std::shared_ptr<const CollisionChecker>;
 
-/// `first`, the columns of a plan (solved, status, plan_s, ..., collides_fcl, exact_share), then
+/// `first`, the columns of a plan (solved, status, plan_s, ..., exact_share, planned_on), then
 /// `last`.
 std::vector<std::string> columnsWith(std::vector<std::string> first,
                                      const std::vector<std::string>& last = {});

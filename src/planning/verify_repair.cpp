@@ -199,7 +199,8 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
       result.planTime = planTime;
       result.simplifyTime = attempt.plan.simplifyTime;
       result.substituteEnds = attempt.substituteEnds;
-      result.plannedOn = sourceName(source);
+      // A stretch not bridged makes verifyAndRepair plan the whole motion on `exact`.
+      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(source);
       return result;
     }
   }

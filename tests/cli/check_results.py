@@ -96,6 +96,20 @@ def check_plans(rows, methods, every_method_solves=True):
                 fail(f"FCL plans need no verify or repair: {row}")
         elif row["status"] == "solved":
             fail(f"status 'solved' on an unsolved row: {row}")
+    # The source whose path was verified: the exact checker's after a whole-motion fallback, and
+    # for Fastron otherwise the model or (after its time box) its hybrid.
+    exact_names = {r["planned_on"] for r in rows if r["method"] == "FCL"}
+    if len(exact_names) != 1 or "" in exact_names:
+        fail(f"FCL rows must name one exact checker in planned_on, found {sorted(exact_names)}")
+    exact = exact_names.pop()
+    for row in rows:
+        if row["solved"] != "1":
+            continue
+        if row["fallback"] == "1" and row["planned_on"] != exact:
+            fail(f"a whole-motion fallback planned on {row['planned_on']!r}, not {exact!r}: {row}")
+        if row["method"] == "Fastron" and row["fallback"] == "0" and row["planned_on"] not in (
+                "Fastron", "Fastron+" + exact):
+            fail(f"a Fastron path planned on {row['planned_on']!r}: {row}")
     for method in methods if every_method_solves else []:
         if not any(r["solved"] == "1" for r in rows if r["method"] == method):
             fail(f"{method} solved no query")
