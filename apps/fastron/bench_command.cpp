@@ -126,20 +126,23 @@ int runBench(const BenchOptions& o) {
       planning.cases = {"4dof", "7dof-3boxes"};
       planning.timeLimit = o.timeLimit > 0 ? o.timeLimit : 3;
     }
-    results = runPlanning(planning, progress);
-    report = planningReport(results, planning);
+    const PlanRows plans = runPlanning(planning, progress);
+    results = plans.table();
+    report = planningReport(plans, planning);
   } else if (o.name == "shelf") {
     ShelfOptions shelf;
     setPlanning(shelf, shelf.trials);
     if (o.quick && o.timeLimit <= 0) shelf.timeLimit = 3;
-    results = runShelf(shelf, progress);
-    report = shelfReport(results, shelf);
+    const PlanRows plans = runShelf(shelf, progress);
+    results = plans.table();
+    report = shelfReport(plans, shelf);
   } else if (o.name == "surgical") {
     SurgicalOptions surgical;
     setPlanning(surgical, 0);
     if (o.trials) surgical.ticks = o.trials;
-    results = runSurgical(surgical, progress);
-    report = surgicalReport(results, surgical);
+    const PlanRows plans = runSurgical(surgical, progress);
+    results = plans.table();
+    report = surgicalReport(plans, surgical);
   } else if (o.name == "motion-bench") {
     if (o.problems.empty()) {
       throw InvalidArgument(
@@ -156,8 +159,9 @@ int runBench(const BenchOptions& o) {
     bench.queriesPerScene = o.queriesPerScene;
     bench.selfModel = o.selfModel;
     bench.learnFromVerification = o.learnFromVerification;
-    results = runMotionBench(bench, progress);
-    report = motionBenchReport(results, bench);
+    const PlanRows plans = runMotionBench(bench, progress);
+    results = plans.table();
+    report = motionBenchReport(plans, bench);
   } else {
     throw InvalidArgument("unknown experiment '" + o.name + "'");
   }

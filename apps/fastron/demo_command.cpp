@@ -39,7 +39,7 @@ int runDemoCommand(DemoCommandOptions o) {
 
   const std::string report = demoReport(results, o.demo);
   std::cout << '\n' << report << '\n';
-  results.ticks.writeCsv(dir / "ticks.csv");
+  results.ticks.table().writeCsv(dir / "ticks.csv");
   std::ofstream(dir / "report.md") << report;
   saveModel(*results.model, dir / "model.fastron");
   writeCsv(results.test, dir / "test_points.csv");
@@ -52,9 +52,8 @@ int runDemoCommand(DemoCommandOptions o) {
                "last FCL-labelled test configurations)"
             << (o.plot ? ", demo.png" : "") << '\n';
   // The guarantee the demo shows: no final path collides under FCL.
-  const auto collisions = results.ticks.numbers("collides_fcl", {{"solved", "1"}});
-  for (const double c : collisions) {
-    if (c != 0) {
+  for (const PlanRow& row : results.ticks.rows) {
+    if (row.outcome.collidesUnderAudit.value_or(false)) {
       std::cerr << "fastron: error: a final path collides under FCL\n";
       return 1;
     }

@@ -19,11 +19,9 @@ namespace fastron {
 
 using experiments::baxterWithJoints;
 using experiments::caseFor;
-using experiments::columnsWith;
-using experiments::joined;
 using experiments::MethodPlan;
 using experiments::oppositeEnds;
-using experiments::planCells;
+using experiments::outcomeOf;
 using experiments::plannerOptions;
 using experiments::planTable;
 using experiments::planWithEachChecker;
@@ -53,9 +51,6 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   proxy.initialize(o.initialPoints);
 
   DemoResults results;
-  results.ticks = Table{
-      columnsWith({"tick", "planner", "method"}, {"support", "accuracy", "tpr", "tnr", "updates"}),
-      {}};
   // One update per tick: the boxes move once per tick, and updates on an unchanged world would
   // only grow the support set (and the query time).
   proxy.startBackground(
@@ -97,11 +92,15 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       if (method == "Fastron" && o.learnFromVerification) {
         proxy.addObservations(answersMissedBy(*model, plan.exactAnswers));
       }
-      results.ticks.add(
-          joined({std::to_string(tick), "RRTConnect", method},
-                 joined(planCells(each, audit, o.resolution),
-                        {std::to_string(model->supportCount()), cell(counts.accuracy()),
-                         cell(counts.tpr()), cell(counts.tnr()), std::to_string(updatesSoFar)})));
+      results.ticks.rows.push_back({{{"tick", std::to_string(tick)}},
+                                    "RRTConnect",
+                                    method,
+                                    outcomeOf(each, audit, o.resolution),
+                                    {{"support", static_cast<double>(model->supportCount())},
+                                     {"accuracy", counts.accuracy()},
+                                     {"tpr", counts.tpr()},
+                                     {"tnr", counts.tnr()},
+                                     {"updates", static_cast<double>(updatesSoFar)}}});
       char part[64];
       std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
                     seconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
@@ -124,7 +123,15 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
 }
 
 std::string demoReport(const DemoResults& r, const DemoOptions& o) {
-  const Table& t = r.ticks;
+  const PlanRows& t = r.ticks;
+  // The model's figures, once per tick: from FCL's rows.
+  const auto modelFigure = [&](const char* name) {
+    std::vector<double> values;
+    for (const PlanRow& row : t.rows) {
+      if (row.method == "FCL") values.push_back(row.figure(name));
+    }
+    return summarize(values);
+  };
   std::ostringstream md;
   char line[256];
   md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"
@@ -147,11 +154,10 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
                 r.updates, r.elapsedSeconds, static_cast<double>(r.updates) / r.elapsedSeconds,
                 r.meanUpdateSeconds * 1e3);
   md << line;
-  md << "- support points: " << meanStd(summarize(t.numbers("support", {{"method", "FCL"}})), 0)
-     << "; against FCL on " << o.testPoints << " fresh configurations per tick: accuracy "
-     << meanStd(summarize(t.numbers("accuracy", {{"method", "FCL"}})), 3) << ", TPR "
-     << meanStd(summarize(t.numbers("tpr", {{"method", "FCL"}})), 3) << ", TNR "
-     << meanStd(summarize(t.numbers("tnr", {{"method", "FCL"}})), 3) << "\n";
+  md << "- support points: " << meanStd(modelFigure("support"), 0) << "; against FCL on "
+     << o.testPoints << " fresh configurations per tick: accuracy "
+     << meanStd(modelFigure("accuracy"), 3) << ", TPR " << meanStd(modelFigure("tpr"), 3)
+     << ", TNR " << meanStd(modelFigure("tnr"), 3) << "\n";
   std::snprintf(
       line, sizeof line, "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
       durationText(r.fastronQuerySeconds).c_str(), durationText(r.gjkQuerySeconds).c_str(),

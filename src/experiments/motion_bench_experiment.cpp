@@ -17,10 +17,8 @@
 
 namespace fastron {
 
-using experiments::columnsWith;
-using experiments::joined;
 using experiments::MethodPlan;
-using experiments::planCells;
+using experiments::outcomeOf;
 using experiments::plannerOptions;
 using experiments::planTable;
 using experiments::planWithEachChecker;
@@ -114,11 +112,9 @@ double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t upd
 
 }  // namespace
 
-Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
+PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   if (o.queriesPerScene == 0) throw InvalidArgument("motion-bench: queries per scene must be >= 1");
-  Table table{columnsWith({"family", "problem", "query", "planner", "method", "note"},
-                          {"support", "train_s", "self_train_s", "learn_s"}),
-              {}};
+  PlanRows results;
   std::vector<Problem> problems = problemsIn(o.problems);
   if (o.quick) {  // two problems of each family
     std::map<std::string, std::size_t> kept;
@@ -168,16 +164,16 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     ProxyCollisionDetector proxy(fcl, features, params);
     const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
-    std::string support = std::to_string(calibrated.model->supportCount());
+    auto support = static_cast<double>(calibrated.model->supportCount());
     // The split source: this scene's obstacles (a model whose oracle ignores self-collision) and
     // the robot's self-collision model.
     std::shared_ptr<const CollisionChecker> split;
-    std::string splitSupport, splitTrain;
+    double splitSupport = 0, splitTrain = 0;
     if (selfModel) {
       ProxyCollisionDetector obstacles(std::make_shared<FclChecker>(robot, scene), features,
                                        withoutBand(params));
-      splitTrain = cell(train(obstacles, samples, updates));
-      splitSupport = std::to_string(obstacles.model()->supportCount());
+      splitTrain = train(obstacles, samples, updates);
+      splitSupport = static_cast<double>(obstacles.model()->supportCount());
       split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
           std::make_shared<ModelChecker>(obstacles.model()), selfModel});
     }
@@ -196,33 +192,45 @@ Table runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
       if (o.learnFromVerification && query > 0) {  // what the last query's plan taught it
         learnSeconds = std::chrono::duration<double>(proxy.learnObservations().total).count();
         calibrated = proxy.calibratedModel();
-        support = std::to_string(calibrated.model->supportCount());
+        support = static_cast<double>(calibrated.model->supportCount());
       }
+      const std::vector<std::pair<std::string, std::string>> queryColumns{
+          {"family", problem.family},
+          {"problem", problem.id},
+          {"query", std::to_string(query)},
+          {"note", query == 0 ? note : ""}};
       for (const MethodPlan& each : planWithEachChecker(calibrated, nullptr, fcl, limits, from, to,
                                                         options, p * o.queriesPerScene + query)) {
         if (o.learnFromVerification && each.method == "Fastron") {
           proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
         }
-        table.add(joined(
-            {problem.family, problem.id, std::to_string(query), "RRTConnect", each.method,
-             query == 0 ? note : ""},
-            joined(planCells(each, audit, o.resolution),
-                   {support, cell(trainSeconds), cell(selfTrainSeconds), cell(learnSeconds)})));
+        results.rows.push_back({queryColumns,
+                                "RRTConnect",
+                                each.method,
+                                outcomeOf(each, audit, o.resolution),
+                                {{"support", support},
+                                 {"train_s", trainSeconds},
+                                 {"self_train_s", selfTrainSeconds},
+                                 {"learn_s", learnSeconds}}});
       }
       if (split) {
         const MethodPlan each{"Fastron split", planVerified(split, fcl, limits, from, to, options),
                               0};
-        table.add(joined({problem.family, problem.id, std::to_string(query), "RRTConnect",
-                          each.method, query == 0 ? note : ""},
-                         joined(planCells(each, audit, o.resolution),
-                                {splitSupport, splitTrain, cell(selfTrainSeconds), "0"})));
+        results.rows.push_back({queryColumns,
+                                "RRTConnect",
+                                each.method,
+                                outcomeOf(each, audit, o.resolution),
+                                {{"support", splitSupport},
+                                 {"train_s", splitTrain},
+                                 {"self_train_s", selfTrainSeconds},
+                                 {"learn_s", 0}}});
       }
     }
   }
-  return table;
+  return results;
 }
 
-std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
+std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
   std::ostringstream md;
   md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\n"
      << featureSentence(o.features) << " Robot " << o.robot
@@ -246,25 +254,37 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
              : "")
      << "\n";
 
-  const auto statistic = [&](const Table::Filter& where, const char* column, bool median) {
-    const Summary s = summarize(r.numbers(column, where));
+  using experiments::RowFilter;
+  // The median (or mean) of `value` over the rows matching `where`.
+  const auto statistic = [&](const RowFilter& where, auto value, bool median) {
+    std::vector<double> values;
+    for (const PlanRow& row : r.rows) {
+      if (!where || where(row)) values.push_back(value(row));
+    }
+    const Summary s = summarize(values);
     return median ? s.median : s.mean;
+  };
+  const auto figure = [](const char* name) {
+    return [name](const PlanRow& row) { return row.figure(name); };
   };
   // Per family, and over all: medians and means of the total time per valid plan, training per
   // scene, and Fastron's end-to-end time (total + training / queries per scene).
-  const auto summary = [&](const Table::Filter& where) {
+  const auto summary = [&](const RowFilter& where) {
     std::ostringstream out;
     out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"});
-    Table::Filter fastron = where;
-    fastron.emplace_back("method", "Fastron");
-    fastron.emplace_back("query", "0");
-    const double train = statistic(fastron, "train_s", true);
-    Table::Filter solved = where;
-    solved.emplace_back("solved", "1");
-    const auto total = [&](const char* method, bool median) {
-      Table::Filter f = solved;
-      f.emplace_back("method", method);
-      return statistic(f, "total_s", median);
+    // A scene's training, once: the rows of its first query.
+    const auto firstQueryOf = [&](const char* method) -> RowFilter {
+      return [&, method](const PlanRow& row) {
+        return (!where || where(row)) && row.method == method && row.queryValue("query") == "0";
+      };
+    };
+    const double train = statistic(firstQueryOf("Fastron"), figure("train_s"), true);
+    const auto total = [&](const std::string& method, bool median) {
+      return statistic(
+          [&](const PlanRow& row) {
+            return (!where || where(row)) && row.method == method && row.outcome.solved;
+          },
+          [](const PlanRow& row) { return row.outcome.totalSeconds; }, median);
     };
     const double share = train / static_cast<double>(o.queriesPerScene);
     char line[512];
@@ -272,34 +292,40 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
                   "Training per scene: median %s (|S| median %.0f). End-to-end per query with %zu "
                   "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
                   "FCL %s (FCL / Fastron %.2fx).\n",
-                  durationText(train).c_str(), statistic(fastron, "support", true),
-                  o.queriesPerScene, o.queriesPerScene == 1 ? "y" : "ies",
+                  durationText(train).c_str(),
+                  statistic(firstQueryOf("Fastron"), figure("support"), true), o.queriesPerScene,
+                  o.queriesPerScene == 1 ? "y" : "ies",
                   durationText(total("Fastron", true) + share).c_str(),
                   durationText(total("Hybrid", true) + share).c_str(),
                   durationText(total("FCL", true)).c_str(),
                   total("FCL", true) / (total("Fastron", true) + share));
     out << '\n' << line;
-    Table::Filter split = where;
-    split.emplace_back("method", "Fastron split");
-    split.emplace_back("query", "0");
-    if (!r.numbers("train_s", split).empty()) {
-      const double splitTrain = statistic(split, "train_s", true);
+    const RowFilter split = firstQueryOf("Fastron split");
+    if (std::any_of(r.rows.begin(), r.rows.end(), split)) {
+      const double splitTrain = statistic(split, figure("train_s"), true);
       const double splitTotal = total("Fastron split", true);
-      std::snprintf(
-          line, sizeof line,
-          "Fastron split: obstacle model per scene median %s (|S| median %.0f), the "
-          "robot's self-collision model %s once; end-to-end per query %s without the "
-          "self-collision model (FCL / Fastron split %.2fx).\n",
-          durationText(splitTrain).c_str(), statistic(split, "support", true),
-          durationText(statistic(split, "self_train_s", true)).c_str(),
-          durationText(splitTotal + splitTrain / static_cast<double>(o.queriesPerScene)).c_str(),
-          total("FCL", true) / (splitTotal + splitTrain / static_cast<double>(o.queriesPerScene)));
+      const double endToEnd = splitTotal + splitTrain / static_cast<double>(o.queriesPerScene);
+      std::snprintf(line, sizeof line,
+                    "Fastron split: obstacle model per scene median %s (|S| median %.0f), the "
+                    "robot's self-collision model %s once; end-to-end per query %s without the "
+                    "self-collision model (FCL / Fastron split %.2fx).\n",
+                    durationText(splitTrain).c_str(), statistic(split, figure("support"), true),
+                    durationText(statistic(split, figure("self_train_s"), true)).c_str(),
+                    durationText(endToEnd).c_str(), total("FCL", true) / endToEnd);
       out << line;
     }
     return out.str();
   };
-  for (const std::string& family : r.distinct("family", {})) {
-    md << "\n## " << family << "\n\n" << summary({{"family", family}});
+  std::vector<std::string> families;
+  for (const PlanRow& row : r.rows) {
+    const std::string& family = row.queryValue("family");
+    if (std::find(families.begin(), families.end(), family) == families.end()) {
+      families.push_back(family);
+    }
+  }
+  for (const std::string& family : families) {
+    md << "\n## " << family << "\n\n"
+       << summary([&](const PlanRow& row) { return row.queryValue("family") == family; });
   }
   md << "\n## All families\n\n" << summary({});
 
@@ -311,23 +337,19 @@ std::string motionBenchReport(const Table& r, const MotionBenchOptions& o) {
     std::snprintf(buffer, sizeof buffer, "%.1f ms", seconds * 1e3);
     return std::string(buffer);
   };
-  const auto text = [&](const std::vector<std::string>& row, const char* column) {
-    return row[r.index(column)];
-  };
-  const auto number = [&](const std::vector<std::string>& row, const char* column) {
-    return std::stod(text(row, column));
-  };
-  for (const auto& row : r.rows) {
-    if (text(row, "query") != "0") continue;
-    const bool fastron = text(row, "method") == "Fastron";
+  for (const PlanRow& row : r.rows) {
+    if (row.queryValue("query") != "0") continue;
+    const PlanOutcome& plan = row.outcome;
     char length[32];
-    std::snprintf(length, sizeof length, "%.3f", number(row, "path_length"));
-    md << "| " << text(row, "family") << " | " << text(row, "problem") << " | "
-       << text(row, "method") << " | " << text(row, "status") << " | " << ms(number(row, "plan_s"))
-       << " | " << ms(number(row, "verify_s")) << " | " << ms(number(row, "repair_s")) << " | "
-       << ms(number(row, "total_s")) << " | " << length << " | " << text(row, "collides_fcl")
-       << " | " << (fastron ? ms(number(row, "train_s")) : "—") << " | " << text(row, "note")
-       << " |\n";
+    std::snprintf(length, sizeof length, "%.3f", plan.pathLength);
+    const std::string collides =
+        plan.collidesUnderAudit ? (*plan.collidesUnderAudit ? "1" : "0") : "nan";
+    md << "| " << row.queryValue("family") << " | " << row.queryValue("problem") << " | "
+       << row.method << " | " << plan.status << " | " << ms(plan.planSeconds) << " | "
+       << ms(plan.verifySeconds) << " | " << ms(plan.repairSeconds) << " | "
+       << ms(plan.totalSeconds) << " | " << length << " | " << collides << " | "
+       << (row.method == "Fastron" ? ms(row.figure("train_s")) : "—") << " | "
+       << row.queryValue("note") << " |\n";
   }
   return md.str();
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <iterator>
 #include <sstream>
 
 #include "fastron/core/active_learning.h"
@@ -11,50 +12,27 @@
 #include "fastron/planning/motion.h"
 
 namespace fastron::experiments {
-namespace {
-
-const std::vector<std::string> kPlanColumns{
-    "solved",   "status",     "plan_s",       "simplify_s",  "verify_s",
-    "repair_s", "total_s",    "path_length",  "waypoints",   "stretches",
-    "fallback", "exact_ends", "collides_fcl", "exact_share", "planned_on"};
-
-}  // namespace
-
-std::vector<std::string> columnsWith(std::vector<std::string> first,
-                                     const std::vector<std::string>& last) {
-  first.insert(first.end(), kPlanColumns.begin(), kPlanColumns.end());
-  first.insert(first.end(), last.begin(), last.end());
-  return first;
-}
-
-/// The plan's cells of a result row; `audit` is an FCL checker the planner never used.
-std::vector<std::string> planCells(const MethodPlan& method, const CollisionChecker& audit,
-                                   double resolution) {
+PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, double resolution) {
   const VerifiedPlan& plan = method.plan;
-  const bool solved = plan.solved();
-  const double collides =
-      solved ? (checkPath(audit, plan.path, resolution).valid() ? 0.0 : 1.0) : std::nan("");
-  return {solved ? "1" : "0",
-          plan.failure.empty() ? toString(plan.status) : plan.failure,
-          cell(seconds(plan.planTime)),
-          cell(seconds(plan.simplifyTime)),
-          cell(seconds(plan.verifyTime)),
-          cell(seconds(plan.repairTime)),
-          cell(seconds(plan.totalTime())),
-          cell(solved ? pathLength(plan.path) : std::nan("")),
-          std::to_string(plan.path.size()),
-          std::to_string(plan.invalidStretches),
-          plan.wholePathReplanned ? "1" : "0",
-          plan.substituteEnds ? "1" : "0",
-          cell(collides),
-          cell(method.exactShare),
-          plan.plannedOn};
-}
-
-std::vector<std::string> joined(std::vector<std::string> first,
-                                const std::vector<std::string>& last) {
-  first.insert(first.end(), last.begin(), last.end());
-  return first;
+  PlanOutcome o;
+  o.solved = plan.solved();
+  o.status = plan.failure.empty() ? toString(plan.status) : plan.failure;
+  o.planSeconds = seconds(plan.planTime);
+  o.simplifySeconds = seconds(plan.simplifyTime);
+  o.verifySeconds = seconds(plan.verifyTime);
+  o.repairSeconds = seconds(plan.repairTime);
+  o.totalSeconds = seconds(plan.totalTime());
+  o.waypoints = plan.path.size();
+  o.repairedStretches = plan.invalidStretches;
+  o.wholeMotionReplanned = plan.wholePathReplanned;
+  o.substituteEnds = plan.substituteEnds;
+  o.exactShare = method.exactShare;
+  o.plannedOn = plan.plannedOn;
+  if (o.solved) {
+    o.pathLength = pathLength(plan.path);
+    o.collidesUnderAudit = !checkPath(audit, plan.path, resolution).valid();
+  }
+  return o;
 }
 
 /// Fastron, Hybrid (Fastron with FCL inside the model's calibrated band) and GJK, each verified
@@ -133,9 +111,40 @@ std::string progressLine(const std::string& what, std::size_t i, std::size_t n) 
   return what + " " + std::to_string(i + 1) + "/" + std::to_string(n);
 }
 
+namespace {
+
+/// The rows matching `where`, and `more`.
+std::vector<const PlanRow*> select(const PlanRows& r, const RowFilter& where,
+                                   const RowFilter& more = {}) {
+  std::vector<const PlanRow*> out;
+  for (const PlanRow& row : r.rows) {
+    if ((!where || where(row)) && (!more || more(row))) out.push_back(&row);
+  }
+  return out;
+}
+
+template <class Value>
+Summary summaryOf(const std::vector<const PlanRow*>& rows, Value value) {
+  std::vector<double> values;
+  for (const PlanRow* row : rows) values.push_back(value(row->outcome));
+  return summarize(values);
+}
+
+}  // namespace
+
+std::vector<std::string> methodsOf(const PlanRows& r, const RowFilter& where) {
+  std::vector<std::string> methods;
+  for (const PlanRow* row : select(r, where)) {
+    if (std::find(methods.begin(), methods.end(), row->method) == methods.end()) {
+      methods.push_back(row->method);
+    }
+  }
+  return methods;
+}
+
 /// The Markdown table of plan results of the rows matching `where`, one line per (planner,
 /// method): success rate, then means ± std over solved plans.
-std::string planTable(const Table& r, const Table::Filter& where,
+std::string planTable(const PlanRows& r, const RowFilter& where,
                       const std::vector<std::string>& planners) {
   std::ostringstream md;
   md << "| Planner | Method | Success | Plan (of which simplify) | Verify | Repair | Total | Path "
@@ -143,39 +152,43 @@ std::string planTable(const Table& r, const Table::Filter& where,
         "Final paths colliding (FCL) |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
-    for (const std::string& method : r.distinct("method", where)) {
-      Table::Filter all = where;
-      all.emplace_back("planner", planner);
-      all.emplace_back("method", method);
-      const std::vector<double> solved = r.numbers("solved", all);
-      if (solved.empty()) continue;
-      Table::Filter ok = all;
-      ok.emplace_back("solved", "1");
-      const auto stat = [&](const char* column) { return summarize(r.numbers(column, ok)); };
-      const auto solvedCount =
-          static_cast<std::size_t>(std::count(solved.begin(), solved.end(), 1.0));
-      const std::vector<double> collides = r.numbers("collides_fcl", ok);
-      const auto colliding =
-          static_cast<std::size_t>(std::count(collides.begin(), collides.end(), 1.0));
+    for (const std::string& method : methodsOf(r, where)) {
+      const auto all = select(r, where, [&](const PlanRow& row) {
+        return row.planner == planner && row.method == method;
+      });
+      if (all.empty()) continue;
+      std::vector<const PlanRow*> ok;
+      std::copy_if(all.begin(), all.end(), std::back_inserter(ok),
+                   [](const PlanRow* row) { return row->outcome.solved; });
+      const auto stat = [&](auto value) { return summaryOf(ok, value); };
+      const auto colliding = std::count_if(ok.begin(), ok.end(), [](const PlanRow* row) {
+        return row->outcome.collidesUnderAudit.value_or(false);
+      });
+      const auto repaired = std::count_if(ok.begin(), ok.end(), [](const PlanRow* row) {
+        return row->outcome.repairedStretches > 0;
+      });
       char rate[64];
       std::snprintf(rate, sizeof rate, "%.2f (%zu/%zu)",
-                    static_cast<double>(solvedCount) / static_cast<double>(solved.size()),
-                    solvedCount, solved.size());
-      const std::vector<double> stretches = r.numbers("stretches", ok);
-      const auto repaired =
-          std::count_if(stretches.begin(), stretches.end(), [](double s) { return s > 0; });
+                    static_cast<double>(ok.size()) / static_cast<double>(all.size()), ok.size(),
+                    all.size());
       char repairedShare[64];
       std::snprintf(repairedShare, sizeof repairedShare, "%.0f%%",
-                    stretches.empty() ? 0.0
-                                      : 100.0 * static_cast<double>(repaired) /
-                                            static_cast<double>(stretches.size()));
+                    ok.empty()
+                        ? 0.0
+                        : 100.0 * static_cast<double>(repaired) / static_cast<double>(ok.size()));
       md << "| " << planner << " | " << method << " | " << rate << " | "
-         << durationMeanStd(stat("plan_s")) << " (" << durationMeanStd(stat("simplify_s")) << ") | "
-         << durationMeanStd(stat("verify_s")) << " | " << durationMeanStd(stat("repair_s")) << " | "
-         << durationMeanStd(stat("total_s")) << " | " << meanStd(stat("path_length"), 2) << " | "
-         << meanStd(stat("stretches"), 2) << " | " << repairedShare << " | "
-         << meanStd(summarize(r.numbers("exact_share", all)), 3) << " | " << colliding << " of "
-         << collides.size() << " |\n";
+         << durationMeanStd(stat([](const PlanOutcome& o) { return o.planSeconds; })) << " ("
+         << durationMeanStd(stat([](const PlanOutcome& o) { return o.simplifySeconds; })) << ") | "
+         << durationMeanStd(stat([](const PlanOutcome& o) { return o.verifySeconds; })) << " | "
+         << durationMeanStd(stat([](const PlanOutcome& o) { return o.repairSeconds; })) << " | "
+         << durationMeanStd(stat([](const PlanOutcome& o) { return o.totalSeconds; })) << " | "
+         << meanStd(stat([](const PlanOutcome& o) { return o.pathLength; }), 2) << " | "
+         << meanStd(
+                stat([](const PlanOutcome& o) { return static_cast<double>(o.repairedStretches); }),
+                2)
+         << " | " << repairedShare << " | "
+         << meanStd(summaryOf(all, [](const PlanOutcome& o) { return o.exactShare; }), 3) << " | "
+         << colliding << " of " << ok.size() << " |\n";
     }
   }
   return md.str();
@@ -183,7 +196,7 @@ std::string planTable(const Table& r, const Table::Filter& where,
 
 /// Per planner, FCL's total time over each other method's, from means and from medians over
 /// solved plans.
-std::string speedups(const Table& r, const Table::Filter& where,
+std::string speedups(const PlanRows& r, const RowFilter& where,
                      const std::vector<std::string>& planners) {
   std::ostringstream md;
   // Means carry the paper's comparison; medians are not swayed by the odd query that runs into
@@ -193,16 +206,17 @@ std::string speedups(const Table& r, const Table::Filter& where,
        << " total time of FCL / of each method (higher is faster than FCL):";
     for (const std::string& planner : planners) {
       const auto statistic = [&](const std::string& method) {
-        Table::Filter filter = where;
-        filter.emplace_back("planner", planner);
-        filter.emplace_back("method", method);
-        filter.emplace_back("solved", "1");
-        const Summary s = summarize(r.numbers("total_s", filter));
+        const Summary s = summaryOf(select(r, where,
+                                           [&](const PlanRow& row) {
+                                             return row.planner == planner &&
+                                                    row.method == method && row.outcome.solved;
+                                           }),
+                                    [](const PlanOutcome& o) { return o.totalSeconds; });
         return median ? s.median : s.mean;
       };
       const double base = statistic("FCL");
       md << (planner == planners.front() ? " " : "; ") << planner << ":";
-      for (const std::string& method : r.distinct("method", where)) {
+      for (const std::string& method : methodsOf(r, where)) {
         if (method == "FCL") continue;
         char buffer[64];
         std::snprintf(buffer, sizeof buffer, " %s %.1fx", method.c_str(), base / statistic(method));

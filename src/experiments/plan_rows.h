@@ -1,9 +1,10 @@
 #pragma once
-// What the planning experiments share (internal to the experiments library): the columns of a
-// plan's result row, planning one query with every checker, drawing free queries, and the
+// What the planning experiments share (internal to the experiments library): a plan's outcome
+// for its result row, planning one query with every checker, drawing free queries, and the
 // Markdown tables of plan results.
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -21,14 +23,6 @@ namespace fastron::experiments {
 
 using CheckerPtr = std::shared_ptr<const CollisionChecker>;
 
-/// `first`, the columns of a plan (solved, status, plan_s, ..., exact_share, planned_on), then
-/// `last`.
-std::vector<std::string> columnsWith(std::vector<std::string> first,
-                                     const std::vector<std::string>& last = {});
-
-std::vector<std::string> joined(std::vector<std::string> first,
-                                const std::vector<std::string>& last);
-
 struct MethodPlan {
   std::string method;
   VerifiedPlan plan;
@@ -36,9 +30,9 @@ struct MethodPlan {
   double exactShare = 0;
 };
 
-/// The plan's cells of a result row; `audit` is an FCL checker the planner never used.
-std::vector<std::string> planCells(const MethodPlan& method, const CollisionChecker& audit,
-                                   double resolution);
+/// The plan's outcome for a result row; `audit` is an FCL checker the planner never used, which
+/// re-checks a solved path at `resolution`.
+PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, double resolution);
 
 /// Fastron, Hybrid (Fastron with FCL inside the model's calibrated band) and GJK, each verified
 /// and repaired with FCL, and FCL itself, on one query; returned in that order. Hybrid only when
@@ -84,14 +78,20 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> oppositeEnds(const JointLimits& limi
 
 std::string progressLine(const std::string& what, std::size_t i, std::size_t n);
 
+/// Which rows a table or a statistic takes; every row when empty.
+using RowFilter = std::function<bool(const PlanRow&)>;
+
+/// The methods of the rows matching `where`, in order of appearance.
+std::vector<std::string> methodsOf(const PlanRows& r, const RowFilter& where = {});
+
 /// The Markdown table of plan results of the rows matching `where`, one line per (planner,
 /// method): success rate, then means ± std over solved plans.
-std::string planTable(const Table& r, const Table::Filter& where,
+std::string planTable(const PlanRows& r, const RowFilter& where,
                       const std::vector<std::string>& planners);
 
 /// Per planner, FCL's total time over each other method's, from means and from medians over
 /// solved plans.
-std::string speedups(const Table& r, const Table::Filter& where,
+std::string speedups(const PlanRows& r, const RowFilter& where,
                      const std::vector<std::string>& planners);
 
 std::vector<std::string> plannerNames(const std::vector<PlannerType>& types);

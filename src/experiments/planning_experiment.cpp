@@ -15,11 +15,9 @@ namespace fastron {
 
 using experiments::baxterWithJoints;
 using experiments::caseFor;
-using experiments::columnsWith;
-using experiments::joined;
 using experiments::MethodPlan;
 using experiments::oppositeEnds;
-using experiments::planCells;
+using experiments::outcomeOf;
 using experiments::plannerNames;
 using experiments::plannerOptions;
 using experiments::planTable;
@@ -29,9 +27,8 @@ using experiments::proxyParams;
 using experiments::sceneForTrial;
 using experiments::speedups;
 
-Table runPlanning(const PlanningOptions& o, const Progress& progress) {
-  Table table{columnsWith({"case", "trial", "planner", "method"}, {"support", "accuracy", "tpr"}),
-              {}};
+PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
+  PlanRows results;
   const std::size_t initial = o.quick ? 1000 : 3000;
   const std::size_t testPoints = o.quick ? 300 : 1000;
   for (const std::string& name : o.cases) {
@@ -66,19 +63,21 @@ Table runPlanning(const PlanningOptions& o, const Progress& progress) {
         const PlannerOptions options = plannerOptions(o, type);
         for (const MethodPlan& each :
              planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial + k)) {
-          const auto& [method, plan, exactShare] = each;
-          table.add(joined({name, std::to_string(trial), plannerName(type), method},
-                           joined(planCells(each, audit, o.resolution),
-                                  {std::to_string(model->supportCount()), cell(counts.accuracy()),
-                                   cell(counts.tpr())})));
+          results.rows.push_back({{{"case", name}, {"trial", std::to_string(trial)}},
+                                  plannerName(type),
+                                  each.method,
+                                  outcomeOf(each, audit, o.resolution),
+                                  {{"support", static_cast<double>(model->supportCount())},
+                                   {"accuracy", counts.accuracy()},
+                                   {"tpr", counts.tpr()}}});
         }
       }
     }
   }
-  return table;
+  return results;
 }
 
-std::string planningReport(const Table& r, const PlanningOptions& o) {
+std::string planningReport(const PlanRows& r, const PlanningOptions& o) {
   std::ostringstream md;
   md << "# Motion planning with moving obstacles (paper, Sec. IV-C, Figs. 13 and 14)\n\n"
      << featureSentence(o.features) << ' '
@@ -97,12 +96,19 @@ std::string planningReport(const Table& r, const PlanningOptions& o) {
         "with 7 joints and one box and up to 6 times faster initial plans with three boxes.\n";
   const auto planners = plannerNames(o.planners);
   for (const std::string& name : o.cases) {
-    const Table::Filter fastron{{"case", name}, {"method", "Fastron"}, {"planner", planners[0]}};
+    const auto inCase = [&](const PlanRow& row) { return row.queryValue("case") == name; };
+    // The model's figures, once per trial: from Fastron's rows of the first planner.
+    std::vector<double> support, accuracy, tpr;
+    for (const PlanRow& row : r.rows) {
+      if (!inCase(row) || row.method != "Fastron" || row.planner != planners[0]) continue;
+      support.push_back(row.figure("support"));
+      accuracy.push_back(row.figure("accuracy"));
+      tpr.push_back(row.figure("tpr"));
+    }
     md << "\n## " << name << "\n\nModel (per trial, against FCL on fresh uniform configurations): "
-       << "|S| " << meanStd(summarize(r.numbers("support", fastron)), 0) << ", accuracy "
-       << meanStd(summarize(r.numbers("accuracy", fastron)), 3) << ", TPR "
-       << meanStd(summarize(r.numbers("tpr", fastron)), 3) << ".\n\n"
-       << planTable(r, {{"case", name}}, planners) << speedups(r, {{"case", name}}, planners);
+       << "|S| " << meanStd(summarize(support), 0) << ", accuracy "
+       << meanStd(summarize(accuracy), 3) << ", TPR " << meanStd(summarize(tpr), 3) << ".\n\n"
+       << planTable(r, inCase, planners) << speedups(r, inCase, planners);
   }
   return md.str();
 }

@@ -13,11 +13,9 @@
 
 namespace fastron {
 
-using experiments::columnsWith;
 using experiments::freeUnder;
-using experiments::joined;
 using experiments::MethodPlan;
-using experiments::planCells;
+using experiments::outcomeOf;
 using experiments::plannerOptions;
 using experiments::planTable;
 using experiments::planWithEachChecker;
@@ -25,8 +23,8 @@ using experiments::progressLine;
 using experiments::sampleReaching;
 using experiments::speedups;
 
-Table runShelf(const ShelfOptions& o, const Progress& progress) {
-  Table table{columnsWith({"trial", "planner", "method"}, {"support"}), {}};
+PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
+  PlanRows results;
   const Robot ur3 = loadRobot("ur3");
   // Joints within +-pi (the UR3 allows +-2 pi): one turn is all a reach into a shelf needs, and it
   // keeps the C-space one that an RRT explores in seconds.
@@ -72,16 +70,17 @@ Table runShelf(const ShelfOptions& o, const Progress& progress) {
     const PlannerOptions options = plannerOptions(o, PlannerType::Rrt);
     for (const MethodPlan& each :
          planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial)) {
-      const auto& [method, plan, exactShare] = each;
-      table.add(joined(
-          {std::to_string(trial), "RRT", method},
-          joined(planCells(each, audit, o.resolution), {std::to_string(model->supportCount())})));
+      results.rows.push_back({{{"trial", std::to_string(trial)}},
+                              "RRT",
+                              each.method,
+                              outcomeOf(each, audit, o.resolution),
+                              {{"support", static_cast<double>(model->supportCount())}}});
     }
   }
-  return table;
+  return results;
 }
 
-std::string shelfReport(const Table& r, const ShelfOptions& o) {
+std::string shelfReport(const PlanRows& r, const ShelfOptions& o) {
   std::ostringstream md;
   md << "# UR3 shelf (paper, Sec. V-A)\n\n"
      << featureSentence(o.features)

@@ -14,11 +14,9 @@
 
 namespace fastron {
 
-using experiments::columnsWith;
 using experiments::freeUnder;
-using experiments::joined;
 using experiments::MethodPlan;
-using experiments::planCells;
+using experiments::outcomeOf;
 using experiments::plannerOptions;
 using experiments::planTable;
 using experiments::planWithEachChecker;
@@ -27,8 +25,8 @@ using experiments::sampleFree;
 using experiments::sampleReaching;
 using experiments::uniformIn;
 
-Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
-  Table table{columnsWith({"tick", "planner", "method"}, {"support", "model_updates"}), {}};
+PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
+  PlanRows results;
   const Robot psm = loadRobot("psm");
   const JointLimits limits = psm.limits();
   Scene scene = loadScene(dataDirectory() / "scenes" / "psm_surgical.yaml");
@@ -91,11 +89,12 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
     const auto plans =
         planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options, tick);
     for (const MethodPlan& each : plans) {
-      const auto& [method, plan, exactShare] = each;
-      table.add(
-          joined({std::to_string(tick), "RRT", method},
-                 joined(planCells(each, audit, o.resolution),
-                        {std::to_string(model->supportCount()), std::to_string(updates.load())})));
+      results.rows.push_back({{{"tick", std::to_string(tick)}},
+                              "RRT",
+                              each.method,
+                              outcomeOf(each, audit, o.resolution),
+                              {{"support", static_cast<double>(model->supportCount())},
+                               {"model_updates", static_cast<double>(updates.load())}}});
     }
     // PSM3 follows the Fastron plan for one tick; at the goal it turns back.
     const VerifiedPlan& followed = plans.front().plan;
@@ -115,10 +114,10 @@ Table runSurgical(const SurgicalOptions& o, const Progress& progress) {
     if ((current - goal).norm() < 1e-9) towardTarget = !towardTarget;
   }
   proxy.stopBackground();
-  return table;
+  return results;
 }
 
-std::string surgicalReport(const Table& r, const SurgicalOptions& o) {
+std::string surgicalReport(const PlanRows& r, const SurgicalOptions& o) {
   std::ostringstream md;
   md << "# Autonomous surgical assistant (paper, Sec. V-B)\n\n"
      << featureSentence(o.features)
@@ -133,9 +132,15 @@ std::string surgicalReport(const Table& r, const SurgicalOptions& o) {
      << simplificationSentence(o.simplifyTime)
      << "\n\nThe paper (MATLAB): 56 Hz replanning with Fastron, 10 Hz with GJK.\n\n"
      << "| Method | Replanning rate | Success | Mean total time |\n|---|---|---|---|\n";
-  for (const std::string& method : r.distinct("method")) {
-    const Summary total = summarize(r.numbers("total_s", {{"method", method}, {"solved", "1"}}));
-    const Summary success = summarize(r.numbers("solved", {{"method", method}}));
+  for (const std::string& method : experiments::methodsOf(r)) {
+    std::vector<double> totals, solved;
+    for (const PlanRow& row : r.rows) {
+      if (row.method != method) continue;
+      solved.push_back(row.outcome.solved ? 1.0 : 0.0);
+      if (row.outcome.solved) totals.push_back(row.outcome.totalSeconds);
+    }
+    const Summary total = summarize(totals);
+    const Summary success = summarize(solved);
     char line[160];
     std::snprintf(line, sizeof line, "| %s | %.1f Hz | %.2f | %s |\n", method.c_str(),
                   total.count ? 1.0 / total.mean : std::nan(""), success.mean,

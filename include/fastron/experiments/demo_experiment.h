@@ -10,6 +10,7 @@
 #include "fastron/core/uncertainty_band.h"
 
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -35,9 +36,9 @@ struct DemoOptions {
 
 /// `fastron demo`: the paper in one run.
 struct DemoResults {
-  /// One row per (tick, method): runPlanning's plan columns plus support, accuracy, tpr, tnr
-  /// (the current model against FCL) and updates (background model updates so far).
-  Table ticks;
+  /// One row per (tick, method), with the figures support, accuracy, tpr, tnr (the current
+  /// model against FCL) and updates (background model updates so far).
+  PlanRows ticks;
   std::shared_ptr<const Model> model;  ///< the last model
   Dataset test;                        ///< the last tick's test configurations, FCL labels
   double fastronQuerySeconds = 0, gjkQuerySeconds = 0, fclQuerySeconds = 0;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -49,7 +50,7 @@ struct MotionBenchOptions {
 /// is the request. A goal that touches objects with the hand only is a grasp: hand-object
 /// contacts are allowed (as MoveIt's touch links do), and `note` says so. Throws FileError naming
 /// the folder when it holds no problems, and the file of a problem that cannot be read.
-Table runMotionBench(const MotionBenchOptions& options, const Progress& progress);
-std::string motionBenchReport(const Table& results, const MotionBenchOptions& options);
+PlanRows runMotionBench(const MotionBenchOptions& options, const Progress& progress);
+std::string motionBenchReport(const PlanRows& results, const MotionBenchOptions& options);
 
 }  // namespace fastron

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -25,11 +26,9 @@ struct PlanningOptions {
   FeatureKind features = FeatureKind::Kinematic;
 };
 
-/// One row per (case, trial, planner, method): solved, status, plan_s, verify_s, repair_s,
-/// total_s, path_length, waypoints, stretches (replanned), fallback (the whole motion was planned
-/// on FCL), exact_ends (the approximate checker wrongly thought an end collided: see
-/// planVerified), collides_fcl (the final path checked by an independent FCL checker).
-Table runPlanning(const PlanningOptions& options, const Progress& progress);
-std::string planningReport(const Table& results, const PlanningOptions& options);
+/// One row per (case, trial, planner, method), with the model's support, accuracy and tpr
+/// (against FCL on fresh uniform configurations) as figures.
+PlanRows runPlanning(const PlanningOptions& options, const Progress& progress);
+std::string planningReport(const PlanRows& results, const PlanningOptions& options);
 
 }  // namespace fastron

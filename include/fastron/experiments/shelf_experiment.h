@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -23,7 +24,7 @@ struct ShelfOptions {
 
 /// UR3 from the lower to the higher shelf with RRT: one row per (trial, method), columns as
 /// runPlanning's.
-Table runShelf(const ShelfOptions& options, const Progress& progress);
-std::string shelfReport(const Table& results, const ShelfOptions& options);
+PlanRows runShelf(const ShelfOptions& options, const Progress& progress);
+std::string shelfReport(const PlanRows& results, const ShelfOptions& options);
 
 }  // namespace fastron

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fastron/experiments/common.h"
+#include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron {
@@ -25,7 +26,7 @@ struct SurgicalOptions {
 /// PSM3 replans an RRT every tick between home and a target among PSM1 and PSM2 moving on
 /// circles, with the model updated in the background: one row per (tick, method), columns as
 /// runPlanning's plus the model's support count.
-Table runSurgical(const SurgicalOptions& options, const Progress& progress);
-std::string surgicalReport(const Table& results, const SurgicalOptions& options);
+PlanRows runSurgical(const SurgicalOptions& options, const Progress& progress);
+std::string surgicalReport(const PlanRows& results, const SurgicalOptions& options);
 
 }  // namespace fastron

@@ -1,0 +1,66 @@
+#pragma once
+// The results of the planning experiments (plan, shelf, surgical, demo, motion-bench), typed: one
+// row per planned query and method. They become text in one place: PlanRows::table() for
+// results.csv, and the Markdown tables the reports share.
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "fastron/experiments/common.h"
+
+namespace fastron {
+
+/// How one method's plan of one query went.
+struct PlanOutcome {
+  bool solved = false;
+  std::string status;          ///< "solved", or why not
+  double planSeconds = 0;      ///< the plan itself, simplification included
+  double simplifySeconds = 0;  ///< of which shortening the path
+  double verifySeconds = 0;
+  double repairSeconds = 0;
+  double totalSeconds = 0;           ///< plan + verify + repair
+  double pathLength = std::nan("");  ///< joint space; NaN unless solved
+  std::size_t waypoints = 0;
+  std::size_t repairedStretches = 0;
+  bool wholeMotionReplanned = false;  ///< the motion was planned again on the exact checker
+  bool substituteEnds = false;        ///< planned between substitutes of start and goal
+  /// The final path re-checked by an FCL checker the planner never used; empty unless solved.
+  std::optional<bool> collidesUnderAudit;
+  double exactShare = 0;  ///< of the plan's own collision queries, the share FCL answered
+  std::string plannedOn;  ///< the source whose path was verified (VerifiedPlan::plannedOn)
+};
+
+/// One plan of one query by one method.
+struct PlanRow {
+  /// What was planned, as (column, value) in column order: e.g. case and trial, or family,
+  /// problem, query and note.
+  std::vector<std::pair<std::string, std::string>> query;
+  std::string planner;
+  std::string method;
+  PlanOutcome outcome;
+  /// The experiment's own figures beside the plan, (column, value): e.g. the model's support
+  /// count, accuracy and TPR, or the scene's training seconds.
+  std::vector<std::pair<std::string, double>> figures;
+
+  /// The value of a query column; throws InvalidArgument naming a column the row does not have.
+  const std::string& queryValue(std::string_view column) const;
+  /// The value of a figure; throws InvalidArgument naming a figure the row does not have.
+  double figure(std::string_view column) const;
+};
+
+struct PlanRows {
+  std::vector<PlanRow> rows;
+
+  /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
+  /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
+  /// fallback, exact_ends, collides_fcl, exact_share, planned_on), then the figures. Throws
+  /// InvalidArgument when the rows do not share their query and figure columns.
+  Table table() const;
+};
+
+}  // namespace fastron
