@@ -52,8 +52,9 @@ class Workers {
     std::unique_lock lock(mutex_);
     while (true) {
       if (offers_.empty() && !stopping_) {
-        // Work tends to come in bursts (a planner verifying path after path): watch for a new
-        // offer for a while before sleeping, since waking from sleep costs about 12 us.
+        // Work comes in bursts (an update labels its support set, its new points and its
+        // calibration points one after the other): watch for a new offer for a while before
+        // sleeping, since waking from sleep costs about 12 us.
         lock.unlock();
         const auto until = std::chrono::steady_clock::now() + kWatch;
         while (offered_.load(std::memory_order_acquire) == 0 &&
