@@ -4,9 +4,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "fastron/core/model.h"
+#include "fastron/core/reference_trainer.h"
 #include "fastron/core/trainer.h"
 #include "test_worlds.h"
 
@@ -18,9 +20,13 @@ double paperGamma(std::size_t d) {
   return d <= 2 ? 30 : d <= 4 ? 10 : 5;
 }
 
-// Balls filling a sizeable share of [-1, 1]^d, so both classes are present at every d.
+// Balls filling a sizeable share of [-1, 1]^d, so both classes are present at every d. Above 7
+// dimensions (standing for task-space features, which depend on 7 joints) the balls are in the
+// first 7 coordinates: in [-1, 1]^27 a ball world is all one class.
 Labels ballLabels(const Configurations& q, std::size_t d) {
-  return test::BallWorld::random(d, 6, 0.35 * std::sqrt(static_cast<double>(d)), 2).label(q);
+  const std::size_t k = std::min<std::size_t>(d, 7);
+  return test::BallWorld::random(k, 6, 0.35 * std::sqrt(static_cast<double>(k)), 2)
+      .label(q.leftCols(static_cast<Eigen::Index>(k)));
 }
 
 void BM_Train(benchmark::State& state) {
@@ -34,8 +40,10 @@ void BM_Train(benchmark::State& state) {
   params.maxSupportPoints = n;
   UpdateReport report;
   for (auto _ : state) {
+    state.PauseTiming();  // Algorithm 1 only, as BM_TrainReference
     Trainer trainer(JointLimits::unitBox(d), params);
     trainer.addPoints(q, y);
+    state.ResumeTiming();
     report = trainer.update();
     benchmark::DoNotOptimize(trainer.weights().data());
   }
@@ -45,9 +53,36 @@ void BM_Train(benchmark::State& state) {
 }
 BENCHMARK(BM_Train)
     ->ArgsProduct({{1000, 2000, 5000, 10000, 20000}, {2, 4, 7}})
+    ->ArgsProduct({{8000}, {7, 9, 18, 27}})
     ->Args({5000, 3})
     ->Args({5000, 5})
     ->Args({5000, 6})
+    ->ArgNames({"N", "d"})
+    ->Unit(benchmark::kMillisecond);
+
+// The same training with the plain scalar Algorithm 1 (reference_trainer.h): the baseline of
+// BM_Train, measured in the same run. d = 9-27 stands for task-space features (3 coordinates of
+// 3-9 control points).
+void BM_TrainReference(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const Configurations q = test::uniformPoints(n, d, 1);
+  const Labels y = ballLabels(q, d);
+  TrainParams params;
+  params.kernel.gamma = paperGamma(d);
+  params.maxIterations = 1'000'000;
+  params.maxSupportPoints = n;
+  UpdateReport report;
+  for (auto _ : state) {
+    const ReferenceTraining result = trainReference(q, y, params);
+    report = result.report;
+    benchmark::DoNotOptimize(result.alpha.data());
+  }
+  state.counters["support"] = static_cast<double>(report.supportCount);
+  state.counters["iterations"] = static_cast<double>(report.iterations);
+}
+BENCHMARK(BM_TrainReference)
+    ->ArgsProduct({{8000}, {7, 9, 18, 27}})
     ->ArgNames({"N", "d"})
     ->Unit(benchmark::kMillisecond);
 

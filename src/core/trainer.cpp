@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "fastron/core/error.h"
@@ -16,6 +17,57 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
                             "] must be +1 or -1, got " + std::to_string(labels[i]));
     }
   }
+}
+
+// Gram columns are double: F is compared against 0 (Claim 1) and the revert safeguard counts
+// signs, and float kernel values (rounded to 1e-7 relative) move F by up to 1e-4 when weights
+// reach beta = 500 over a few thousand support points, more than the smallest margins training
+// leaves. In double, one pass per feature column over contiguous memory, then the kernel, is
+// vectorised by the compiler (8 lanes with AVX-512): 8.5 us for 10000 x 7 on the project's
+// machine, against 113-225 us for Eigen expressions that allocated a fresh column each time.
+
+/// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()). Rows go in blocks whose squared
+/// distances stay in L1 while every feature column adds to them: with 27 features, summing into
+/// the whole column instead moved it through the cache 27 times.
+void gramColumn(const Eigen::MatrixXd& x, Eigen::Index i, Eigen::Index from, const Kernel& kernel,
+                double* k) {
+  constexpr Eigen::Index kBlock = 256;
+  const Eigen::Index n = x.rows() - from;
+  const Eigen::Index features = x.cols();
+  const Kernel rq{KernelType::RationalQuadratic, kernel.gamma};
+  const Kernel gaussian{KernelType::Gaussian, kernel.gamma};
+  for (Eigen::Index begin = 0; begin < n; begin += kBlock) {
+    const Eigen::Index size = std::min(kBlock, n - begin);
+    double* r2 = k + begin;
+    std::fill(r2, r2 + size, 0.0);
+    for (Eigen::Index c = 0; c < features; ++c) {
+      const double* column = x.col(c).data() + from + begin;
+      const double xi = x(i, c);
+      for (Eigen::Index j = 0; j < size; ++j) {
+        const double t = column[j] - xi;
+        r2[j] += t * t;
+      }
+    }
+    if (kernel.type == KernelType::RationalQuadratic) {
+      for (Eigen::Index j = 0; j < size; ++j) r2[j] = rq(r2[j]);
+    } else {
+      for (Eigen::Index j = 0; j < size; ++j) r2[j] = gaussian(r2[j]);
+    }
+  }
+}
+
+/// f += delta k, then the most negative margin y_j f_j and its index (the first one on ties).
+/// Three passes that each vectorise (a fused loop does not: the compiler keeps a floating-point
+/// minimum in order), over data that stays in cache.
+double addAndFindWorst(Eigen::VectorXd& f, const Eigen::VectorXd& y, const double* k, double delta,
+                       Eigen::Index& worst) {
+  const Eigen::Index n = f.size();
+  double* fj = f.data();
+  for (Eigen::Index j = 0; j < n; ++j) fj[j] += delta * k[j];
+  const double lowest = (y.array() * f.array()).minCoeff();
+  worst = 0;
+  while (worst + 1 < n && y[worst] * f[worst] != lowest) ++worst;
+  return lowest;
 }
 
 }  // namespace
@@ -66,26 +118,9 @@ Trainer::Trainer(FeatureMap features, TrainParams params)
   x_.resize(0, static_cast<Eigen::Index>(features_.featureDim()));
 }
 
-Eigen::VectorXd Trainer::kernelColumn(Eigen::Index i, Eigen::Index fromRow) const {
-  const Eigen::Index rows = x_.rows() - fromRow;
-  Eigen::ArrayXd r2 = Eigen::ArrayXd::Zero(rows);
-  for (Eigen::Index j = 0; j < x_.cols(); ++j) {
-    r2 += (x_.col(j).tail(rows).array() - x_(i, j)).square();
-  }
-  const Kernel& k = params_.kernel;
-  if (k.type == KernelType::RationalQuadratic) return (1.0 + 0.5 * k.gamma * r2).square().inverse();
-  return (-k.gamma * r2).exp();
-}
-
-// computeGramMatrixColumn(i) of Algorithm 1: evaluated once, when first needed, then cached.
-const Eigen::VectorXd& Trainer::gramColumn(Eigen::Index i) {
-  int& slot = columnOf_[static_cast<std::size_t>(i)];
-  if (slot < 0) {
-    slot = static_cast<int>(columns_.size());
-    columns_.push_back(kernelColumn(i, 0));
-    ++columnsComputed_;
-  }
-  return columns_[static_cast<std::size_t>(slot)];
+void Trainer::computeColumn(Eigen::Index i) {
+  gramColumn(x_, i, 0, params_.kernel, column_.data());
+  ++columnsComputed_;
 }
 
 void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> labels) {
@@ -106,18 +141,15 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   for (Eigen::Index i = 0; i < added; ++i) y_[oldN + i] = labels[static_cast<std::size_t>(i)];
   alpha_.conservativeResize(oldN + added);
   alpha_.tail(added).setZero();
-  columnOf_.resize(static_cast<std::size_t>(oldN + added), -1);
+  column_.resize(static_cast<std::size_t>(oldN + added));
 
-  // Fill the cached Gram columns for the new rows, then F of the new points from the weights.
+  // F of the new points from the current weights: one column of new rows per support point.
   f_.conservativeResize(oldN + added);
   f_.tail(added).setZero();
-  for (Eigen::Index i = 0; i < oldN; ++i) {
-    const int slot = columnOf_[static_cast<std::size_t>(i)];
-    if (slot < 0) continue;
-    Eigen::VectorXd& column = columns_[static_cast<std::size_t>(slot)];
-    column.conservativeResize(oldN + added);
-    column.tail(added) = kernelColumn(i, oldN);
-    if (alpha_[i] != 0) f_.tail(added) += alpha_[i] * column.tail(added);
+  for (Eigen::Index s = 0; s < oldN; ++s) {
+    if (alpha_[s] == 0) continue;
+    gramColumn(x_, s, oldN, params_.kernel, column_.data());
+    f_.tail(added) += alpha_[s] * Eigen::Map<const Eigen::VectorXd>(column_.data(), added);
   }
 }
 
@@ -130,7 +162,8 @@ void Trainer::relabel(std::span<const std::int8_t> labels) {
   for (Eigen::Index i = 0; i < y_.size(); ++i) {
     y_[i] = labels[static_cast<std::size_t>(i)];
     if (alpha_[i] != 0 && alpha_[i] * y_[i] < 0) {
-      f_ -= alpha_[i] * gramColumn(i);
+      computeColumn(i);
+      f_ -= alpha_[i] * column();
       alpha_[i] = 0;
       --supportCount_;
     }
@@ -149,31 +182,33 @@ UpdateReport Trainer::update() {
 
   Eigen::VectorXd alphaBefore = alpha_;
   Eigen::VectorXd fBefore = f_;
+  const Eigen::Index n = y_.size();
+  // The most negative margin y_i F_i (Eq. 17), kept up to date by each F update.
+  Eigen::Index i = 0;
+  double worstMargin = n > 0 ? (y_.array() * f_.array()).minCoeff(&i) : 0;
   bool stopped = false;
-  while (report.iterations < params_.maxIterations && y_.size() > 0) {
-    // Check for misclassifications: the most negative margin y_i F_i (Eq. 17).
-    Eigen::Index i = 0;
-    const double worstMargin = (y_.array() * f_.array()).minCoeff(&i);
+  while (report.iterations < params_.maxIterations && n > 0) {
     if (worstMargin <= 0 && (supportCount_ < params_.maxSupportPoints || alpha_[i] != 0)) {
       // Add or adjust a support point: Delta alpha = beta^(0.5 (y_i + 1)) y_i - F_i (Eq. 18).
       const double target = y_[i] > 0 ? params_.beta : -1.0;
       const double delta = target - f_[i];
       const bool wasSupport = alpha_[i] != 0;
-      f_ += delta * gramColumn(i);
+      computeColumn(i);
       alpha_[i] += delta;
       supportCount_ += static_cast<std::size_t>(!wasSupport && alpha_[i] != 0);
       supportCount_ -= static_cast<std::size_t>(wasSupport && alpha_[i] == 0);
+      worstMargin = addAndFindWorst(f_, y_, column_.data(), delta, i);
       ++report.iterations;
       continue;
     }
 
-    alphaBefore = alpha_;
+    alphaBefore = alpha_;  // same sizes: no allocation
     fBefore = f_;
     // Remove the redundant support point whose margin without itself, y_i (F_i - alpha_i), is
     // the largest positive one.
     Eigen::Index redundant = -1;
     double bestMargin = 0;
-    for (Eigen::Index s = 0; s < alpha_.size(); ++s) {
+    for (Eigen::Index s = 0; s < n; ++s) {
       if (alpha_[s] == 0) continue;
       const double margin = y_[s] * (f_[s] - alpha_[s]);
       if (margin > bestMargin) {
@@ -182,7 +217,8 @@ UpdateReport Trainer::update() {
       }
     }
     if (redundant >= 0) {
-      f_ -= alpha_[redundant] * gramColumn(redundant);
+      computeColumn(redundant);
+      worstMargin = addAndFindWorst(f_, y_, column_.data(), -alpha_[redundant], i);
       alpha_[redundant] = 0;
       --supportCount_;
       ++report.iterations;
@@ -192,7 +228,7 @@ UpdateReport Trainer::update() {
     stopped = true;
     break;
   }
-  if (!stopped && y_.size() > 0) report.stopReason = StopReason::IterationLimit;
+  if (!stopped && n > 0) report.stopReason = StopReason::IterationLimit;
 
   // Revert the solution if the prior one was better (Algorithm 1, line 21).
   const std::size_t misclassifiedNow = countMisclassified(f_);
@@ -213,8 +249,7 @@ UpdateReport Trainer::update() {
   return report;
 }
 
-// removeNonsupportPoints() of Algorithm 1: every data structure shrinks to the support set, so
-// a cached Gram column keeps only the rows of support points.
+// removeNonsupportPoints() of Algorithm 1: every data structure shrinks to the support set.
 void Trainer::removeNonSupportPoints() {
   std::vector<Eigen::Index> keep;
   keep.reserve(supportCount_);
@@ -224,35 +259,12 @@ void Trainer::removeNonSupportPoints() {
   if (keep.size() == static_cast<std::size_t>(alpha_.size())) return;
 
   const auto n = static_cast<Eigen::Index>(keep.size());
-  Configurations q(n, q_.cols());
-  Eigen::MatrixXd x(n, x_.cols());
-  Eigen::VectorXd y(n), alpha(n), f(n);
-  std::vector<Eigen::VectorXd> columns;
-  std::vector<int> columnOf(keep.size(), -1);
-  columns.reserve(keep.size());
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Eigen::Index i = keep[static_cast<std::size_t>(k)];
-    q.row(k) = q_.row(i);
-    x.row(k) = x_.row(i);
-    y[k] = y_[i];
-    alpha[k] = alpha_[i];
-    f[k] = f_[i];
-    const int slot = columnOf_[static_cast<std::size_t>(i)];
-    if (slot >= 0) {
-      const Eigen::VectorXd& old = columns_[static_cast<std::size_t>(slot)];
-      Eigen::VectorXd column(n);
-      for (Eigen::Index r = 0; r < n; ++r) column[r] = old[keep[static_cast<std::size_t>(r)]];
-      columnOf[static_cast<std::size_t>(k)] = static_cast<int>(columns.size());
-      columns.push_back(std::move(column));
-    }
-  }
-  q_ = std::move(q);
-  x_ = std::move(x);
-  y_ = std::move(y);
-  alpha_ = std::move(alpha);
-  f_ = std::move(f);
-  columns_ = std::move(columns);
-  columnOf_ = std::move(columnOf);
+  q_ = q_(keep, Eigen::all).eval();
+  x_ = x_(keep, Eigen::all).eval();
+  y_ = y_(keep).eval();
+  alpha_ = alpha_(keep).eval();
+  f_ = f_(keep).eval();
+  column_.resize(static_cast<std::size_t>(n));
 }
 
 std::shared_ptr<const Model> Trainer::model() const {

@@ -44,11 +44,13 @@ std::string_view toString(StopReason reason);
 struct UpdateReport {
   std::size_t iterations = 0;  ///< weight updates plus redundant-point removals
   StopReason stopReason = StopReason::Converged;
-  std::size_t trainingPoints = 0;       ///< N before non-support points were discarded
-  std::size_t misclassified = 0;        ///< training points with margin <= 0 at the end
-  std::size_t supportCount = 0;         ///< |S| after the update
-  std::size_t gramColumnsComputed = 0;  ///< Gram columns evaluated by this update (lazy Gram)
-  bool reverted = false;                ///< the revert safeguard restored the earlier solution
+  std::size_t trainingPoints = 0;  ///< N before non-support points were discarded
+  std::size_t misclassified = 0;   ///< training points with margin <= 0 at the end
+  std::size_t supportCount = 0;    ///< |S| after the update
+  /// Gram columns evaluated by this update: one per weight change (columns are computed when
+  /// needed, not cached: see trainer.cpp)
+  std::size_t gramColumnsComputed = 0;
+  bool reverted = false;  ///< the revert safeguard restored the earlier solution
   std::size_t misclassifiedBeforeRevert = 0;  ///< count that made the safeguard revert
   std::chrono::nanoseconds elapsed{0};
 };
@@ -67,8 +69,8 @@ class Trainer {
 
   /// Appends configurations (joint values, one per row) with labels +1 / -1, keeping each
   /// configuration beside its features (nothing converts back). Their weights start
-  /// at 0 and their F is computed from the current weights: cached Gram columns are first
-  /// extended to the new rows (paper, "Dynamic Data Structures").
+  /// at 0 and their F is computed from the current weights: the kernel between each support
+  /// point and the new rows (paper, "Dynamic Data Structures").
   void addPoints(const Configurations& q, std::span<const std::int8_t> labels);
 
   /// Replaces the labels of the current points (same order as `configurations()`), e.g. after the
@@ -99,12 +101,13 @@ class Trainer {
   const Eigen::VectorXd& weights() const { return alpha_; }
   /// The hypothesis F = K alpha at every training point, maintained incrementally.
   const Eigen::VectorXd& hypothesis() const { return f_; }
-  /// Gram columns currently cached.
-  std::size_t cachedGramColumns() const { return columns_.size(); }
 
  private:
-  const Eigen::VectorXd& gramColumn(Eigen::Index i);
-  Eigen::VectorXd kernelColumn(Eigen::Index i, Eigen::Index fromRow) const;
+  /// The Gram column of point i, K(x_i, x_j) for every training point j, into column_.
+  void computeColumn(Eigen::Index i);
+  Eigen::Map<const Eigen::VectorXd> column() const {
+    return {column_.data(), static_cast<Eigen::Index>(column_.size())};
+  }
   std::size_t countMisclassified(const Eigen::VectorXd& f) const;
   void removeNonSupportPoints();
 
@@ -116,9 +119,9 @@ class Trainer {
   Eigen::VectorXd alpha_;
   Eigen::VectorXd f_;
   std::size_t supportCount_ = 0;
-  std::vector<Eigen::VectorXd> columns_;  // cached Gram columns, each of length N
-  std::vector<int> columnOf_;             // per point: index into columns_, or -1
-  std::size_t columnsComputed_ = 0;       // during the current update
+  std::vector<double> column_;       // the last Gram column computed, of length N (no allocation
+                                     // per iteration; columns are computed, not cached)
+  std::size_t columnsComputed_ = 0;  // during the current update
 };
 
 }  // namespace fastron
