@@ -82,30 +82,37 @@ Eigen::VectorXd uniformIn(const JointLimits& limits, Rng& rng) {
   return uniformConfigurations(limits, 1, rng).row(0).transpose();
 }
 
+std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> tryOppositeEnds(
+    const JointLimits& limits, const CollisionChecker& fcl, Rng& rng, std::size_t attempts) {
+  const double lo = limits.lower()[0], hi = limits.upper()[0], band = 0.3 * (hi - lo);
+  std::uniform_real_distribution<double> u(0.0, band);
+  // The joint values first, then the yaw: the order of draws of the queries' seeds.
+  const auto lowYaw = [&] {
+    Eigen::VectorXd q = uniformIn(limits, rng);
+    q[0] = lo + u(rng);
+    return q;
+  };
+  const auto highYaw = [&] {
+    Eigen::VectorXd q = uniformIn(limits, rng);
+    q[0] = hi - u(rng);
+    return q;
+  };
+  auto start = trySampleFree(fcl, lowYaw, attempts);
+  if (!start) return std::nullopt;
+  auto goal = trySampleFree(fcl, highYaw, attempts);
+  if (!goal) return std::nullopt;
+  if (std::uniform_int_distribution<int>(0, 1)(rng) == 1) std::swap(*start, *goal);
+  return std::pair{std::move(*start), std::move(*goal)};
+}
+
 /// Start and goal on opposite sides of the workspace: the first joint (the shoulder's yaw) in
 /// the lowest and the highest 30% of its range, the others uniform; both free under `fcl`.
 std::pair<Eigen::VectorXd, Eigen::VectorXd> oppositeEnds(const JointLimits& limits,
                                                          const CollisionChecker& fcl, Rng& rng) {
-  const double lo = limits.lower()[0], hi = limits.upper()[0], band = 0.3 * (hi - lo);
-  std::uniform_real_distribution<double> u(0.0, band);
-  Eigen::VectorXd start = sampleFree(
-      fcl,
-      [&] {
-        Eigen::VectorXd q = uniformIn(limits, rng);
-        q[0] = lo + u(rng);
-        return q;
-      },
-      "start");
-  Eigen::VectorXd goal = sampleFree(
-      fcl,
-      [&] {
-        Eigen::VectorXd q = uniformIn(limits, rng);
-        q[0] = hi - u(rng);
-        return q;
-      },
-      "goal");
-  if (std::uniform_int_distribution<int>(0, 1)(rng) == 1) std::swap(start, goal);
-  return {start, goal};
+  constexpr std::size_t kAttempts = 200000;
+  if (auto ends = tryOppositeEnds(limits, fcl, rng, kAttempts)) return std::move(*ends);
+  throw Error("found no collision-free start or goal in " + std::to_string(kAttempts) +
+              " samples on either side of the workspace");
 }
 
 std::string progressLine(const std::string& what, std::size_t i, std::size_t n) {

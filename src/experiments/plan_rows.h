@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,14 +47,22 @@ std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const 
 
 bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q);
 
+/// A configuration free under `checker` drawn by `sample`, or nothing after `attempts` tries.
+template <class Sample>
+std::optional<Eigen::VectorXd> trySampleFree(const CollisionChecker& checker, Sample&& sample,
+                                             std::size_t attempts) {
+  for (std::size_t i = 0; i < attempts; ++i) {
+    Eigen::VectorXd q = sample();
+    if (freeUnder(checker, q)) return q;
+  }
+  return std::nullopt;
+}
+
 /// A configuration free under `checker` drawn by `sample`; throws Error after `attempts` tries.
 template <class Sample>
 Eigen::VectorXd sampleFree(const CollisionChecker& checker, Sample&& sample, const char* what,
                            std::size_t attempts = 200000) {
-  for (std::size_t i = 0; i < attempts; ++i) {
-    const Eigen::VectorXd q = sample();
-    if (freeUnder(checker, q)) return q;
-  }
+  if (auto q = trySampleFree(checker, sample, attempts)) return *q;
   throw Error(std::string("found no collision-free ") + what + " in " + std::to_string(attempts) +
               " samples");
 }
@@ -75,6 +84,10 @@ Eigen::VectorXd sampleReaching(Reaches&& reaches, const JointLimits& limits, Rng
 /// the lowest and the highest 30% of its range, the others uniform; both free under `fcl`.
 std::pair<Eigen::VectorXd, Eigen::VectorXd> oppositeEnds(const JointLimits& limits,
                                                          const CollisionChecker& fcl, Rng& rng);
+/// As oppositeEnds, or nothing when either side has no free configuration in `attempts` samples
+/// (moving obstacles can block one side of the workspace for a while).
+std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> tryOppositeEnds(
+    const JointLimits& limits, const CollisionChecker& fcl, Rng& rng, std::size_t attempts);
 
 std::string progressLine(const std::string& what, std::size_t i, std::size_t n);
 

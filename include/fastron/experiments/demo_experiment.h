@@ -42,7 +42,9 @@ struct DemoResults {
   std::shared_ptr<const Model> model;  ///< the last model
   Dataset test;                        ///< the last tick's test configurations, FCL labels
   double fastronQuerySeconds = 0, gjkQuerySeconds = 0, fclQuerySeconds = 0;
-  std::size_t updates = 0;       ///< background updates during the run
+  std::size_t updates = 0;  ///< background updates during the run
+  /// Ticks with no query: the boxes left no free start or goal in 20000 samples on a side.
+  std::size_t blockedTicks = 0;
   double meanUpdateSeconds = 0;  ///< labelling + training, per update
   double elapsedSeconds = 0;     ///< of the planning loop
 };
