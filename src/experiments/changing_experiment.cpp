@@ -33,8 +33,10 @@ ConfusionCounts against(const Labels& truth, const std::function<bool(std::size_
 }  // namespace
 
 Table runChanging(const ChangingOptions& o, const Progress& progress) {
+  // update_s = sample_s + label_s + train_s (Algorithm 1) + the rest (calibrating the band,
+  // publishing the model).
   Table table{{"case", "trial", "step", "method", "accuracy", "tpr", "tnr", "support", "query_s",
-               "update_s"},
+               "update_s", "sample_s", "label_s", "train_s"},
               {}};
   const std::size_t initial = o.quick ? 500 : 3000, tests = o.quick ? 300 : 2000;
   for (const std::string& name : o.cases) {
@@ -74,10 +76,17 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         const Configurations test = uniformConfigurations(limits, tests, rng);
         const Labels truth = labelConfigurations(*fcl, test);
         auto row = [&](const std::string& method, const ConfusionCounts& counts, double support,
-                       double query, double update) {
+                       double query, const StepReport* update) {
+          const auto secondsOf = [&](auto part) {
+            return update ? cell(std::chrono::duration<double>(part(*update)).count())
+                          : cell(std::nan(""));
+          };
           table.add({name, std::to_string(trial), std::to_string(step), method,
                      cell(counts.accuracy()), cell(counts.tpr()), cell(counts.tnr()), cell(support),
-                     cell(query), cell(update)});
+                     cell(query), secondsOf([](const StepReport& r) { return r.total; }),
+                     secondsOf([](const StepReport& r) { return r.sampleTime; }),
+                     secondsOf([](const StepReport& r) { return r.labelTime; }),
+                     secondsOf([](const StepReport& r) { return r.update.elapsed; })});
         };
         std::vector<std::tuple<const char*, const ProxyCollisionDetector*, const StepReport*>>
             proxies{{"Fastron (FCL)", &fromFcl, &rf}, {"Fastron (GJK)", &fromGjk, &rg}};
@@ -91,13 +100,13 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
               static_cast<double>(model->supportCount()),
               meanSecondsPerCall(
                   test, [&](const double* q) { return model->inCollision(q); }, 0.01),
-              std::chrono::duration<double>(report->total).count());
+              report);
         }
         const Labels gjkLabels = labelConfigurations(*gjk, test);
         row("FK+GJK", against(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }), std::nan(""),
-            meanSecondsPerCheck(test, *gjk, 0.01), std::nan(""));
+            meanSecondsPerCheck(test, *gjk, 0.01), nullptr);
         row("FK+FCL", against(truth, [&](std::size_t i) { return truth[i] > 0; }), std::nan(""),
-            meanSecondsPerCheck(test, *fcl, 0.01), std::nan(""));
+            meanSecondsPerCheck(test, *fcl, 0.01), nullptr);
       }
     }
   }
@@ -158,6 +167,21 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
           {name, method == "Fastron (FCL, joints)" ? std::string("Fastron (FCL)") : method});
       md << methodRow(r, method, {{"case", name}, {"method", method}}, "update_s",
                       paper == kPaperChanging.end() ? std::array<std::string, 3>{} : paper->second);
+    }
+    // Where an update's time goes, for the models that learn from FCL.
+    md << '\n';
+    for (const std::string method : {"Fastron (FCL)", "Fastron (FCL, joints)"}) {
+      const Table::Filter where{{"case", name}, {"method", method}};
+      if (r.numbers("update_s", where).empty()) continue;
+      const auto mean = [&](const char* column) {
+        return summarize(r.numbers(column, where)).mean;
+      };
+      const double total = mean("update_s"), sample = mean("sample_s"), label = mean("label_s"),
+                   train = mean("train_s");
+      md << method << ": an update of " << durationText(total) << " is sampling "
+         << durationText(sample) << ", labelling " << durationText(label) << ", Algorithm 1 "
+         << durationText(train) << " and " << durationText(total - sample - label - train)
+         << " for the rest (the band's calibration, publishing).\n\n";
     }
   }
   return md.str();

@@ -135,6 +135,12 @@ def main():
                 fail(f"{case}: Fastron accuracy {mean('Fastron (FCL)', 'accuracy')}")
             if not all(value(r, "update_s") > 0 for r in rows if r["method"].startswith("Fastron")):
                 fail("an update took no time")
+        for r in rows:
+            if not r["method"].startswith("Fastron"):
+                continue
+            parts = [value(r, k) for k in ("sample_s", "label_s", "train_s")]
+            if any(p < 0 for p in parts) or sum(parts) > value(r, "update_s") * (1 + 1e-9):
+                fail(f"sampling + labelling + training exceed the update: {r}")
     elif name == "sweep":
         rate_columns(rows, ["cobs_fraction"])
         counts = sorted({int(r["obstacles"]) for r in rows})
