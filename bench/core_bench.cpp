@@ -29,20 +29,33 @@ Labels ballLabels(const Configurations& q, std::size_t d) {
       .label(q.leftCols(static_cast<Eigen::Index>(k)));
 }
 
-void BM_Train(benchmark::State& state) {
+/// The training data and settings of BM_Train and BM_TrainReference for N = range(0) points in
+/// d = range(1) dimensions: uniform points, ball labels, the paper's gamma, no caps in the way.
+struct TrainingCase {
+  std::size_t d;
+  Configurations q;
+  Labels y;
+  TrainParams params;
+};
+
+TrainingCase trainingCase(const benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto d = static_cast<std::size_t>(state.range(1));
-  const Configurations q = test::uniformPoints(n, d, 1);
-  const Labels y = ballLabels(q, d);
-  TrainParams params;
-  params.kernel.gamma = paperGamma(d);
-  params.maxIterations = 1'000'000;
-  params.maxSupportPoints = n;
+  TrainingCase c{d, test::uniformPoints(n, d, 1), {}, {}};
+  c.y = ballLabels(c.q, d);
+  c.params.kernel.gamma = paperGamma(d);
+  c.params.maxIterations = 1'000'000;
+  c.params.maxSupportPoints = n;
+  return c;
+}
+
+void BM_Train(benchmark::State& state) {
+  const TrainingCase c = trainingCase(state);
   UpdateReport report;
   for (auto _ : state) {
     state.PauseTiming();  // Algorithm 1 only, as BM_TrainReference
-    Trainer trainer(JointLimits::unitBox(d), params);
-    trainer.addPoints(q, y);
+    Trainer trainer(JointLimits::unitBox(c.d), c.params);
+    trainer.addPoints(c.q, c.y);
     state.ResumeTiming();
     report = trainer.update();
     benchmark::DoNotOptimize(trainer.weights().data());
@@ -64,17 +77,10 @@ BENCHMARK(BM_Train)
 // BM_Train, measured in the same run. d = 9-27 stands for task-space features (3 coordinates of
 // 3-9 control points).
 void BM_TrainReference(benchmark::State& state) {
-  const auto n = static_cast<std::size_t>(state.range(0));
-  const auto d = static_cast<std::size_t>(state.range(1));
-  const Configurations q = test::uniformPoints(n, d, 1);
-  const Labels y = ballLabels(q, d);
-  TrainParams params;
-  params.kernel.gamma = paperGamma(d);
-  params.maxIterations = 1'000'000;
-  params.maxSupportPoints = n;
+  const TrainingCase c = trainingCase(state);
   UpdateReport report;
   for (auto _ : state) {
-    const ReferenceTraining result = trainReference(q, y, params);
+    const ReferenceTraining result = trainReference(c.q, c.y, c.params);
     report = result.report;
     benchmark::DoNotOptimize(result.alpha.data());
   }

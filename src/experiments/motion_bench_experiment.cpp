@@ -199,31 +199,27 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
           {"problem", problem.id},
           {"query", std::to_string(query)},
           {"note", query == 0 ? note : ""}};
+      const auto addRow = [&](const MethodPlan& each, double modelSupport, double trainS,
+                              double learnS) {
+        results.rows.push_back({queryColumns,
+                                "RRTConnect",
+                                each.method,
+                                outcomeOf(each, audit, o.resolution),
+                                {{"support", modelSupport},
+                                 {"train_s", trainS},
+                                 {"self_train_s", selfTrainSeconds},
+                                 {"learn_s", learnS}}});
+      };
       for (const MethodPlan& each : planWithEachChecker(calibrated, nullptr, fcl, limits, from, to,
                                                         options, p * o.queriesPerScene + query)) {
         if (o.learnFromVerification && each.method == "Fastron") {
           proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
         }
-        results.rows.push_back({queryColumns,
-                                "RRTConnect",
-                                each.method,
-                                outcomeOf(each, audit, o.resolution),
-                                {{"support", support},
-                                 {"train_s", trainSeconds},
-                                 {"self_train_s", selfTrainSeconds},
-                                 {"learn_s", learnSeconds}}});
+        addRow(each, support, trainSeconds, learnSeconds);
       }
       if (split) {
-        const MethodPlan each{"Fastron split", planVerified(split, fcl, limits, from, to, options),
-                              0};
-        results.rows.push_back({queryColumns,
-                                "RRTConnect",
-                                each.method,
-                                outcomeOf(each, audit, o.resolution),
-                                {{"support", splitSupport},
-                                 {"train_s", splitTrain},
-                                 {"self_train_s", selfTrainSeconds},
-                                 {"learn_s", 0}}});
+        addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
+               splitSupport, splitTrain, 0);
       }
     }
   }
