@@ -7,12 +7,14 @@
 #include <ompl/util/Console.h>
 
 #include "fastron/core/active_learning.h"
+#include "fastron/core/metrics.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/parallel_check.h"
 #include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron {
@@ -22,6 +24,7 @@ struct BaxterQueries {
   JointLimits limits;
   std::shared_ptr<const FclChecker> fcl;
   std::shared_ptr<const Model> model;
+  ConfusionCounts accuracy;  ///< of the model against FCL on 2000 fresh uniform configurations
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> queries;
 };
 
@@ -39,6 +42,9 @@ const BaxterQueries& baxterQueries() {
     proxy.initialize(3000);
     for (int i = 0; i < 3; ++i) proxy.step();
     b.model = proxy.model();
+    Rng testRng(6);  // its own draws: the queries below stay those of rng(5)
+    const Configurations test = uniformConfigurations(b.limits, 2000, testRng);
+    b.accuracy = evaluate(*b.model, test, labelConfigurations(*b.fcl, test));
     Rng rng(5);
     const Configurations q = uniformConfigurations(b.limits, 400, rng);
     std::vector<Eigen::VectorXd> free;
@@ -76,6 +82,10 @@ void runQueries(benchmark::State& state, Plan&& plan) {
     i = (i + 1) % b.queries.size();
   }
   state.counters["failed"] = static_cast<double>(failed);
+  // The model beside its speed.
+  state.counters["support"] = static_cast<double>(b.model->supportCount());
+  state.counters["accuracy"] = b.accuracy.accuracy();
+  state.counters["tpr"] = b.accuracy.tpr();
 }
 
 void BM_PlanOnFastron(benchmark::State& state) {

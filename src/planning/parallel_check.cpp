@@ -18,7 +18,7 @@ struct Item {
 // 12 us, but a worker that has not checked for a while meets the checker's data cold in its
 // core's caches: in `bench plan` (BIT*'s straight paths of 110-235 states, other methods planning
 // in between) verification took 167-239 us on two threads and 92-174 us on one. Back to back
-// (BM_CheckPath, ~160 states) two threads are 1.7 times faster.
+// (BM_CheckPath, ~160 states) two threads are 1.7-1.8 times faster.
 constexpr std::size_t kParallelFrom = 1024;
 // States handed to a thread at a time: few, so that the bisection order is kept roughly, and
 // enough that a checker's batch path (one world read, one scratch lease) pays.
