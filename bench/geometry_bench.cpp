@@ -113,7 +113,7 @@ void BM_ControlPointsBatch(benchmark::State& state) {
   state.SetLabel(robot.name() + ", " + std::to_string(kinematics.pointCount()) + " points");
 }
 BENCHMARK(BM_ControlPointsBatch)
-    ->ArgsProduct({{2, 4}, {4}, {4, 16, 64}})
+    ->ArgsProduct({{2, 4}, {4}, {2, 3, 4, 16, 64}})
     ->ArgNames({"robot", "points", "batch"});
 
 // A whole task-space query on Baxter (4 automatic control points, gamma 40): |S| random support
@@ -145,7 +145,9 @@ void BM_TaskSpaceQuery(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(batch));
   state.SetLabel("baxter, " + std::to_string(model.featureDim() / 3) + " points");
 }
-BENCHMARK(BM_TaskSpaceQuery)->ArgsProduct({{100, 400, 1000}, {1, 16}})->ArgNames({"S", "batch"});
+BENCHMARK(BM_TaskSpaceQuery)
+    ->ArgsProduct({{100, 300, 400, 1000}, {1, 16}})
+    ->ArgNames({"S", "batch"});
 
 template <class Checker>
 void BM_Check(benchmark::State& state) {

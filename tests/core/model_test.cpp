@@ -88,6 +88,26 @@ TEST(Model, BatchScoresEqualSingleScores) {
   for (Eigen::Index i = 0; i < q.rows(); ++i) EXPECT_EQ(batch[i], model->score(q.row(i).data()));
 }
 
+// The single query unrolls its loop over features for the usual dimensions and loops for the
+// others; each must equal the double sum to float rounding and the batch path exactly.
+TEST(Model, EveryDimensionScoresAlikeOnEveryPath) {
+  for (std::size_t dim = 1; dim <= 14; ++dim) {
+    for (const KernelType type : {KernelType::RationalQuadratic, KernelType::Gaussian}) {
+      const Configurations s = test::uniformPoints(37, dim, 200 + dim);  // 37: a padded block
+      const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(37, -1.0, 0.8);
+      const Model model(FeatureMap::jointScaling(JointLimits::unitBox(dim)), {type, 3}, s, w);
+      const Configurations q = test::uniformPoints(9, dim, 300 + dim);
+      const Eigen::VectorXd batch = model.scoreBatch(q);
+      for (Eigen::Index i = 0; i < q.rows(); ++i) {
+        const double single = model.score(q.row(i).data());
+        EXPECT_NEAR(single, model.scoreExact(q.row(i).data()), 1e-5)
+            << "d " << dim << " " << toString(type) << " row " << i;
+        EXPECT_EQ(batch[i], single) << "d " << dim << " " << toString(type) << " row " << i;
+      }
+    }
+  }
+}
+
 TEST(Model, FirstInCollisionIsTheFirstRowPredictedInCollision) {
   const auto model = trainedModel(3, 1000, KernelType::RationalQuadratic, 10, 1);
   const Configurations q = test::uniformPoints(300, 3, 105);

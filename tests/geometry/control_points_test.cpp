@@ -53,17 +53,21 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
   const std::size_t stride = 3 * points.size();
   std::vector<float> batch(static_cast<std::size_t>(q.rows()) * stride);
   kinematics.positionsBatch(q.data(), static_cast<std::size_t>(q.rows()), batch.data());
-  // A batch of one, and the lone last configuration of a batch of 17, take the scalar chain: the
+  // A batch of one, and the last two configurations of a batch of 18, take the single chain: the
   // very numbers of positions().
-  std::vector<float> single(stride), scalar(stride), seventeen(17 * stride);
+  std::vector<float> single(stride), scalar(stride), eighteen(18 * stride);
   kinematics.positionsBatch(q.data(), 1, single.data());
   kinematics.positions(q.data(), scalar.data());
   EXPECT_EQ(single, scalar);
-  kinematics.positionsBatch(q.data(), 17, seventeen.data());
-  kinematics.positions(q.row(16).data(), scalar.data());
-  EXPECT_EQ(std::vector<float>(seventeen.begin() + 16 * static_cast<std::ptrdiff_t>(stride),
-                               seventeen.end()),
-            scalar);
+  kinematics.positionsBatch(q.data(), 18, eighteen.data());
+  for (const std::ptrdiff_t row : {16, 17}) {
+    kinematics.positions(q.row(row).data(), scalar.data());
+    EXPECT_EQ(
+        std::vector<float>(eighteen.begin() + row * static_cast<std::ptrdiff_t>(stride),
+                           eighteen.begin() + (row + 1) * static_cast<std::ptrdiff_t>(stride)),
+        scalar)
+        << "row " << row;
+  }
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     forwardKinematics(robot, q.row(i).data(), data);
     kinematics.positions(q.row(i).data(), exact.data());

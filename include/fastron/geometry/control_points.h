@@ -70,13 +70,15 @@ class RobotPointKinematics final : public PointKinematics {
   std::size_t steps() const { return chain_.steps.size(); }
 
  private:
-  /// A rigid transform as 12 scalars: rotation row by row, then translation. Composed with plain
-  /// scalar multiply-adds: for 3x3 matrices the compiler's scalar code beats Eigen's SIMD
-  /// shuffles, and a chain of frames stays in same-size loads and stores.
+  /// A rigid transform stored column by column: the x, y and z axes, then the origin, each
+  /// padded to four numbers (the fourth 0) so that a column loads as one SIMD vector.
   template <class T>
   struct Frame {
-    std::array<T, 9> r;
-    std::array<T, 3> t;
+    std::array<T, 16> m;
+    T operator()(int row, int column) const {
+      return m[static_cast<std::size_t>(4 * column + row)];
+    }
+    T& operator()(int row, int column) { return m[static_cast<std::size_t>(4 * column + row)]; }
   };
   /// One actuated joint: a constant transform from the parent step's frame, then a rotation
   /// about (or translation along) the local z axis by the joint's value.
