@@ -348,8 +348,9 @@ void RobotPointKinematics::place(const double* q, T* out) const {
     const Step<T>& step = c.steps[s];
     // The joint's motion is applied to the step's constant transform, not to the product with
     // the parent's frame: it does not wait for the parent, so the only work on the chain of
-    // dependent products is one 3x4 product per step, column times broadcast scalar (2.4 times
-    // faster than turning the product, as the 12-scalar row-major frames did).
+    // dependent products is one 3x4 product per step, column times broadcast scalar (with the
+    // scalar sine and cosine, 1.7 times faster than the 12-scalar row-major frames that turned
+    // the product: BM_ControlPoints).
     Columns g;
     for (int k = 0; k < 4; ++k) g[k] = Eigen::Map<const Column>(step.fixed.m.data() + 4 * k);
     if (step.prismatic) {
