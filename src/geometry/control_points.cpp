@@ -148,7 +148,7 @@ std::array<To, N> castArray(const std::array<From, N>& a) {
 
 /// Configurations placed together by placeLanes, one per SIMD lane.
 constexpr std::size_t kConfigurationLanes = 16;
-constexpr std::size_t kAlone = 2;  // batches this short are placed one configuration at a time
+constexpr std::size_t kOneByOne = 2;  // batches this short are placed one configuration at a time
 using ConfigurationLanes = Eigen::Array<float, kConfigurationLanes, 1>;
 
 /// cos and sin of `count` angles, one by one: the C library's scalar sine and cosine overlap the
@@ -451,7 +451,7 @@ void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float*
     // Sixteen lanes cost 250-320 ns however many are used; one configuration is about 90 ns on
     // the single chain, three 260 ns (BM_ControlPoints, BM_ControlPointsBatch): up to two go one
     // by one.
-    if (count <= kAlone) {
+    if (count <= kOneByOne) {
       for (std::size_t k = b; k < b + count; ++k) place(q + k * dof_, out + k * coordinates);
     } else {
       placeLanes(q + b * dof_, count, out + b * coordinates);
