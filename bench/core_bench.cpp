@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "fastron/core/model.h"
@@ -161,6 +162,35 @@ BENCHMARK(BM_QueryFloat<KernelType::RationalQuadratic>)->Apply(queryArgs);
 BENCHMARK(BM_QueryFloat<KernelType::Gaussian>)->Apply(queryArgs);
 BENCHMARK(BM_QueryPlainDouble)->Apply(queryArgs);
 BENCHMARK(BM_QueryBatch)->Apply(queryArgs);
+
+// The roofline of the kernel sum: how many 16-float vector operations this core retires per ns
+// when, as in the sum, subtractions and multiply-adds alternate on independent chains (six of
+// each, enough to hide their latency). Counter `vector_ops`, per second (8.3G/s = 8.3 per ns);
+// docs/performance.md divides a kernel sum's operation count by it.
+void BM_KernelPeak(benchmark::State& state) {
+  using Lanes = Eigen::Array<float, 16, 1>;
+  constexpr int kChains = 6;
+  constexpr int kSteps = 1000;
+  std::array<Lanes, kChains> products, differences;
+  for (int k = 0; k < kChains; ++k) {
+    products[k] = Lanes::Constant(1.0f + 1e-3f * static_cast<float>(k));
+    differences[k] = Lanes::Constant(2.0f + 1e-3f * static_cast<float>(k));
+  }
+  const float a = 0.999f, b = 1e-6f;
+  for (auto _ : state) {
+    for (int i = 0; i < kSteps; ++i) {
+      for (int k = 0; k < kChains; ++k) {
+        products[k] = products[k] * a + b;
+        differences[k] = differences[k] - b;
+      }
+    }
+    benchmark::DoNotOptimize(products);
+    benchmark::DoNotOptimize(differences);
+  }
+  state.counters["vector_ops"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kSteps * 2 * kChains, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_KernelPeak);
 
 }  // namespace
 }  // namespace fastron
