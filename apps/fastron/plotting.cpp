@@ -6,15 +6,24 @@
 
 #include <cstdlib>
 
+#include "fastron/core/install_location.h"
+
 extern char** environ;
 
 namespace fastron::cli {
 
 std::string runPlotScript(const std::string& script, const std::vector<std::string>& args) {
-  // FASTRON_SCRIPTS_DIR in the environment overrides the source tree the binary was built from.
+  // FASTRON_SCRIPTS_DIR in the environment overrides the installation's share/fastron/scripts.
   const char* dirOverride = std::getenv("FASTRON_SCRIPTS_DIR");
-  const std::filesystem::path path =
-      std::filesystem::path(dirOverride ? dirOverride : FASTRON_SCRIPTS_DIR) / script;
+  std::filesystem::path dir;
+  if (dirOverride != nullptr && dirOverride[0] != '\0') {
+    dir = dirOverride;
+  } else if (auto share = installedShareDirectory()) {
+    dir = *share / "scripts";
+  } else {
+    return "plot scripts not found (no share/fastron above the program; set FASTRON_SCRIPTS_DIR)";
+  }
+  const std::filesystem::path path = dir / script;
   if (!std::filesystem::exists(path)) return "plot script not found: " + path.string();
   if (::access(FASTRON_PYTHON, X_OK) != 0) {
     return std::string(FASTRON_PYTHON) + " not found (install python3-matplotlib)";

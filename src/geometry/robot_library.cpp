@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "fastron/core/error.h"
+#include "fastron/core/install_location.h"
 #include "fastron/geometry/srdf.h"
 #include "yaml_reader.h"
 
@@ -10,8 +11,12 @@ namespace fastron {
 
 std::filesystem::path dataDirectory() {
   const char* overridden = std::getenv("FASTRON_DATA_DIR");
-  return overridden != nullptr ? std::filesystem::path(overridden)
-                               : std::filesystem::path(FASTRON_DATA_DIR);
+  if (overridden != nullptr && overridden[0] != '\0') return overridden;
+  if (auto installed = installedShareDirectory()) return *installed;
+  throw FileError(
+      "Fastron's data folder (robots, scenes) was not found: no share/fastron/robots/robots.yaml "
+      "above the program or library, and FASTRON_DATA_DIR is not set; install Fastron "
+      "(cmake --install) or set FASTRON_DATA_DIR to a folder with robots/ and scenes/");
 }
 
 std::vector<RobotEntry> shippedRobots() {

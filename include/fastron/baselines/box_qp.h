@@ -13,7 +13,9 @@
 #include <Eigen/Core>
 #include <cstddef>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 struct BoxQpResult {
   Eigen::VectorXd x;

@@ -5,10 +5,11 @@
 #include <span>
 #include <string>
 
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// A binary classifier of configurations (joint values): a positive score predicts a collision.
 class Classifier {

@@ -2,9 +2,10 @@
 // Fastron (Algorithm 1 on a fixed dataset) behind the Classifier interface.
 
 #include "fastron/baselines/classifier.h"
+#include "fastron/core/export.h"
 #include "fastron/core/trainer.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 class FastronClassifier final : public Classifier {
  public:

@@ -10,10 +10,11 @@
 #include <vector>
 
 #include "fastron/baselines/classifier.h"
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/kernel.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 class IncrementalSvm {
  public:

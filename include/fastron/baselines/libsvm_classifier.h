@@ -3,9 +3,10 @@
 // rational-quadratic kernel, so it uses its RBF kernel exp(-gamma |x - x'|^2) with the same gamma.
 
 #include "fastron/baselines/classifier.h"
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 class LibsvmClassifier final : public Classifier {
  public:

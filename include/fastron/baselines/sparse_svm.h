@@ -7,10 +7,11 @@
 // interior-point method), then sets alpha = A^2 Kbar b = A (B b).
 
 #include "fastron/baselines/classifier.h"
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/kernel.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct SparseSvmParams {
   double C = 10;

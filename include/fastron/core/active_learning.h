@@ -3,10 +3,11 @@
 
 #include <cstddef>
 
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct ActiveLearningParams {
   std::size_t maxSamples = 500;            ///< A_max: configurations returned

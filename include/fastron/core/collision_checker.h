@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Labels robot configurations (joint values) as in collision or free. Implementations must be
 /// safe to call from many threads at once (per-thread scratch, const data), so labelling can run

@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct Dataset {
   Configurations points;                 ///< one configuration per row

@@ -4,7 +4,9 @@
 
 #include <stdexcept>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 /// Base of every exception thrown by Fastron.
 class Error : public std::runtime_error {

@@ -16,10 +16,11 @@
 #include <string_view>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// A point fixed in a link's frame whose world position is a feature.
 struct ControlPoint {

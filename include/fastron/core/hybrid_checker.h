@@ -7,10 +7,11 @@
 #include <memory>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/uncertainty_band.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Model where sure, exact checker in the band (see uncertainty_band.h for the calibration).
 /// Never answers "free" from the model for a score inside the band. A CollisionChecker, so it is

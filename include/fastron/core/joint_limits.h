@@ -6,9 +6,10 @@
 #include <cstddef>
 #include <span>
 
+#include "fastron/core/export.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 class JointLimits {
  public:

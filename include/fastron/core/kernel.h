@@ -6,7 +6,9 @@
 #include <string>
 #include <string_view>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 enum class KernelType : std::uint8_t {
   /// k(x,x') = (1 + gamma/2 |x-x'|^2)^-2: the rational-quadratic kernel with p = 2, the paper's

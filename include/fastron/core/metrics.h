@@ -4,10 +4,11 @@
 #include <cstddef>
 #include <span>
 
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Confusion counts with the in-collision class (+1) as "positive".
 struct ConfusionCounts {

@@ -8,11 +8,12 @@
 #include <span>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Immutable once built, so one instance can be queried from any number of threads; queries do
 /// not allocate. Queries take joint values; the model maps them to its features itself (joint

@@ -8,9 +8,10 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// The model's own answer (score > 0), one configuration at a time or a run of them as one batch
 /// (Model::firstInCollision). Named `name`.

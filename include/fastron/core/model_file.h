@@ -19,10 +19,11 @@
 #include <memory>
 #include <optional>
 
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 inline constexpr std::uint32_t kModelFileVersion = 2;
 

@@ -8,8 +8,9 @@
 
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/dataset.h"
+#include "fastron/core/export.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Answers with `inner` and records each configuration it was asked about with the answer (+1 in
 /// collision, -1 free), in the order given. Safe to call from many threads (a mutex around the

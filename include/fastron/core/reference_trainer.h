@@ -5,10 +5,11 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/trainer.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct ReferenceTraining {
   std::vector<double> alpha;  ///< weight of every training point

@@ -9,12 +9,13 @@
 #include <string_view>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
 #include "fastron/core/model.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct TrainParams {
   Kernel kernel{};                      ///< kernel and gamma used for the Gram matrix

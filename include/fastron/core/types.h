@@ -7,7 +7,9 @@
 #include <random>
 #include <vector>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 /// Robot configurations, one per row (row-major, so a row is a contiguous `const double*`).
 using Configurations = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

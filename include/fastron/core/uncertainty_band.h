@@ -7,9 +7,10 @@
 #include <Eigen/Core>
 #include <cstddef>
 
+#include "fastron/core/export.h"
 #include "fastron/core/types.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Scores below `lower` are answered "free" from the model, scores above `upper` "in collision";
 /// scores in [lower, upper] go to the exact checker. lower <= 0 <= upper.

@@ -8,9 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct ChangingOptions {
   std::size_t trials = 3;

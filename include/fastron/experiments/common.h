@@ -10,13 +10,14 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/types.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Called with a line of progress; the command prints it, the library never does.
 using Progress = std::function<void(std::string_view)>;

@@ -2,9 +2,10 @@
 // The paper's Fig. 7: for random 2-DOF environments, the exact C-space (FCL) beside the C-spaces
 // that Fastron, ISVM and SSVM learn, with their support points.
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct CspaceOptions {
   std::size_t environments = 3;

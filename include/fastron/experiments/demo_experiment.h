@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 #include "fastron/core/dataset.h"
+#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/uncertainty_band.h"
 
@@ -13,7 +14,7 @@
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct DemoOptions {
   std::size_t ticks = 150;   ///< obstacle moves, each followed by a fresh planning query

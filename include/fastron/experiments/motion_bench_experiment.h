@@ -5,11 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct MotionBenchOptions {
   /// A family: a folder of sceneNNNN.yaml / requestNNNN.yaml pairs; or a folder of families

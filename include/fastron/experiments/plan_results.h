@@ -11,9 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// How one method's plan of one query went.
 struct PlanOutcome {

@@ -6,11 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct PlanningOptions {
   std::size_t trials = 10;  ///< obstacle positions, each with its own start and goal

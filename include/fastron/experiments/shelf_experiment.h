@@ -4,11 +4,12 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct ShelfOptions {
   std::size_t trials = 10;  ///< start/goal pairs

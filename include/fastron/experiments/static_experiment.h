@@ -6,9 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct StaticOptions {
   std::size_t trials = 10;

@@ -7,7 +7,9 @@
 #include <string_view>
 #include <utility>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 class AllowedCollisionMatrix {
  public:

@@ -6,10 +6,11 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Options of the robot-against-scene checkers (FclChecker, GjkChecker).
 struct CheckerOptions {

@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 #include "fastron/geometry/robot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// How control points are chosen automatically (see defaultControlPoints).
 struct ControlPointOptions {

@@ -10,13 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"
 #include "fastron/geometry/snapshot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// What collided: a robot link and an obstacle, or two robot links (self-collision).
 struct Contact {

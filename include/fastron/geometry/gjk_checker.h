@@ -7,13 +7,14 @@
 #include <memory>
 #include <mutex>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scratch_pool.h"
 #include "fastron/geometry/snapshot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// A convex shape placed in the world, with the support function GJK needs.
 struct ConvexBody {

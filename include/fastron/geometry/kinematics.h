@@ -4,9 +4,10 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Per-call scratch for forwardKinematics; make one per thread with makeKinematicsData.
 struct KinematicsData {

@@ -5,9 +5,10 @@
 #include <filesystem>
 #include <memory>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/shapes.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Reads every mesh of the file's scene graph with its node transforms applied, then scales it.
 /// Throws FileError naming the file when it is missing, unreadable or has no triangles.

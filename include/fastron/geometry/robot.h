@@ -8,11 +8,12 @@
 #include <string_view>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/geometry/allowed_collisions.h"
 #include "fastron/geometry/shapes.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 enum class JointType { Revolute, Continuous, Prismatic, Fixed };
 

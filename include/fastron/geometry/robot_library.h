@@ -6,10 +6,11 @@
 #include <utility>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/urdf.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct RobotEntry {
   std::string name, description;
@@ -20,7 +21,8 @@ struct RobotEntry {
   std::filesystem::path srdf;  ///< MoveIt SRDF whose disabled collisions apply (empty: none)
 };
 
-/// The project's data folder: $FASTRON_DATA_DIR if set, else the source tree's data/.
+/// The data folder (robots/, scenes/): $FASTRON_DATA_DIR if set, else the installation's
+/// share/fastron (installedShareDirectory). Throws FileError when there is neither.
 std::filesystem::path dataDirectory();
 
 /// Every shipped robot, from data/robots/robots.yaml.

@@ -8,11 +8,12 @@
 #include <variant>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/core/types.h"
 #include "fastron/geometry/allowed_collisions.h"
 #include "fastron/geometry/shapes.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Each step the obstacle moves in a uniformly random direction by a length drawn uniformly from
 /// [minStep, maxStep], reflected back into `bounds` (its position stays inside them).

@@ -6,10 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Reads a scene file: the project's format (a top-level `obstacles` list) or a MoveIt
 /// PlanningScene (a top-level `world`). Throws FileError naming the file and line.

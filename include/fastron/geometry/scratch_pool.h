@@ -8,7 +8,9 @@
 #include <mutex>
 #include <vector>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 template <class T>
 class ScratchPool {

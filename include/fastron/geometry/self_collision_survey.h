@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// Why a pair would be disabled by Setup Assistant's rules, or Enabled when none applies.
 enum class PairVerdict {

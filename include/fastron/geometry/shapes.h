@@ -8,7 +8,9 @@
 #include <variant>
 #include <vector>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 struct Box {
   Eigen::Vector3d size;  ///< full extents along x, y, z

@@ -7,7 +7,9 @@
 #include <mutex>
 #include <utility>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 template <class T>
 class Snapshot {

@@ -4,10 +4,11 @@
 #include <filesystem>
 #include <string>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/allowed_collisions.h"
 #include "fastron/geometry/robot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// The `<disable_collisions link1=".." link2=".."/>` pairs of an SRDF for `robot`: pairs that
 /// touch by construction or can never meet, which MoveIt skips in self-collision checks. Other

@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct UrdfOptions {
   /// Where `package://name/...` and relative mesh paths are looked up: for package URIs, a

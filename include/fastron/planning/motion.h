@@ -7,8 +7,9 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// A path of joint-space waypoints, joined by straight lines.
 using Path = std::vector<Eigen::VectorXd>;

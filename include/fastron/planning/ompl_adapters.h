@@ -10,10 +10,11 @@
 #include <ompl/base/StateValidityChecker.h>
 
 #include "fastron/core/collision_checker.h"
+#include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/model.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// What decides whether a configuration collides: an exact checker (FK + FCL or GJK), or a
 /// snapshot of a Fastron model. A model snapshot never changes, so a planner sees one consistent

@@ -2,9 +2,10 @@
 // The exact check of a whole path, for verification: on every core, in an order that finds
 // collisions early.
 
+#include "fastron/core/export.h"
 #include "fastron/planning/motion.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// The same answer as checkPath (every invalid waypoint and edge), computed on `threads` threads
 /// (0: every core for paths of 1024 states or more, where it pays even with cold caches; shorter

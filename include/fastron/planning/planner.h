@@ -11,10 +11,11 @@
 #include <ompl/base/Planner.h>
 #include <ompl/base/ProblemDefinition.h>
 
+#include "fastron/core/export.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/ompl_adapters.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 enum class PlannerType { Rrt, RrtConnect, RrtStar, BitStar };
 

@@ -8,10 +8,11 @@
 #include <string>
 
 #include "fastron/core/dataset.h"
+#include "fastron/core/export.h"
 #include "fastron/planning/planner.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 /// A plan made with an approximate checker, after verify and repair.
 struct VerifiedPlan {

@@ -12,7 +12,9 @@
 #include <mutex>
 #include <thread>
 
-namespace fastron {
+#include "fastron/core/export.h"
+
+namespace FASTRON_API fastron {
 
 /// Runs `work` on the calling thread and offers it to up to `helpers` of the process's worker
 /// threads (started on first use, as many as ever asked for; they sleep between calls). Returns

@@ -14,12 +14,13 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/dataset.h"
+#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
 #include "fastron/core/trainer.h"
 #include "fastron/core/uncertainty_band.h"
 
-namespace fastron {
+namespace FASTRON_API fastron {
 
 struct ProxyParams {
   TrainParams train{};
