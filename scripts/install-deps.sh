@@ -19,6 +19,8 @@ packages=(
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   # plots (scripts/*.py run with /usr/bin/python3)
   python3 python3-matplotlib python3-numpy
+  # the Python module and its tests (for /usr/bin/python3)
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

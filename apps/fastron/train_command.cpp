@@ -180,9 +180,13 @@ int runTrain(const TrainOptions& o) {
   // Split off a random held-out share for validation.
   std::vector<Eigen::Index> order(data.size());
   std::iota(order.begin(), order.end(), Eigen::Index{0});
-  Rng rng(o.seed);
-  std::shuffle(order.begin(), order.end(), rng);
   const auto held = static_cast<std::size_t>(o.holdout * static_cast<double>(data.size()));
+  // Without a held-out share the data trains in file order: the same model as the library's (and
+  // the Python module's) Trainer on the same rows.
+  if (held > 0) {
+    Rng rng(o.seed);
+    std::shuffle(order.begin(), order.end(), rng);
+  }
   const Dataset test =
       rows(data, {order.begin(), order.begin() + static_cast<std::ptrdiff_t>(held)});
   const Dataset train =

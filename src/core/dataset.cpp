@@ -68,7 +68,7 @@ Dataset fromRows(const std::vector<double>& values, std::size_t columns, Labels 
 Dataset readCsv(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::ifstream in(path);
-  if (!in) throw FileError(file + ": cannot open dataset file");
+  if (!in) throw FileNotFound(file + ": cannot open dataset file");
 
   std::vector<double> values;
   Labels labels;
@@ -123,7 +123,7 @@ Dataset readCsv(const std::filesystem::path& path) {
 Dataset readNpy(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(file + ": cannot open dataset file");
+  if (!in) throw FileNotFound(file + ": cannot open dataset file");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) {

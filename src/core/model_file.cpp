@@ -96,7 +96,7 @@ class Reader {
 
 std::vector<char> readBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string() + ": cannot open model file");
+  if (!in) throw FileNotFound(path.string() + ": cannot open model file");
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 

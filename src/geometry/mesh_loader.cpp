@@ -13,7 +13,7 @@ namespace fastron {
 std::shared_ptr<const TriangleMesh> loadMesh(const std::filesystem::path& path,
                                              const Eigen::Vector3d& scale) {
   const std::string file = path.string();
-  if (!std::filesystem::is_regular_file(path)) throw FileError(file + ": mesh file not found");
+  if (!std::filesystem::is_regular_file(path)) throw FileNotFound(file + ": mesh file not found");
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(
       file, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);

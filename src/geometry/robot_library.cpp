@@ -68,7 +68,7 @@ Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options,
   const std::filesystem::path asPath(nameOrPath);
   if (asPath.extension() == ".urdf" || std::filesystem::is_regular_file(asPath)) {
     if (!std::filesystem::is_regular_file(asPath))
-      throw FileError(nameOrPath + ": URDF file not found");
+      throw FileNotFound(nameOrPath + ": URDF file not found");
     return withSrdf(loadUrdf(asPath, options));
   }
   std::string names;

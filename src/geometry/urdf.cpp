@@ -329,7 +329,7 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
 
 Robot loadUrdf(const std::filesystem::path& file, const UrdfOptions& options) {
   std::ifstream in(file);
-  if (!in) throw FileError(file.string() + ": cannot open URDF file");
+  if (!in) throw FileNotFound(file.string() + ": cannot open URDF file");
   std::stringstream text;
   text << in.rdbuf();
   return parseUrdf(text.str(), file.string(), options, file.parent_path());

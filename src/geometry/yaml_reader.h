@@ -137,7 +137,7 @@ inline YAML::Node parseYaml(const std::string& text, const std::string& source) 
 
 inline std::string readText(const std::filesystem::path& path, const char* what) {
   std::ifstream in(path);
-  if (!in) throw FileError(path.string() + ": cannot open " + what);
+  if (!in) throw FileNotFound(path.string() + ": cannot open " + what);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();

@@ -26,4 +26,10 @@ class FileError : public Error {
   using Error::Error;
 };
 
+/// A file that cannot be opened: it does not exist, or is not readable.
+class FileNotFound : public FileError {
+ public:
+  using FileError::FileError;
+};
+
 }  // namespace fastron

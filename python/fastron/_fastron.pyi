@@ -1,0 +1,205 @@
+"""Type stubs of the fastron extension module (see docs/python.md)."""
+import os
+from typing import Callable, Optional, Sequence, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Path = Union[str, os.PathLike]
+
+class Error(RuntimeError): ...
+class InvalidArgument(Error, ValueError): ...
+class FileError(Error, OSError): ...
+class FileNotFound(FileError, FileNotFoundError): ...
+
+class JointLimits:
+    def __init__(self, lower: ArrayLike, upper: ArrayLike) -> None: ...
+    @property
+    def dim(self) -> int: ...
+    @property
+    def lower(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def upper(self) -> npt.NDArray[np.float64]: ...
+
+class FeatureMap:
+    @staticmethod
+    def joint_scaling(limits: JointLimits) -> FeatureMap: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def configuration_dim(self) -> int: ...
+    @property
+    def feature_dim(self) -> int: ...
+    @property
+    def limits(self) -> JointLimits: ...
+    def map(self, q: ArrayLike) -> npt.NDArray[np.float64]: ...
+
+class UpdateReport:
+    iterations: int
+    stop_reason: str
+    training_points: int
+    misclassified: int
+    support_count: int
+    reverted: bool
+    seconds: float
+
+class Model:
+    dim: int
+    feature_dim: int
+    support_count: int
+    features: FeatureMap
+    limits: JointLimits
+    gamma: float
+    kernel: str
+    support_points: npt.NDArray[np.float64]
+    support_features: npt.NDArray[np.float64]
+    weights: npt.NDArray[np.float64]
+    @overload
+    def score(self, q: Sequence[float]) -> float: ...
+    @overload
+    def score(self, q: ArrayLike) -> Union[float, npt.NDArray[np.float64]]: ...
+    def in_collision(self, q: ArrayLike) -> Union[bool, npt.NDArray[np.bool_]]: ...
+    def first_in_collision(self, q: ArrayLike) -> Optional[int]: ...
+    def save(self, path: Path) -> None: ...
+
+def train(X: ArrayLike, y: ArrayLike, *, features: Optional[FeatureMap] = None,
+          limits: Optional[JointLimits] = None, gamma: Optional[float] = None,
+          beta: Optional[float] = None, kernel: str = "rq", max_iterations: Optional[int] = None,
+          max_support_points: Optional[int] = None) -> tuple[Model, UpdateReport]: ...
+
+class ConfusionCounts:
+    true_positives: int
+    true_negatives: int
+    false_positives: int
+    false_negatives: int
+    total: int
+    accuracy: float
+    tpr: float
+    tnr: float
+
+def evaluate(model: Model, X: ArrayLike, y: ArrayLike) -> ConfusionCounts: ...
+def read_dataset(path: Path) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int8]]: ...
+def write_dataset(path: Path, X: ArrayLike, y: ArrayLike) -> None: ...
+
+class CollisionChecker:
+    name: str
+    dof: int
+    call_count: int
+    def in_collision(self, q: ArrayLike) -> Union[bool, npt.NDArray[np.bool_]]: ...
+
+class FunctionChecker(CollisionChecker):
+    def __init__(self, fn: Callable[[npt.NDArray[np.float64]], bool], dof: int,
+                 name: str = "python") -> None: ...
+
+class Robot:
+    name: str
+    dof: int
+    joint_names: list[str]
+    link_names: list[str]
+    limits: JointLimits
+    def link_positions(self, q: ArrayLike) -> npt.NDArray[np.float64]: ...
+
+def load_robot(name_or_path: str, *, srdf: Optional[Path] = None,
+               package_paths: Sequence[Path] = ()) -> Robot: ...
+def shipped_robots() -> list[str]: ...
+def data_directory() -> os.PathLike: ...
+
+class Scene:
+    def __init__(self) -> None: ...
+    obstacle_names: list[str]
+    time: float
+    def __len__(self) -> int: ...
+    def step(self, steps: int = 1) -> None: ...
+    def add_box(self, name: str, size: ArrayLike, position: ArrayLike,
+                rpy: Optional[ArrayLike] = None) -> None: ...
+    def add_sphere(self, name: str, radius: float, position: ArrayLike) -> None: ...
+    def add_cylinder(self, name: str, radius: float, length: float, position: ArrayLike,
+                     rpy: Optional[ArrayLike] = None) -> None: ...
+    def remove(self, name: str) -> None: ...
+    def set_pose(self, name: str, position: ArrayLike, rpy: Optional[ArrayLike] = None) -> None: ...
+    def position(self, name: str) -> npt.NDArray[np.float64]: ...
+
+def load_scene(path: Path) -> Scene: ...
+def load_moveit_request(path: Path, robot: Robot) -> tuple[npt.NDArray[np.float64],
+                                                          npt.NDArray[np.float64]]: ...
+def robot_features(robot: Robot, kind: str = "fk",
+                   control_points: Sequence[str] = ()) -> FeatureMap: ...
+def load_model(path: Path, robot: Optional[Robot] = None) -> Model: ...
+
+class Contact:
+    robot_link: str
+    other: str
+    self_collision: bool
+
+class FclChecker(CollisionChecker):
+    def __init__(self, robot: Robot, scene: Scene, *, self_collision: bool = False,
+                 padding: float = 0.0) -> None: ...
+    robot: Robot
+    def set_scene(self, scene: Scene) -> None: ...
+    def first_contact(self, q: ArrayLike) -> Optional[Contact]: ...
+    def distance(self, q: ArrayLike) -> float: ...
+
+class GjkChecker(CollisionChecker):
+    def __init__(self, robot: Robot, scene: Scene, *, self_collision: bool = False,
+                 padding: float = 0.0) -> None: ...
+    robot: Robot
+    def set_scene(self, scene: Scene) -> None: ...
+
+class StepReport:
+    update: UpdateReport
+    labelled: int
+    added: int
+    observed: int
+    model_version: int
+    seconds: float
+    label_seconds: float
+
+class ProxyCollisionDetector:
+    def __init__(self, oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],
+                 features: FeatureMap, *, seed: int = 1, gamma: Optional[float] = None,
+                 beta: Optional[float] = None, max_support_points: int = 3000,
+                 active_samples: int = 500, label_threads: int = 0,
+                 calibration_samples: int = 1000) -> None: ...
+    def initialize(self, samples: int) -> StepReport: ...
+    def step(self) -> StepReport: ...
+    def model(self) -> Model: ...
+    def add_observations(self, X: ArrayLike, y: ArrayLike) -> None: ...
+    def start_background(self, min_period: float = 0.0) -> None: ...
+    def stop_background(self) -> None: ...
+    background_running: bool
+    features: FeatureMap
+    limits: JointLimits
+
+class PlanResult:
+    status: str
+    solved: bool
+    path: npt.NDArray[np.float64]
+    seconds: float
+    simplify_seconds: float
+
+class VerifiedPlan:
+    status: str
+    solved: bool
+    path: npt.NDArray[np.float64]
+    failure: str
+    planned_on: str
+    plan_seconds: float
+    verify_seconds: float
+    repair_seconds: float
+    total_seconds: float
+    invalid_stretches: int
+    whole_path_replanned: bool
+    exact_answers: tuple[npt.NDArray[np.float64], npt.NDArray[np.int8]]
+
+Source = Union[Model, CollisionChecker]
+
+def plan(source: Source, start: ArrayLike, goal: ArrayLike, *,
+         limits: Optional[JointLimits] = None, planner: str = "RRTConnect", range: float = 0.0,
+         resolution: float = 0.02, time_limit: float = 10.0,
+         simplify_time: float = 0.1) -> PlanResult: ...
+def plan_verified(approximate: Union[Source, ProxyCollisionDetector], exact: CollisionChecker,
+                  start: ArrayLike, goal: ArrayLike, *, limits: Optional[JointLimits] = None,
+                  planner: str = "RRTConnect", range: float = 0.0, resolution: float = 0.02,
+                  time_limit: float = 10.0, simplify_time: float = 0.1) -> VerifiedPlan: ...
+def check_path(checker: CollisionChecker, path: ArrayLike, resolution: float) -> bool: ...

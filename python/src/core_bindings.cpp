@@ -1,0 +1,289 @@
+// fastron.Model, training, evaluation, datasets and the oracle interface.
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <memory>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "fastron/core/collision_checker.h"
+#include "fastron/core/dataset.h"
+#include "fastron/core/error.h"
+#include "fastron/core/metrics.h"
+#include "fastron/core/model.h"
+#include "fastron/core/model_file.h"
+#include "fastron/core/trainer.h"
+#include "python_checker.h"
+
+namespace fastron::python {
+
+namespace {
+
+double seconds(std::chrono::nanoseconds t) {
+  return std::chrono::duration<double>(t).count();
+}
+
+/// f for one configuration (a float) or for each row of an (n, d) array.
+py::object scores(const Model& model, py::handle q) {
+  const ConfigurationRows rows = configurations(q, model.dim(), "q");
+  if (rows.single) return py::float_(model.score(rows.row(0)));
+  py::array_t<double> out = newArray(rows.rows);
+  double* data = out.mutable_data();
+  {
+    py::gil_scoped_release released;
+    model.scoreBatch(rows.data, rows.rows, data);
+  }
+  return std::move(out);
+}
+
+py::object inCollision(const Model& model, py::handle q) {
+  const ConfigurationRows rows = configurations(q, model.dim(), "q");
+  if (rows.single) return py::bool_(model.inCollision(rows.row(0)));
+  std::vector<double> f(rows.rows);
+  {
+    py::gil_scoped_release released;
+    model.scoreBatch(rows.data, rows.rows, f.data());
+  }
+  py::array_t<bool> out(static_cast<py::ssize_t>(rows.rows));
+  std::transform(f.begin(), f.end(), out.mutable_data(), [](double v) { return v > 0; });
+  return std::move(out);
+}
+
+/// The joint limits a model trained on bare data gets: the data's bounding box, as the command's
+/// `train --data` without --limits.
+JointLimits limitsOfData(const Eigen::Map<const Configurations>& x) {
+  try {
+    return {x.colwise().minCoeff().transpose(), x.colwise().maxCoeff().transpose()};
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string(e.what()) + " in the data's range; give limits=");
+  }
+}
+
+py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
+                std::optional<JointLimits> limits, std::optional<double> gamma,
+                std::optional<double> beta, const std::string& kernel,
+                std::optional<std::size_t> maxIterations, std::optional<std::size_t> maxSupport) {
+  if (features && limits) throw InvalidArgument("give features= or limits=, not both");
+  const std::size_t dim = features ? features->configurationDim() : limits ? limits->dim() : 0;
+  const ConfigurationRows rows = configurations(x, dim, "X", false);
+  const Labels labelled = labels(y, rows.rows, "y");
+  const FeatureMap map =
+      features ? *features
+               : FeatureMap::jointScaling(limits ? *limits : limitsOfData(rows.matrix()));
+  // With a robot's features, the settings tuned for them; on bare data, the paper's defaults.
+  TrainParams params = features ? defaultTrainParams(map.kind()) : TrainParams{};
+  params.kernel.type = parseKernelType(kernel);
+  if (gamma) params.kernel.gamma = *gamma;
+  if (beta) params.beta = *beta;
+  if (maxIterations) params.maxIterations = *maxIterations;
+  if (maxSupport) params.maxSupportPoints = *maxSupport;
+  std::shared_ptr<const Model> model;
+  UpdateReport report;
+  {
+    py::gil_scoped_release released;
+    Trainer trainer(map, params);
+    trainer.addPoints(rows.matrix(), labelled);
+    report = trainer.update();
+    model = trainer.model();
+  }
+  return py::make_tuple(std::const_pointer_cast<Model>(model), report);
+}
+
+}  // namespace
+
+void bindCore(py::module_& m) {
+  py::class_<JointLimits>(m, "JointLimits",
+                          "Lower and upper limit of each joint; joint scaling maps them to "
+                          "[-1, 1].")
+      .def(py::init([](py::handle lower, py::handle upper) {
+             const Eigen::VectorXd l = vector(lower, 0, "lower");
+             return JointLimits(l, vector(upper, static_cast<std::size_t>(l.size()), "upper"));
+           }),
+           py::arg("lower"), py::arg("upper"))
+      .def_property_readonly("dim", &JointLimits::dim)
+      .def_property_readonly("lower", [](const JointLimits& l) { return toArray(l.lower()); })
+      .def_property_readonly("upper", [](const JointLimits& l) { return toArray(l.upper()); })
+      .def("__repr__",
+           [](const JointLimits& l) { return "JointLimits(dim=" + std::to_string(l.dim()) + ")"; });
+
+  py::class_<FeatureMap>(m, "FeatureMap",
+                         "What the model's kernel compares: joint values scaled to [-1, 1] "
+                         "('joints'), or the world positions of control points on a robot "
+                         "('fk'; see robot_features).")
+      .def_static("joint_scaling", &FeatureMap::jointScaling, py::arg("limits"))
+      .def_property_readonly("kind",
+                             [](const FeatureMap& f) { return std::string(toString(f.kind())); })
+      .def_property_readonly("configuration_dim", &FeatureMap::configurationDim)
+      .def_property_readonly("feature_dim", &FeatureMap::featureDim)
+      .def_property_readonly("limits", &FeatureMap::limits)
+      .def(
+          "map",
+          [](const FeatureMap& f, py::handle q) -> py::object {
+            const ConfigurationRows rows = configurations(q, f.configurationDim(), "q");
+            Eigen::MatrixXd x = f.map(Configurations(rows.matrix()));
+            if (rows.single) return toArray(Eigen::VectorXd(x.row(0).transpose()));
+            return toArray(x);
+          },
+          py::arg("q"), "Features of one configuration (d,) or of each row of (n, d).")
+      .def("__repr__", [](const FeatureMap& f) { return "FeatureMap(" + f.summary() + ")"; });
+
+  py::class_<UpdateReport>(m, "UpdateReport", "What one run of Algorithm 1 did.")
+      .def_readonly("iterations", &UpdateReport::iterations)
+      .def_property_readonly(
+          "stop_reason", [](const UpdateReport& r) { return std::string(toString(r.stopReason)); })
+      .def_readonly("training_points", &UpdateReport::trainingPoints)
+      .def_readonly("misclassified", &UpdateReport::misclassified)
+      .def_readonly("support_count", &UpdateReport::supportCount)
+      .def_readonly("reverted", &UpdateReport::reverted)
+      .def_property_readonly("seconds", [](const UpdateReport& r) { return seconds(r.elapsed); })
+      .def("__repr__", [](const UpdateReport& r) {
+        return "UpdateReport(support_count=" + std::to_string(r.supportCount) +
+               ", iterations=" + std::to_string(r.iterations) + ", stop_reason='" +
+               std::string(toString(r.stopReason)) + "')";
+      });
+
+  py::class_<Model, std::shared_ptr<Model>>(
+      m, "Model",
+      "A trained Fastron model: f(q) = sum_i w_i k(s_i, q), in collision when f(q) > 0. "
+      "Immutable: query it from any number of threads.")
+      .def_property_readonly("dim", &Model::dim, "Joint values per configuration.")
+      .def_property_readonly("feature_dim", &Model::featureDim, "Features per configuration.")
+      .def_property_readonly("support_count", &Model::supportCount)
+      .def_property_readonly("features", &Model::features)
+      .def_property_readonly("limits", &Model::limits)
+      .def_property_readonly("gamma", [](const Model& model) { return model.kernel().gamma; })
+      .def_property_readonly(
+          "kernel", [](const Model& model) { return std::string(toString(model.kernel().type)); })
+      .def_property_readonly(
+          "support_points",
+          [](py::handle self) {
+            const Configurations& s = self.cast<const Model&>().supportConfigurations();
+            return readOnlyView(s.data(), static_cast<std::size_t>(s.rows()),
+                                static_cast<std::size_t>(s.cols()), true, self);
+          },
+          "Support configurations (joint values), shape (|S|, dim); a read-only view.")
+      .def_property_readonly(
+          "support_features",
+          [](py::handle self) {
+            const Eigen::MatrixXd& s = self.cast<const Model&>().supportFeatures();
+            return readOnlyView(s.data(), static_cast<std::size_t>(s.rows()),
+                                static_cast<std::size_t>(s.cols()), false, self);
+          },
+          "Their features, shape (|S|, feature_dim); a read-only view.")
+      .def_property_readonly(
+          "weights",
+          [](py::handle self) {
+            const Eigen::VectorXd& w = self.cast<const Model&>().weights();
+            return readOnlyView(w.data(), static_cast<std::size_t>(w.size()), 0, true, self);
+          },
+          "The support points' weights, shape (|S|,); a read-only view.")
+      .def("score", &scores, py::arg("q"),
+           "f(q) for one configuration (d,) -> float, or for each row of (n, d) -> (n,).")
+      .def("in_collision", &inCollision, py::arg("q"),
+           "f(q) > 0 for one configuration (d,) -> bool, or for each row of (n, d) -> (n,) bool.")
+      .def(
+          "first_in_collision",
+          [](const Model& model, py::handle q) -> std::optional<std::size_t> {
+            const ConfigurationRows rows = configurations(q, model.dim(), "q", false);
+            std::size_t first = 0;
+            {
+              py::gil_scoped_release released;
+              first = model.firstInCollision(rows.data, rows.rows);
+            }
+            if (first == rows.rows) return std::nullopt;
+            return first;
+          },
+          py::arg("q"),
+          "Index of the first row of (n, d) predicted in collision, or None when all are free.")
+      .def(
+          "save",
+          [](const Model& model, const std::filesystem::path& path) { saveModel(model, path); },
+          py::arg("path"))
+      .def("__repr__", [](const Model& model) {
+        return "Model(dim=" + std::to_string(model.dim()) + ", features='" +
+               model.features().summary() +
+               "', support_count=" + std::to_string(model.supportCount()) + ")";
+      });
+
+  m.def("train", &train, py::arg("X"), py::arg("y"), py::kw_only(),
+        py::arg("features") = py::none(), py::arg("limits") = py::none(),
+        py::arg("gamma") = py::none(), py::arg("beta") = py::none(), py::arg("kernel") = "rq",
+        py::arg("max_iterations") = py::none(), py::arg("max_support_points") = py::none(),
+        "Algorithm 1 on labelled configurations X (n, d) and labels y (n,) (+1 / -1 or bool). "
+        "Features: `features`, else joint scaling by `limits`, else by the data's range. Returns "
+        "(Model, UpdateReport). The GIL is released while it trains.");
+
+  py::class_<ConfusionCounts>(m, "ConfusionCounts",
+                              "Predictions against labels, 'positive' meaning in collision.")
+      .def_readonly("true_positives", &ConfusionCounts::truePositives)
+      .def_readonly("true_negatives", &ConfusionCounts::trueNegatives)
+      .def_readonly("false_positives", &ConfusionCounts::falsePositives)
+      .def_readonly("false_negatives", &ConfusionCounts::falseNegatives)
+      .def_property_readonly("total", &ConfusionCounts::total)
+      .def_property_readonly("accuracy", &ConfusionCounts::accuracy)
+      .def_property_readonly("tpr", &ConfusionCounts::tpr)
+      .def_property_readonly("tnr", &ConfusionCounts::tnr)
+      .def("__repr__", [](const ConfusionCounts& c) {
+        return "ConfusionCounts(accuracy=" + std::to_string(c.accuracy()) +
+               ", tpr=" + std::to_string(c.tpr()) + ", tnr=" + std::to_string(c.tnr()) +
+               ", total=" + std::to_string(c.total()) + ")";
+      });
+  m.def(
+      "evaluate",
+      [](const Model& model, py::handle x, py::handle y) {
+        const ConfigurationRows rows = configurations(x, model.dim(), "X", false);
+        const Labels labelled = labels(y, rows.rows, "y");
+        py::gil_scoped_release released;
+        return evaluate(model, Configurations(rows.matrix()), labelled);
+      },
+      py::arg("model"), py::arg("X"), py::arg("y"),
+      "The model's predictions on X (n, d) against labels y: accuracy, TPR, TNR.");
+
+  m.def(
+      "read_dataset",
+      [](const std::filesystem::path& path) {
+        const Dataset data = readDataset(path);
+        return py::make_tuple(toArray(Eigen::MatrixXd(data.points)), toArray(data.labels));
+      },
+      py::arg("path"), "A .csv or .npy dataset as (X (n, d) float64, y (n,) int8 of +1 / -1).");
+  m.def(
+      "write_dataset",
+      [](const std::filesystem::path& path, py::handle x, py::handle y) {
+        const ConfigurationRows rows = configurations(x, 0, "X", false);
+        writeDataset(Dataset{Configurations(rows.matrix()), labels(y, rows.rows, "y"), {}}, path);
+      },
+      py::arg("path"), py::arg("X"), py::arg("y"), "Writes a .csv or .npy dataset.");
+
+  py::class_<CollisionChecker, std::shared_ptr<CollisionChecker>>(
+      m, "CollisionChecker", "An exact collision checker (the oracle Fastron learns from).")
+      .def_property_readonly("name", &CollisionChecker::name)
+      .def_property_readonly("dof", &CollisionChecker::dof)
+      .def_property_readonly("call_count", &CollisionChecker::callCount)
+      .def(
+          "in_collision",
+          [](const CollisionChecker& checker, py::handle q) -> py::object {
+            const ConfigurationRows rows = configurations(q, checker.dof(), "q");
+            if (rows.single) return py::bool_(checker.inCollision(rows.row(0)));
+            std::vector<std::uint8_t> hits;
+            {
+              py::gil_scoped_release released;
+              hits = checker.inCollisionBatch(Configurations(rows.matrix()));
+            }
+            py::array_t<bool> out(static_cast<py::ssize_t>(hits.size()));
+            std::copy(hits.begin(), hits.end(), out.mutable_data());
+            return std::move(out);
+          },
+          py::arg("q"),
+          "The exact answer for one configuration (d,) -> bool, or each row of (n, d) -> (n,) "
+          "bool (on the calling thread, GIL released).");
+
+  py::class_<PythonChecker, CollisionChecker, std::shared_ptr<PythonChecker>>(
+      m, "FunctionChecker",
+      "An exact checker written in Python: fn(q) -> bool for a (dof,) array. Fastron calls it "
+      "from one thread at a time, holding the GIL.")
+      .def(py::init<py::function, std::size_t, std::string>(), py::arg("fn"), py::arg("dof"),
+           py::arg("name") = "python");
+}
+
+}  // namespace fastron::python

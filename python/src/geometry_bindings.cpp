@@ -1,0 +1,228 @@
+// Robots (URDF, SRDF, forward kinematics), scenes (our YAML, MoveIt files, moving obstacles) and
+// the exact checkers (FCL, GJK).
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "fastron/core/error.h"
+#include "fastron/core/model_file.h"
+#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_file.h"
+
+namespace fastron::python {
+
+namespace {
+
+/// World positions of every link's origin: (links, 3) for one configuration, (n, links, 3) for
+/// each row of (n, d).
+py::array_t<double> linkPositions(const Robot& robot, py::handle q) {
+  const ConfigurationRows rows = configurations(q, robot.dof(), "q");
+  const std::size_t links = robot.links().size();
+  py::array_t<double> out(rows.single
+                              ? std::vector<py::ssize_t>{static_cast<py::ssize_t>(links), 3}
+                              : std::vector<py::ssize_t>{static_cast<py::ssize_t>(rows.rows),
+                                                         static_cast<py::ssize_t>(links), 3});
+  double* data = out.mutable_data();
+  py::gil_scoped_release released;
+  KinematicsData scratch = makeKinematicsData(robot);
+  for (std::size_t i = 0; i < rows.rows; ++i) {
+    forwardKinematics(robot, rows.data + i * rows.cols, scratch);
+    for (std::size_t l = 0; l < links; ++l) {
+      const Eigen::Vector3d p = scratch.linkPoses[l].translation();
+      std::copy(p.data(), p.data() + 3, data + (i * links + l) * 3);
+    }
+  }
+  return out;
+}
+
+Eigen::Isometry3d pose(py::handle position, py::handle rpy) {
+  return makePose(vector(position, 3, "position"),
+                  rpy.is_none() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(vector(rpy, 3, "rpy")));
+}
+
+void addObstacle(Scene& scene, const std::string& name, Shape shape, py::handle position,
+                 py::handle rpy) {
+  scene.add(Obstacle{name, std::move(shape), pose(position, rpy), std::nullopt});
+}
+
+template <class Checker>
+std::shared_ptr<Checker> makeChecker(const Robot& robot, const Scene& scene, bool selfCollision,
+                                     double padding) {
+  return std::make_shared<Checker>(
+      robot, scene, CheckerOptions{.selfCollision = selfCollision, .padding = padding});
+}
+
+py::object contactObject(const std::optional<Contact>& contact) {
+  if (!contact) return py::none();
+  return py::cast(*contact);
+}
+
+}  // namespace
+
+void bindGeometry(py::module_& m) {
+  py::class_<Robot>(m, "Robot", "A robot from a URDF: kinematic tree, collision shapes, limits.")
+      .def_property_readonly("name", &Robot::name)
+      .def_property_readonly("dof", &Robot::dof, "Actuated joints (values per configuration).")
+      .def_property_readonly("joint_names", &Robot::actuatedJointNames,
+                             "The actuated joints, in configuration order.")
+      .def_property_readonly("link_names",
+                             [](const Robot& robot) {
+                               std::vector<std::string> names;
+                               for (const Link& link : robot.links()) names.push_back(link.name);
+                               return names;
+                             })
+      .def_property_readonly("limits", &Robot::limits)
+      .def("link_positions", &linkPositions, py::arg("q"),
+           "Forward kinematics: the world position of every link's origin (link_names order), "
+           "shape (links, 3) for one configuration (d,), (n, links, 3) for (n, d).")
+      .def("__repr__", [](const Robot& robot) {
+        return "Robot('" + robot.name() + "', dof=" + std::to_string(robot.dof()) + ")";
+      });
+  m.def(
+      "load_robot",
+      [](const std::string& nameOrPath, const std::optional<std::filesystem::path>& srdf,
+         const std::vector<std::filesystem::path>& packagePaths) {
+        UrdfOptions options;
+        options.searchPaths = packagePaths;
+        return loadRobot(nameOrPath, options, srdf.value_or(std::filesystem::path()));
+      },
+      py::arg("name_or_path"), py::kw_only(), py::arg("srdf") = py::none(),
+      py::arg("package_paths") = std::vector<std::filesystem::path>{},
+      "A shipped robot by name (see shipped_robots) or a URDF file; `srdf` adds a MoveIt SRDF's "
+      "disabled collisions; `package_paths` are where package:// meshes are looked up.");
+  m.def(
+      "shipped_robots",
+      [] {
+        std::vector<std::string> names;
+        for (const RobotEntry& entry : shippedRobots()) names.push_back(entry.name);
+        return names;
+      },
+      "Names of the robots shipped with Fastron.");
+  m.def("data_directory", &dataDirectory,
+        "The data folder (robots/, scenes/): $FASTRON_DATA_DIR, else the installation's.");
+
+  py::class_<Scene>(m, "Scene", "Obstacles (some moving) and where the robot's base is.")
+      .def(py::init<>())
+      .def_property_readonly("obstacle_names",
+                             [](const Scene& scene) {
+                               std::vector<std::string> names;
+                               for (const Obstacle& o : scene.obstacles()) names.push_back(o.name);
+                               return names;
+                             })
+      .def("__len__", &Scene::size)
+      .def_property_readonly("time", &Scene::time)
+      .def("step", &Scene::step, py::arg("steps") = 1,
+           "Moves every obstacle that has a motion by `steps` time steps.")
+      .def(
+          "add_box",
+          [](Scene& s, const std::string& name, py::handle size, py::handle position,
+             py::handle rpy) { addObstacle(s, name, Box{vector(size, 3, "size")}, position, rpy); },
+          py::arg("name"), py::arg("size"), py::arg("position"), py::arg("rpy") = py::none())
+      .def(
+          "add_sphere",
+          [](Scene& s, const std::string& name, double radius, py::handle position) {
+            addObstacle(s, name, Sphere{radius}, position, py::none());
+          },
+          py::arg("name"), py::arg("radius"), py::arg("position"))
+      .def(
+          "add_cylinder",
+          [](Scene& s, const std::string& name, double radius, double length, py::handle position,
+             py::handle rpy) {
+            addObstacle(s, name, Cylinder{radius, length}, position, rpy);
+          },
+          py::arg("name"), py::arg("radius"), py::arg("length"), py::arg("position"),
+          py::arg("rpy") = py::none())
+      .def("remove", &Scene::remove, py::arg("name"))
+      .def(
+          "set_pose",
+          [](Scene& s, const std::string& name, py::handle position, py::handle rpy) {
+            s.setPose(name, pose(position, rpy));
+          },
+          py::arg("name"), py::arg("position"), py::arg("rpy") = py::none(),
+          "Moves an obstacle; rpy: roll, pitch, yaw about fixed x, y, z (radians).")
+      .def(
+          "position",
+          [](const Scene& s, const std::string& name) {
+            return toArray(Eigen::VectorXd(s.obstacle(name).pose.translation()));
+          },
+          py::arg("name"))
+      .def("__repr__", [](const Scene& scene) {
+        return "Scene(" + std::to_string(scene.size()) + " obstacles)";
+      });
+  m.def("load_scene", &loadScene, py::arg("path"),
+        "A scene file: Fastron's YAML (top-level `obstacles`) or a MoveIt PlanningScene.");
+  m.def(
+      "load_moveit_request",
+      [](const std::filesystem::path& path, const Robot& robot) {
+        const PlanRequest request = loadMoveItRequest(path);
+        return py::make_tuple(toArray(actuatedConfiguration(robot, request.start, "start")),
+                              toArray(actuatedConfiguration(robot, request.goal, "goal")));
+      },
+      py::arg("path"), py::arg("robot"),
+      "A MoveIt MotionPlanRequest as (start, goal) configurations of the robot's actuated joints.");
+
+  m.def(
+      "robot_features",
+      [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points) {
+        return robotFeatures(
+            robot, parseFeatureKind(kind),
+            points.empty() ? std::vector<ControlPoint>{} : namedControlPoints(robot, points));
+      },
+      py::arg("robot"), py::arg("kind") = "fk",
+      py::arg("control_points") = std::vector<std::string>{},
+      "The features a model of `robot` learns on: 'fk' (world positions of control points: "
+      "'LINK' or 'LINK@X:Y:Z'; default: chosen automatically) or 'joints' (joint scaling).");
+  m.def(
+      "load_model",
+      [](const std::filesystem::path& path, const std::optional<Robot>& robot) {
+        return std::make_shared<Model>(robot ? loadModelFor(path, *robot) : loadModel(path));
+      },
+      py::arg("path"), py::arg("robot") = py::none(),
+      "Reads a model file; a task-space ('fk') model needs the robot it was trained for.");
+
+  py::class_<Contact>(m, "Contact", "What collided.")
+      .def_readonly("robot_link", &Contact::robotLink)
+      .def_readonly("other", &Contact::other, "An obstacle, or a link for a self-collision.")
+      .def_readonly("self_collision", &Contact::selfCollision)
+      .def("__repr__", [](const Contact& c) {
+        return "Contact('" + c.robotLink + "', '" + c.other + "'" +
+               (c.selfCollision ? ", self_collision=True)" : ")");
+      });
+
+  py::class_<FclChecker, CollisionChecker, std::shared_ptr<FclChecker>>(
+      m, "FclChecker", "The exact checker: forward kinematics, then FCL against the scene.")
+      .def(py::init(&makeChecker<FclChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
+           py::arg("self_collision") = false, py::arg("padding") = 0.0)
+      .def_property_readonly("robot", &FclChecker::robot)
+      .def("set_scene", &FclChecker::setScene, py::arg("scene"),
+           "Takes the obstacles' new poses; safe while other threads check.")
+      .def(
+          "first_contact",
+          [](const FclChecker& fcl, py::handle q) {
+            const Eigen::VectorXd v = vector(q, fcl.dof(), "q");
+            return contactObject(fcl.firstContact({v.data(), fcl.dof()}));
+          },
+          py::arg("q"), "The first contact found at q, or None when q is free.")
+      .def(
+          "distance",
+          [](const FclChecker& fcl, py::handle q) {
+            const Eigen::VectorXd v = vector(q, fcl.dof(), "q");
+            return fcl.distance({v.data(), fcl.dof()});
+          },
+          py::arg("q"), "Smallest distance between the robot and any obstacle (0 in collision).");
+
+  py::class_<GjkChecker, CollisionChecker, std::shared_ptr<GjkChecker>>(
+      m, "GjkChecker", "Forward kinematics, then libccd's GJK on convex shapes.")
+      .def(py::init(&makeChecker<GjkChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
+           py::arg("self_collision") = false, py::arg("padding") = 0.0)
+      .def_property_readonly("robot", &GjkChecker::robot)
+      .def("set_scene", &GjkChecker::setScene, py::arg("scene"));
+}
+
+}  // namespace fastron::python

@@ -1,0 +1,211 @@
+// Planning with OMPL on a model or an exact checker, and verify-and-repair.
+
+#include <pybind11/stl.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "fastron/core/error.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/gjk_checker.h"
+#include "fastron/planning/planner.h"
+#include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+
+namespace fastron::python {
+
+namespace {
+
+double seconds(std::chrono::nanoseconds t) {
+  return std::chrono::duration<double>(t).count();
+}
+
+PlannerOptions plannerOptions(const std::string& planner, double range, double resolution,
+                              double timeLimit, double simplifyTime) {
+  PlannerOptions options;
+  options.type = parsePlannerType(planner);
+  options.range = range;
+  options.resolution = resolution;
+  options.timeLimit = timeLimit;
+  options.simplifyTime = simplifyTime;
+  validate(options);
+  return options;
+}
+
+/// The joint limits of a planning problem: given, else the source's own (a model's, or the robot's
+/// of an FclChecker / GjkChecker).
+JointLimits limitsOf(py::handle source, const std::optional<JointLimits>& given) {
+  if (given) return *given;
+  if (py::isinstance<Model>(source)) return source.cast<const Model&>().limits();
+  if (py::isinstance<FclChecker>(source)) return source.cast<const FclChecker&>().robot().limits();
+  if (py::isinstance<GjkChecker>(source)) return source.cast<const GjkChecker&>().robot().limits();
+  throw InvalidArgument("limits=: this collision source has no joint limits of its own");
+}
+
+CollisionSource sourceOf(py::handle source) {
+  if (py::isinstance<Model>(source))
+    return std::shared_ptr<const Model>(source.cast<std::shared_ptr<Model>>());
+  if (py::isinstance<CollisionChecker>(source))
+    return std::shared_ptr<const CollisionChecker>(
+        source.cast<std::shared_ptr<CollisionChecker>>());
+  throw InvalidArgument("source: expected a Model or a CollisionChecker, got " +
+                        std::string(py::str(py::type::handle_of(source).attr("__name__"))));
+}
+
+py::array_t<double> pathArray(const Path& path, std::size_t dim) {
+  py::array_t<double> out = newArray(path.size(), dim);
+  for (std::size_t i = 0; i < path.size(); ++i)
+    std::copy(path[i].data(), path[i].data() + dim, out.mutable_data() + i * dim);
+  return out;
+}
+
+Path pathOf(py::handle waypoints, std::size_t dim) {
+  const ConfigurationRows rows = configurations(waypoints, dim, "path", false);
+  Path path;
+  for (std::size_t i = 0; i < rows.rows; ++i)
+    path.emplace_back(
+        Eigen::Map<const Eigen::VectorXd>(rows.data + i * dim, static_cast<Eigen::Index>(dim)));
+  return path;
+}
+
+/// What a plan returns to Python: the path as an (k, d) array beside the report.
+struct PythonPlan {
+  std::string status;
+  py::array_t<double> path;
+  double seconds = 0, simplifySeconds = 0;
+};
+
+struct PythonVerifiedPlan {
+  std::string status, failure, plannedOn;
+  py::array_t<double> path;
+  double planSeconds = 0, verifySeconds = 0, repairSeconds = 0;
+  std::size_t invalidStretches = 0;
+  bool wholePathReplanned = false;
+  py::array_t<double> exactX;
+  py::array_t<std::int8_t> exactY;
+};
+
+PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
+  return {toString(plan.status),
+          plan.failure,
+          plan.plannedOn,
+          pathArray(plan.path, dim),
+          seconds(plan.planTime),
+          seconds(plan.verifyTime),
+          seconds(plan.repairTime),
+          plan.invalidStretches,
+          plan.wholePathReplanned,
+          toArray(Eigen::MatrixXd(plan.exactAnswers.points)),
+          toArray(plan.exactAnswers.labels)};
+}
+
+}  // namespace
+
+void bindPlanning(py::module_& m) {
+  py::class_<PythonPlan>(m, "PlanResult", "One planning query on one collision source.")
+      .def_readonly("status", &PythonPlan::status,
+                    "'solved', 'start in collision', 'goal in collision' or 'timeout'.")
+      .def_property_readonly("solved", [](const PythonPlan& p) { return p.status == "solved"; })
+      .def_readonly("path", &PythonPlan::path, "Waypoints (k, d), start to goal; empty if none.")
+      .def_readonly("seconds", &PythonPlan::seconds)
+      .def_readonly("simplify_seconds", &PythonPlan::simplifySeconds)
+      .def("__repr__", [](const PythonPlan& p) {
+        return "PlanResult('" + p.status + "', " + std::to_string(p.path.shape(0)) + " waypoints)";
+      });
+
+  py::class_<PythonVerifiedPlan>(m, "VerifiedPlan",
+                                 "A plan on an approximate source, verified and repaired on the "
+                                 "exact checker: `path` is valid under it when solved.")
+      .def_readonly("status", &PythonVerifiedPlan::status)
+      .def_property_readonly("solved",
+                             [](const PythonVerifiedPlan& p) { return p.status == "solved"; })
+      .def_readonly("path", &PythonVerifiedPlan::path)
+      .def_readonly("failure", &PythonVerifiedPlan::failure)
+      .def_readonly("planned_on", &PythonVerifiedPlan::plannedOn)
+      .def_readonly("plan_seconds", &PythonVerifiedPlan::planSeconds)
+      .def_readonly("verify_seconds", &PythonVerifiedPlan::verifySeconds)
+      .def_readonly("repair_seconds", &PythonVerifiedPlan::repairSeconds)
+      .def_property_readonly("total_seconds",
+                             [](const PythonVerifiedPlan& p) {
+                               return p.planSeconds + p.verifySeconds + p.repairSeconds;
+                             })
+      .def_readonly("invalid_stretches", &PythonVerifiedPlan::invalidStretches)
+      .def_readonly("whole_path_replanned", &PythonVerifiedPlan::wholePathReplanned)
+      .def_property_readonly(
+          "exact_answers",
+          [](const PythonVerifiedPlan& p) { return py::make_tuple(p.exactX, p.exactY); },
+          "Every exact answer of verify and repair as (X, y), for add_observations.")
+      .def("__repr__", [](const PythonVerifiedPlan& p) {
+        return "VerifiedPlan('" + p.status + "', " + std::to_string(p.path.shape(0)) +
+               " waypoints, " + std::to_string(p.invalidStretches) + " stretches repaired)";
+      });
+
+  m.def(
+      "plan",
+      [](py::handle source, py::handle start, py::handle goal, std::optional<JointLimits> limits,
+         const std::string& planner, double range, double resolution, double timeLimit,
+         double simplifyTime) {
+        const CollisionSource s = sourceOf(source);
+        const JointLimits l = limitsOf(source, limits);
+        const Eigen::VectorXd a = vector(start, l.dim(), "start"),
+                              b = vector(goal, l.dim(), "goal");
+        const PlannerOptions options =
+            plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
+        PlanResult result;
+        {
+          py::gil_scoped_release released;
+          result = planMotion(s, l, a, b, options);
+        }
+        return PythonPlan{toString(result.status), pathArray(result.path, l.dim()),
+                          seconds(result.time), seconds(result.simplifyTime)};
+      },
+      py::arg("source"), py::arg("start"), py::arg("goal"), py::kw_only(),
+      py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
+      py::arg("resolution") = 0.02, py::arg("time_limit") = 10.0, py::arg("simplify_time") = 0.1,
+      "Plans from start to goal with OMPL (planner: 'RRT', 'RRTConnect', 'RRT*', 'BIT*') on a "
+      "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier.");
+
+  m.def(
+      "plan_verified",
+      [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
+         py::handle goal, std::optional<JointLimits> limits, const std::string& planner,
+         double range, double resolution, double timeLimit, double simplifyTime) {
+        const PlannerOptions options =
+            plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
+        const bool detector = py::isinstance<ProxyCollisionDetector>(approximate);
+        const JointLimits l = detector ? approximate.cast<const ProxyCollisionDetector&>().limits()
+                                       : limitsOf(approximate, limits);
+        const Eigen::VectorXd a = vector(start, l.dim(), "start"),
+                              b = vector(goal, l.dim(), "goal");
+        // A detector gives its calibrated band: a model that closes a passage is retried as a
+        // hybrid of model and exact checker before planning on the exact one.
+        const std::variant<CalibratedModel, CollisionSource> source =
+            detector ? std::variant<CalibratedModel, CollisionSource>(
+                           approximate.cast<const ProxyCollisionDetector&>().calibratedModel())
+                     : sourceOf(approximate);
+        VerifiedPlan plan;
+        {
+          py::gil_scoped_release released;
+          plan = std::visit([&](const auto& s) { return planVerified(s, exact, l, a, b, options); },
+                            source);
+        }
+        return toPython(plan, l.dim());
+      },
+      py::arg("approximate"), py::arg("exact"), py::arg("start"), py::arg("goal"), py::kw_only(),
+      py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
+      py::arg("resolution") = 0.02, py::arg("time_limit") = 10.0, py::arg("simplify_time") = 0.1,
+      "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "
+      "or a checker), then verifies every edge with `exact` and replans the stretches that "
+      "collide: a solved plan's path never collides under `exact` at `resolution`.");
+
+  m.def(
+      "check_path",
+      [](const CollisionChecker& checker, py::handle path, double resolution) {
+        const Path p = pathOf(path, checker.dof());
+        py::gil_scoped_release released;
+        return checkPath(checker, p, resolution).valid();
+      },
+      py::arg("checker"), py::arg("path"), py::arg("resolution"),
+      "True when every waypoint of path (k, d) and every edge, checked at `resolution`, is free.");
+}
+
+}  // namespace fastron::python

@@ -1,0 +1,127 @@
+// fastron.ProxyCollisionDetector: label -> update -> active learning over any oracle, in the
+// foreground or on a background thread.
+
+#include <pybind11/stl.h>
+
+#include <memory>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "fastron/core/error.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+#include "python_checker.h"
+
+namespace fastron::python {
+
+namespace {
+
+double seconds(std::chrono::nanoseconds t) {
+  return std::chrono::duration<double>(t).count();
+}
+
+/// A checker object, or any callable q -> bool (wrapped in a FunctionChecker of `dof` joints).
+std::shared_ptr<const CollisionChecker> oracleOf(py::handle oracle, std::size_t dof) {
+  if (py::isinstance<CollisionChecker>(oracle))
+    return oracle.cast<std::shared_ptr<CollisionChecker>>();
+  if (PyCallable_Check(oracle.ptr()))
+    return std::make_shared<PythonChecker>(py::reinterpret_borrow<py::function>(oracle), dof,
+                                           "python");
+  throw InvalidArgument("oracle: expected a CollisionChecker or a callable q -> bool, got " +
+                        std::string(py::str(py::type::handle_of(oracle).attr("__name__"))));
+}
+
+/// Stops the background thread without the GIL (its oracle may need it), then deletes.
+struct ReleasingDelete {
+  void operator()(ProxyCollisionDetector* detector) const {
+    py::gil_scoped_release released;
+    delete detector;
+  }
+};
+using DetectorHolder = std::unique_ptr<ProxyCollisionDetector, ReleasingDelete>;
+
+DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::uint64_t seed,
+                            std::optional<double> gamma, std::optional<double> beta,
+                            std::size_t maxSupport, std::size_t activeSamples,
+                            unsigned labelThreads, std::size_t calibrationSamples) {
+  const std::shared_ptr<const CollisionChecker> checker =
+      oracleOf(oracle, features.configurationDim());
+  ProxyParams params;
+  params.train = defaultTrainParams(features.kind());
+  if (gamma) params.train.kernel.gamma = *gamma;
+  if (beta) params.train.beta = *beta;
+  params.train.maxSupportPoints = maxSupport;
+  params.activeLearning.maxSamples = activeSamples;
+  params.seed = seed;
+  // A Python oracle answers one call at a time (the GIL): more threads only wait.
+  params.labelThreads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : labelThreads;
+  params.calibrationSamples = calibrationSamples;
+  return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
+}
+
+}  // namespace
+
+void bindProxy(py::module_& m) {
+  py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
+      .def_readonly("update", &StepReport::update)
+      .def_readonly("labelled", &StepReport::labelled, "Oracle calls made.")
+      .def_readonly("added", &StepReport::added)
+      .def_readonly("observed", &StepReport::observed)
+      .def_readonly("model_version", &StepReport::modelVersion)
+      .def_property_readonly("seconds", [](const StepReport& r) { return seconds(r.total); })
+      .def_property_readonly("label_seconds",
+                             [](const StepReport& r) { return seconds(r.labelTime); })
+      .def("__repr__", [](const StepReport& r) {
+        return "StepReport(model_version=" + std::to_string(r.modelVersion) +
+               ", support_count=" + std::to_string(r.update.supportCount) +
+               ", labelled=" + std::to_string(r.labelled) + ")";
+      });
+
+  py::class_<ProxyCollisionDetector, DetectorHolder>(
+      m, "ProxyCollisionDetector",
+      "Fig. 2 of the paper: keeps a Fastron model of an oracle's C-space current while the world "
+      "changes. The oracle is a CollisionChecker (FclChecker, GjkChecker: labels on every core "
+      "with the GIL released) or a Python callable q -> bool (called from one thread at a time).")
+      .def(py::init(&makeDetector), py::arg("oracle"), py::arg("features"), py::kw_only(),
+           py::arg("seed") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
+           py::arg("max_support_points") = 3000, py::arg("active_samples") = 500,
+           py::arg("label_threads") = 0, py::arg("calibration_samples") = 1000,
+           "features: a FeatureMap (robot_features(robot), or FeatureMap.joint_scaling(limits)); "
+           "gamma, beta default to the values tuned for the kind of features.")
+      .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),
+           py::call_guard<py::gil_scoped_release>(),
+           "Labels `samples` uniform configurations and trains the first model.")
+      .def("step", &ProxyCollisionDetector::step, py::call_guard<py::gil_scoped_release>(),
+           "One update for a changed world: active learning, relabelling, Algorithm 1.")
+      .def(
+          "model",
+          [](const ProxyCollisionDetector& d) { return std::const_pointer_cast<Model>(d.model()); },
+          "The latest model: an immutable snapshot, safe to query while updates go on.")
+      .def(
+          "add_observations",
+          [](ProxyCollisionDetector& d, py::handle x, py::handle y) {
+            const ConfigurationRows rows =
+                configurations(x, d.features().configurationDim(), "X", false);
+            d.addObservations(
+                Dataset{Configurations(rows.matrix()), labels(y, rows.rows, "y"), {}});
+          },
+          py::arg("X"), py::arg("y"),
+          "Exact answers the caller already has, learned at the next step (e.g. a verified "
+          "plan's missed answers).")
+      .def(
+          "start_background",
+          [](ProxyCollisionDetector& d, double minPeriod) {
+            if (!(minPeriod >= 0)) throw InvalidArgument("min_period must be >= 0 seconds");
+            d.startBackground({}, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                      std::chrono::duration<double>(minPeriod)));
+          },
+          py::arg("min_period") = 0.0,
+          "Runs step() in a loop on a background thread, at most once per min_period seconds.")
+      .def("stop_background", &ProxyCollisionDetector::stopBackground,
+           py::call_guard<py::gil_scoped_release>(),
+           "Stops the background thread; raises what ended it, if anything did.")
+      .def_property_readonly("background_running", &ProxyCollisionDetector::backgroundRunning)
+      .def_property_readonly("features", &ProxyCollisionDetector::features)
+      .def_property_readonly("limits", &ProxyCollisionDetector::limits);
+}
+
+}  // namespace fastron::python

@@ -1,0 +1,169 @@
+"""Robots, scenes, exact checkers, the proxy pipeline and planning from Python."""
+import os
+import pathlib
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import fastron
+from conftest import uniform
+
+
+def test_robot_and_forward_kinematics(baxter):
+    assert baxter.dof == 7 and len(baxter.joint_names) == 7
+    assert baxter.limits.lower.shape == (7,)
+    one = baxter.link_positions(np.zeros(7))
+    assert one.shape == (len(baxter.link_names), 3)
+    many = baxter.link_positions(np.zeros((4, 7)))
+    assert many.shape == (4, len(baxter.link_names), 3) and np.array_equal(many[2], one)
+    # The base link sits at the origin; a joint moves the links after it.
+    assert np.allclose(one[baxter.link_names.index("base")], 0)
+    moved = baxter.link_positions(np.array([0.5, 0, 0, 0, 0, 0, 0]))
+    assert np.abs(moved - one).max() > 0.1
+
+
+def test_checkers_agree_with_the_command_labels(tmp_path, fastron_command, baxter, baxter_fcl):
+    import subprocess
+    data = tmp_path / "s.csv"
+    scene = fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml"
+    subprocess.run([fastron_command, "sample", "--robot", "baxter", "--scene", scene, "-n", "500",
+                    "-o", data], check=True, capture_output=True)
+    x, y = fastron.read_dataset(data)
+    assert np.array_equal(baxter_fcl.in_collision(x), y > 0)
+    gjk = fastron.GjkChecker(baxter, fastron.load_scene(scene))
+    assert np.mean(gjk.in_collision(x) == (y > 0)) > 0.97  # convex hulls of the same shapes
+
+
+def test_contacts_distance_and_moving_scenes(baxter):
+    scene = fastron.Scene()
+    scene.add_box("wall", [0.1, 2, 2], [0.6, 0, 0.3])
+    fcl = fastron.FclChecker(baxter, scene)
+    x = uniform(baxter.limits, 400, seed=3)
+    hits = fcl.in_collision(x)
+    assert 0 < hits.sum() < len(x)
+    contact = fcl.first_contact(x[np.argmax(hits)])
+    assert contact.other == "wall" and contact.robot_link in baxter.link_names
+    free = x[np.argmin(hits)]
+    assert fcl.first_contact(free) is None and fcl.distance(free) > 0
+    scene.set_pose("wall", [5, 0, 0])
+    fcl.set_scene(scene)
+    assert not fcl.in_collision(x).any()
+    assert np.allclose(scene.position("wall"), [5, 0, 0])
+
+
+def test_python_oracle_and_gil(tmp_path):
+    calls = []
+    threads = set()
+
+    def disc(q):
+        calls.append(1)
+        threads.add(threading.get_ident())
+        return bool(np.hypot(q[0] - 0.2, q[1]) < 0.5)
+
+    features = fastron.FeatureMap.joint_scaling(fastron.JointLimits([-2, -2], [2, 2]))
+    detector = fastron.ProxyCollisionDetector(disc, features, gamma=30, beta=5)
+    report = detector.initialize(1500)
+    assert report.labelled == len(calls) and len(threads) == 1
+    model = detector.model()
+    assert model.in_collision(np.array([0.2, 0])) and not model.in_collision(np.array([1.5, 1.5]))
+
+    def failing(q):
+        raise RuntimeError("oracle broke")
+
+    with pytest.raises(RuntimeError, match="oracle broke"):
+        fastron.ProxyCollisionDetector(failing, features).initialize(10)
+
+
+def test_long_calls_release_the_gil(baxter, baxter_fcl):
+    """A Python thread keeps running while C++ labels and trains."""
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    detector = fastron.ProxyCollisionDetector(baxter_fcl, fastron.robot_features(baxter))
+    thread = threading.Thread(target=tick)
+    thread.start()
+    start = time.perf_counter()
+    detector.initialize(40000)
+    elapsed = time.perf_counter() - start
+    done.set()
+    thread.join()
+    during = [t for t in ticks if start < t < start + elapsed]
+    assert len(during) >= max(3, 0.2 * elapsed / 0.001), (elapsed, len(during))
+
+
+def test_background_updates_and_snapshots(baxter, three_boxes):
+    scene = three_boxes
+    fcl = fastron.FclChecker(baxter, scene)
+    detector = fastron.ProxyCollisionDetector(fcl, fastron.robot_features(baxter), seed=4)
+    detector.initialize(3000)
+    first = detector.model()
+    detector.start_background(min_period=0.01)
+    q = uniform(baxter.limits, 200, seed=8)
+    for _ in range(5):
+        scene.step()
+        fcl.set_scene(scene)
+        time.sleep(0.02)
+        detector.model().score(q)  # snapshots stay queryable during updates
+    detector.stop_background()
+    assert not detector.background_running
+    assert np.array_equal(first.score(q), first.score(q))  # an old snapshot never changes
+
+
+def test_planning_verified_paths_never_collide(baxter):
+    scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
+    fcl = fastron.FclChecker(baxter, scene)
+    detector = fastron.ProxyCollisionDetector(fcl, fastron.robot_features(baxter), seed=2)
+    detector.initialize(6000)
+    x = uniform(baxter.limits, 400, seed=11)
+    free = x[~fcl.in_collision(x)]
+    solved = 0
+    for i in range(4):
+        start, goal = free[2 * i], free[2 * i + 1]
+        plan = fastron.plan_verified(detector, fcl, start, goal, resolution=0.05, time_limit=5)
+        if plan.solved:
+            solved += 1
+            assert np.array_equal(plan.path[0], start) and np.array_equal(plan.path[-1], goal)
+            # Valid under the exact checker at a finer resolution than planned with.
+            assert fastron.check_path(fcl, plan.path, 0.01), plan
+            answers_x, answers_y = plan.exact_answers
+            assert answers_x.shape[1] == 7 and answers_y.shape == (answers_x.shape[0],)
+        exact = fastron.plan(fcl, start, goal, resolution=0.05, time_limit=5)
+        assert exact.solved == plan.solved or not exact.solved
+    assert solved >= 3
+    on_model = fastron.plan(detector.model(), free[0], free[1], resolution=0.05)
+    assert on_model.path.shape[1] == 7
+
+
+def test_moveit_files():
+    shared = os.environ.get("FASTRON_SHARED_DIR")
+    if not shared or not pathlib.Path(shared, "data/motion-bench-sample").is_dir():
+        pytest.skip("no MotionBenchMaker sample (FASTRON_SHARED_DIR)")
+    folder = pathlib.Path(shared, "data/motion-bench-sample")
+    panda = fastron.load_robot("panda-mesh")
+    scene = fastron.load_scene(folder / "scene0001.yaml")
+    start, goal = fastron.load_moveit_request(folder / "request0001.yaml", panda)
+    assert start.shape == goal.shape == (7,) and len(scene) > 0
+    fcl = fastron.FclChecker(panda, scene)
+    assert not fcl.in_collision(start) and not fcl.in_collision(goal)
+
+
+def test_help_shows_the_api():
+    assert "f(q)" in fastron.Model.__doc__
+    assert "numpy" in fastron.__doc__ or "array" in fastron.__doc__
+    assert "Algorithm 1" in fastron.train.__doc__
+
+
+def test_type_stubs_cover_the_module():
+    import ast
+    stubs = pathlib.Path(fastron.__file__).with_name("_fastron.pyi")
+    tree = ast.parse(stubs.read_text())
+    stubbed = {node.name for node in tree.body if isinstance(node, (ast.ClassDef, ast.FunctionDef))}
+    public = {name for name in dir(fastron._fastron) if not name.startswith("_")}
+    assert public == stubbed

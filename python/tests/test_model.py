@@ -1,0 +1,99 @@
+"""Models, training and datasets from Python agree with the C++ library and its command."""
+import subprocess
+
+import numpy as np
+import pytest
+
+import fastron
+from conftest import uniform
+
+
+def disc_data(n=1500, seed=2):
+    x = np.random.default_rng(seed).uniform(-2, 2, size=(n, 2))
+    return x, np.where(np.hypot(x[:, 0] - 0.3, x[:, 1]) < 0.8, 1, -1)
+
+
+def test_train_learns_a_disc():
+    x, y = disc_data()
+    model, report = fastron.train(x, y, gamma=30, beta=5)
+    assert report.stop_reason == "converged"
+    assert model.support_count == report.support_count > 0
+    xt, yt = disc_data(2000, seed=9)
+    counts = fastron.evaluate(model, xt, yt)
+    assert counts.total == 2000 and counts.accuracy > 0.95 and counts.tpr > 0.9
+    # Claim 1 of the paper: every training point is classified correctly after convergence.
+    assert np.all(np.sign(model.score(x)) == y)
+
+
+def test_batch_and_single_queries_agree():
+    x, y = disc_data()
+    model, _ = fastron.train(x, y, gamma=30, beta=5)
+    batch = model.score(x[:50])
+    single = np.array([model.score(q) for q in x[:50]])
+    assert batch.shape == (50,) and np.array_equal(batch, single)
+    assert np.array_equal(model.in_collision(x[:50]), batch > 0)
+    assert isinstance(model.in_collision(x[0]), bool)
+    hits = np.flatnonzero(batch > 0)
+    assert model.first_in_collision(x[:50]) == (hits[0] if hits.size else None)
+
+
+def test_arrays_are_read_only_views_of_the_model():
+    x, y = disc_data()
+    model, _ = fastron.train(x, y, gamma=30, beta=5)
+    w = model.weights
+    assert w.shape == (model.support_count,) and not w.flags.writeable
+    assert model.support_points.shape == (model.support_count, 2)
+    assert model.support_features.shape == (model.support_count, 2)
+    assert np.shares_memory(w, model.weights)  # the model's own memory, not a copy
+    with pytest.raises(ValueError):
+        w[0] = 1
+
+
+def test_same_data_same_model_as_the_command(tmp_path, fastron_command):
+    """Python's train and `fastron train --data` give the same support set and weights."""
+    x, y = disc_data()
+    data = tmp_path / "disc.csv"
+    fastron.write_dataset(data, x, y)
+    model_file = tmp_path / "disc.fastron"
+    subprocess.run([fastron_command, "train", "--data", data, "-o", model_file, "--gamma", "30",
+                    "--beta", "5"], check=True, capture_output=True)
+    from_command = fastron.load_model(model_file)
+    x_read, y_read = fastron.read_dataset(data)
+    from_python, _ = fastron.train(x_read, y_read, gamma=30, beta=5)
+    assert np.array_equal(from_command.support_points, from_python.support_points)
+    assert np.array_equal(from_command.weights, from_python.weights)
+
+
+def test_task_space_model_equals_the_command(tmp_path, fastron_command, baxter, baxter_fcl):
+    x = uniform(baxter.limits, 3000, seed=5)
+    y = baxter_fcl.in_collision(x)
+    data = tmp_path / "baxter.npy"
+    fastron.write_dataset(data, x, y)
+    model_file = tmp_path / "baxter.fastron"
+    subprocess.run([fastron_command, "train", "--data", data, "--robot", "baxter", "-o",
+                    model_file, "--max-support", "3000"], check=True, capture_output=True)
+    from_command = fastron.load_model(model_file, baxter)
+    from_python, _ = fastron.train(x, y, features=fastron.robot_features(baxter))
+    assert from_python.features.kind == "fk"
+    assert np.array_equal(from_command.weights, from_python.weights)
+    q = uniform(baxter.limits, 100, seed=6)
+    assert np.array_equal(from_command.score(q), from_python.score(q))
+
+
+def test_save_and_load(tmp_path, baxter, baxter_fcl):
+    x = uniform(baxter.limits, 1000, seed=7)
+    model, _ = fastron.train(x, baxter_fcl.in_collision(x), features=fastron.robot_features(baxter))
+    path = tmp_path / "m.fastron"
+    model.save(path)
+    with pytest.raises(fastron.FileError, match="robot"):
+        fastron.load_model(path)  # a task-space model needs its robot
+    loaded = fastron.load_model(path, baxter)
+    assert np.array_equal(loaded.score(x[:20]), model.score(x[:20]))
+
+
+def test_dataset_round_trip(tmp_path):
+    x, y = disc_data(50)
+    for name in ("d.csv", "d.npy"):
+        fastron.write_dataset(tmp_path / name, x, y)
+        x2, y2 = fastron.read_dataset(tmp_path / name)
+        assert np.allclose(x2, x) and np.array_equal(y2, y) and y2.dtype == np.int8
