@@ -24,6 +24,14 @@ std::vector<std::uint8_t> CollisionChecker::inCollisionBatch(const Configuration
   return out;
 }
 
+std::size_t CollisionChecker::firstInCollision(const Configurations& q) const {
+  if (static_cast<std::size_t>(q.cols()) != dof()) {
+    throw InvalidArgument("configurations have " + std::to_string(q.cols()) + " columns, " +
+                          name() + " checks " + std::to_string(dof()) + " joints");
+  }
+  return firstInCollision(q.data(), static_cast<std::size_t>(q.rows()));
+}
+
 std::size_t CollisionChecker::firstInCollision(const double* q, std::size_t n) const {
   const std::size_t dim = dof();
   for (std::size_t i = 0; i < n; ++i) {

@@ -288,14 +288,27 @@ void Model::scoreBatch(const double* q, std::size_t n, double* out) const {
   });
 }
 
-Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {
-  if (static_cast<std::size_t>(q.cols()) != dim()) {
+namespace {
+
+void checkColumns(const Configurations& q, std::size_t dim) {
+  if (static_cast<std::size_t>(q.cols()) != dim) {
     throw InvalidArgument("configurations have " + std::to_string(q.cols()) +
-                          " columns, the model has dimension " + std::to_string(dim()));
+                          " columns, the model has dimension " + std::to_string(dim));
   }
+}
+
+}  // namespace
+
+Eigen::VectorXd Model::scoreBatch(const Configurations& q) const {
+  checkColumns(q, dim());
   Eigen::VectorXd out(q.rows());
   scoreBatch(q.data(), static_cast<std::size_t>(q.rows()), out.data());
   return out;
+}
+
+std::size_t Model::firstInCollision(const Configurations& q) const {
+  checkColumns(q, dim());
+  return firstInCollision(q.data(), static_cast<std::size_t>(q.rows()));
 }
 
 std::shared_ptr<const Model> jointSpaceModel(const JointLimits& limits, Kernel kernel,

@@ -31,6 +31,12 @@ TEST(ModelChecker, AnswersAsItsModel) {
     EXPECT_EQ(checker.inCollision({q.row(i).data(), 2}), model->inCollision(q.row(i).data()));
   }
   EXPECT_EQ(checker.firstInCollision(q.data(), 500), model->firstInCollision(q.data(), 500));
+  // The Eigen overloads answer as the raw-pointer ones and refuse a wrong column count.
+  EXPECT_EQ(checker.firstInCollision(q), checker.firstInCollision(q.data(), 500));
+  EXPECT_EQ(model->firstInCollision(q), model->firstInCollision(q.data(), 500));
+  const Configurations three = Configurations::Zero(4, 3);
+  EXPECT_THROW(checker.firstInCollision(three), InvalidArgument);
+  EXPECT_THROW(model->firstInCollision(three), InvalidArgument);
   EXPECT_THROW(ModelChecker(nullptr), InvalidArgument);
 }
 

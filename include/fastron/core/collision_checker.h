@@ -33,6 +33,8 @@ class CollisionChecker {
   /// given, that is in collision, or n when all are free. Counts one call per configuration up to
   /// that one. Throws InvalidArgument naming the first row with a non-finite value.
   std::size_t firstInCollision(const double* q, std::size_t n) const;
+  /// The same for every row of q; throws InvalidArgument when q does not have dof() columns.
+  std::size_t firstInCollision(const Configurations& q) const;
 
   std::uint64_t callCount() const { return calls_.load(std::memory_order_relaxed); }
   void resetCallCount() { calls_.store(0, std::memory_order_relaxed); }

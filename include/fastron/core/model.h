@@ -61,6 +61,8 @@ class Model {
   /// with the first hit, so callers order the rows
   /// to find collisions early (e.g. bisection order along a motion).
   std::size_t firstInCollision(const double* q, std::size_t n) const;
+  /// The same for every row of q; throws InvalidArgument when q does not have dim() columns.
+  std::size_t firstInCollision(const Configurations& q) const;
 
   /// f for n configurations stored row by row in `q` (n * dim() values), written to `out`; four
   /// per pass over the support set, each support block loaded once for all four.
