@@ -37,14 +37,7 @@ struct TrainOptions {
 /// "lo:hi" per joint, or the dataset's bounding box when none are given.
 JointLimits parseLimits(const std::vector<std::string>& items, const Dataset& data) {
   const auto d = static_cast<Eigen::Index>(data.dim());
-  if (items.empty()) {
-    try {
-      return {data.points.colwise().minCoeff().transpose(),
-              data.points.colwise().maxCoeff().transpose()};
-    } catch (const InvalidArgument& e) {
-      throw InvalidArgument(std::string(e.what()) + " in the data's range; give --limits");
-    }
-  }
+  if (items.empty()) return rangeOf(data.points, "give --limits");
   if (static_cast<Eigen::Index>(items.size()) != d) {
     throw InvalidArgument("--limits has " + std::to_string(items.size()) +
                           " entries but the data has " + std::to_string(d) +

@@ -22,7 +22,7 @@ py::array_t<double, py::array::c_style> asDoubles(py::handle value, const char* 
   const py::array any = py::array::ensure(value);
   if (!any) {
     throw InvalidArgument(std::string(name) + ": expected an array of numbers, got " +
-                          std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+                          typeName(value));
   }
   const char kind = any.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b') {
@@ -108,43 +108,18 @@ py::array_t<double> newArray(std::size_t rows, std::size_t cols) {
   return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 
-py::array readOnlyView(const double* data, std::size_t rows, std::size_t cols, bool rowMajor,
-                       py::handle owner) {
-  constexpr auto s = static_cast<py::ssize_t>(sizeof(double));
-  const auto r = static_cast<py::ssize_t>(rows), c = static_cast<py::ssize_t>(cols);
-  py::array view = cols == 0 ? py::array(py::dtype::of<double>(), {r}, {s}, data, owner)
-                             : py::array(py::dtype::of<double>(), {r, c},
-                                         rowMajor ? std::vector<py::ssize_t>{c * s, s}
-                                                  : std::vector<py::ssize_t>{s, r * s},
-                                         data, owner);
-  view.attr("setflags")(py::arg("write") = false);
-  return view;
-}
-
-py::array_t<double> toArray(const Eigen::MatrixXd& m) {
-  py::array_t<double> out =
-      newArray(static_cast<std::size_t>(m.rows()), static_cast<std::size_t>(m.cols()));
-  auto view = out.mutable_unchecked<2>();
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.cols(); ++j) view(i, j) = m(i, j);
-  return out;
-}
-
-py::array_t<double> toArray(const Eigen::VectorXd& v) {
-  py::array_t<double> out = newArray(static_cast<std::size_t>(v.size()));
-  std::copy(v.data(), v.data() + v.size(), out.mutable_data());
-  return out;
-}
-
 py::array_t<double> toArray(const std::vector<double>& v) {
-  return toArray(Eigen::VectorXd(
-      Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()))));
+  return toArray(Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
 }
 
 py::array_t<std::int8_t> toArray(const Labels& labels) {
   py::array_t<std::int8_t> out(static_cast<py::ssize_t>(labels.size()));
   std::copy(labels.begin(), labels.end(), out.mutable_data());
   return out;
+}
+
+std::string typeName(py::handle value) {
+  return py::str(py::type::handle_of(value).attr("__name__"));
 }
 
 }  // namespace fastron::python

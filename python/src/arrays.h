@@ -6,8 +6,10 @@
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Core>
+#include <chrono>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "fastron/core/types.h"
@@ -42,14 +44,42 @@ Labels labels(py::handle value, std::size_t rows, const char* name);
 
 /// A new float64 array of shape (rows, cols) (cols 0: shape (rows,)) filled by the caller.
 py::array_t<double> newArray(std::size_t rows, std::size_t cols = 0);
-/// A read-only array over memory `owner` keeps alive (no copy).
-py::array readOnlyView(const double* data, std::size_t rows, std::size_t cols, bool rowMajor,
-                       py::handle owner);
-/// A copy of an Eigen matrix or vector as an array; a vector gives shape (n,).
-py::array_t<double> toArray(const Eigen::MatrixXd& m);
-py::array_t<double> toArray(const Eigen::VectorXd& v);
+
+/// A copy of an Eigen matrix or vector (any storage order, any expression) as a C-ordered
+/// array; a column vector gives shape (n,).
+template <class Derived>
+py::array_t<double> toArray(const Eigen::MatrixBase<Derived>& m) {
+  const auto rows = static_cast<std::size_t>(m.rows()), cols = static_cast<std::size_t>(m.cols());
+  constexpr bool vector = Derived::ColsAtCompileTime == 1;
+  py::array_t<double> out = newArray(rows, vector ? 0 : cols);
+  Eigen::Map<Configurations>(out.mutable_data(), m.rows(), m.cols()) = m;
+  return out;
+}
 py::array_t<double> toArray(const std::vector<double>& v);
 /// Labels as an int8 array of +1 / -1.
 py::array_t<std::int8_t> toArray(const Labels& labels);
+
+/// A read-only array over an Eigen matrix or vector that `owner` keeps alive (no copy); a column
+/// vector gives shape (n,).
+template <class Derived>
+py::array readOnlyView(const Eigen::PlainObjectBase<Derived>& m, py::handle owner) {
+  constexpr auto size = static_cast<py::ssize_t>(sizeof(double));
+  std::vector<py::ssize_t> shape{m.rows()}, strides{Derived::IsRowMajor ? m.cols() * size : size};
+  if constexpr (Derived::ColsAtCompileTime != 1) {
+    shape.push_back(m.cols());
+    strides.push_back(Derived::IsRowMajor ? size : m.rows() * size);
+  }
+  py::array view(py::dtype::of<double>(), shape, strides, m.data(), owner);
+  view.attr("setflags")(py::arg("write") = false);
+  return view;
+}
+
+/// The Python type name of `value`, for messages.
+std::string typeName(py::handle value);
+
+/// A duration in seconds, as Python reports times.
+inline double seconds(std::chrono::nanoseconds t) {
+  return std::chrono::duration<double>(t).count();
+}
 
 }  // namespace fastron::python

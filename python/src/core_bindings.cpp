@@ -20,10 +20,6 @@ namespace fastron::python {
 
 namespace {
 
-double seconds(std::chrono::nanoseconds t) {
-  return std::chrono::duration<double>(t).count();
-}
-
 /// f for one configuration (a float) or for each row of an (n, d) array.
 py::object scores(const Model& model, py::handle q) {
   const ConfigurationRows rows = configurations(q, model.dim(), "q");
@@ -50,16 +46,6 @@ py::object inCollision(const Model& model, py::handle q) {
   return std::move(out);
 }
 
-/// The joint limits a model trained on bare data gets: the data's bounding box, as the command's
-/// `train --data` without --limits.
-JointLimits limitsOfData(const Eigen::Map<const Configurations>& x) {
-  try {
-    return {x.colwise().minCoeff().transpose(), x.colwise().maxCoeff().transpose()};
-  } catch (const InvalidArgument& e) {
-    throw InvalidArgument(std::string(e.what()) + " in the data's range; give limits=");
-  }
-}
-
 py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
                 std::optional<JointLimits> limits, std::optional<double> gamma,
                 std::optional<double> beta, const std::string& kernel,
@@ -69,8 +55,9 @@ py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
   const ConfigurationRows rows = configurations(x, dim, "X", false);
   const Labels labelled = labels(y, rows.rows, "y");
   const FeatureMap map =
-      features ? *features
-               : FeatureMap::jointScaling(limits ? *limits : limitsOfData(rows.matrix()));
+      features
+          ? *features
+          : FeatureMap::jointScaling(limits ? *limits : rangeOf(rows.matrix(), "give limits="));
   // With a robot's features, the settings tuned for them; on bare data, the paper's defaults.
   TrainParams params = features ? defaultTrainParams(map.kind()) : TrainParams{};
   params.kernel.type = parseKernelType(kernel);
@@ -122,7 +109,7 @@ void bindCore(py::module_& m) {
           [](const FeatureMap& f, py::handle q) -> py::object {
             const ConfigurationRows rows = configurations(q, f.configurationDim(), "q");
             Eigen::MatrixXd x = f.map(Configurations(rows.matrix()));
-            if (rows.single) return toArray(Eigen::VectorXd(x.row(0).transpose()));
+            if (rows.single) return toArray(x.row(0).transpose());
             return toArray(x);
           },
           py::arg("q"), "Features of one configuration (d,) or of each row of (n, d).")
@@ -158,25 +145,18 @@ void bindCore(py::module_& m) {
       .def_property_readonly(
           "support_points",
           [](py::handle self) {
-            const Configurations& s = self.cast<const Model&>().supportConfigurations();
-            return readOnlyView(s.data(), static_cast<std::size_t>(s.rows()),
-                                static_cast<std::size_t>(s.cols()), true, self);
+            return readOnlyView(self.cast<const Model&>().supportConfigurations(), self);
           },
           "Support configurations (joint values), shape (|S|, dim); a read-only view.")
       .def_property_readonly(
           "support_features",
           [](py::handle self) {
-            const Eigen::MatrixXd& s = self.cast<const Model&>().supportFeatures();
-            return readOnlyView(s.data(), static_cast<std::size_t>(s.rows()),
-                                static_cast<std::size_t>(s.cols()), false, self);
+            return readOnlyView(self.cast<const Model&>().supportFeatures(), self);
           },
           "Their features, shape (|S|, feature_dim); a read-only view.")
       .def_property_readonly(
           "weights",
-          [](py::handle self) {
-            const Eigen::VectorXd& w = self.cast<const Model&>().weights();
-            return readOnlyView(w.data(), static_cast<std::size_t>(w.size()), 0, true, self);
-          },
+          [](py::handle self) { return readOnlyView(self.cast<const Model&>().weights(), self); },
           "The support points' weights, shape (|S|,); a read-only view.")
       .def("score", &scores, py::arg("q"),
            "f(q) for one configuration (d,) -> float, or for each row of (n, d) -> (n,).")
@@ -244,7 +224,7 @@ void bindCore(py::module_& m) {
       "read_dataset",
       [](const std::filesystem::path& path) {
         const Dataset data = readDataset(path);
-        return py::make_tuple(toArray(Eigen::MatrixXd(data.points)), toArray(data.labels));
+        return py::make_tuple(toArray(data.points), toArray(data.labels));
       },
       py::arg("path"), "A .csv or .npy dataset as (X (n, d) float64, y (n,) int8 of +1 / -1).");
   m.def(

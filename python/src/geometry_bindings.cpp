@@ -19,6 +19,14 @@ namespace fastron::python {
 
 namespace {
 
+/// The `name` of each item (links, obstacles), in order.
+template <class Items>
+std::vector<std::string> namesOf(const Items& items) {
+  std::vector<std::string> names;
+  for (const auto& item : items) names.push_back(item.name);
+  return names;
+}
+
 /// World positions of every link's origin: (links, 3) for one configuration, (n, links, 3) for
 /// each row of (n, d).
 py::array_t<double> linkPositions(const Robot& robot, py::handle q) {
@@ -72,11 +80,7 @@ void bindGeometry(py::module_& m) {
       .def_property_readonly("joint_names", &Robot::actuatedJointNames,
                              "The actuated joints, in configuration order.")
       .def_property_readonly("link_names",
-                             [](const Robot& robot) {
-                               std::vector<std::string> names;
-                               for (const Link& link : robot.links()) names.push_back(link.name);
-                               return names;
-                             })
+                             [](const Robot& robot) { return namesOf(robot.links()); })
       .def_property_readonly("limits", &Robot::limits)
       .def("link_positions", &linkPositions, py::arg("q"),
            "Forward kinematics: the world position of every link's origin (link_names order), "
@@ -97,12 +101,7 @@ void bindGeometry(py::module_& m) {
       "A shipped robot by name (see shipped_robots) or a URDF file; `srdf` adds a MoveIt SRDF's "
       "disabled collisions; `package_paths` are where package:// meshes are looked up.");
   m.def(
-      "shipped_robots",
-      [] {
-        std::vector<std::string> names;
-        for (const RobotEntry& entry : shippedRobots()) names.push_back(entry.name);
-        return names;
-      },
+      "shipped_robots", [] { return namesOf(shippedRobots()); },
       "Names of the robots shipped with Fastron.");
   m.def("data_directory", &dataDirectory,
         "The data folder (robots/, scenes/): $FASTRON_DATA_DIR, else the installation's.");
@@ -110,11 +109,7 @@ void bindGeometry(py::module_& m) {
   py::class_<Scene>(m, "Scene", "Obstacles (some moving) and where the robot's base is.")
       .def(py::init<>())
       .def_property_readonly("obstacle_names",
-                             [](const Scene& scene) {
-                               std::vector<std::string> names;
-                               for (const Obstacle& o : scene.obstacles()) names.push_back(o.name);
-                               return names;
-                             })
+                             [](const Scene& scene) { return namesOf(scene.obstacles()); })
       .def("__len__", &Scene::size)
       .def_property_readonly("time", &Scene::time)
       .def("step", &Scene::step, py::arg("steps") = 1,
@@ -149,7 +144,7 @@ void bindGeometry(py::module_& m) {
       .def(
           "position",
           [](const Scene& s, const std::string& name) {
-            return toArray(Eigen::VectorXd(s.obstacle(name).pose.translation()));
+            return toArray(s.obstacle(name).pose.translation());
           },
           py::arg("name"))
       .def("__repr__", [](const Scene& scene) {

@@ -15,10 +15,6 @@ namespace fastron::python {
 
 namespace {
 
-double seconds(std::chrono::nanoseconds t) {
-  return std::chrono::duration<double>(t).count();
-}
-
 PlannerOptions plannerOptions(const std::string& planner, double range, double resolution,
                               double timeLimit, double simplifyTime) {
   PlannerOptions options;
@@ -31,11 +27,13 @@ PlannerOptions plannerOptions(const std::string& planner, double range, double r
   return options;
 }
 
-/// The joint limits of a planning problem: given, else the source's own (a model's, or the robot's
-/// of an FclChecker / GjkChecker).
+/// The joint limits of a planning problem: given, else the source's own (a model's or a
+/// detector's, or the robot's of an FclChecker / GjkChecker).
 JointLimits limitsOf(py::handle source, const std::optional<JointLimits>& given) {
   if (given) return *given;
   if (py::isinstance<Model>(source)) return source.cast<const Model&>().limits();
+  if (py::isinstance<ProxyCollisionDetector>(source))
+    return source.cast<const ProxyCollisionDetector&>().limits();
   if (py::isinstance<FclChecker>(source)) return source.cast<const FclChecker&>().robot().limits();
   if (py::isinstance<GjkChecker>(source)) return source.cast<const GjkChecker&>().robot().limits();
   throw InvalidArgument("limits=: this collision source has no joint limits of its own");
@@ -47,8 +45,7 @@ CollisionSource sourceOf(py::handle source) {
   if (py::isinstance<CollisionChecker>(source))
     return std::shared_ptr<const CollisionChecker>(
         source.cast<std::shared_ptr<CollisionChecker>>());
-  throw InvalidArgument("source: expected a Model or a CollisionChecker, got " +
-                        std::string(py::str(py::type::handle_of(source).attr("__name__"))));
+  throw InvalidArgument("source: expected a Model or a CollisionChecker, got " + typeName(source));
 }
 
 py::array_t<double> pathArray(const Path& path, std::size_t dim) {
@@ -94,7 +91,7 @@ PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
           seconds(plan.repairTime),
           plan.invalidStretches,
           plan.wholePathReplanned,
-          toArray(Eigen::MatrixXd(plan.exactAnswers.points)),
+          toArray(plan.exactAnswers.points),
           toArray(plan.exactAnswers.labels)};
 }
 
@@ -171,22 +168,21 @@ void bindPlanning(py::module_& m) {
          double range, double resolution, double timeLimit, double simplifyTime) {
         const PlannerOptions options =
             plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
-        const bool detector = py::isinstance<ProxyCollisionDetector>(approximate);
-        const JointLimits l = detector ? approximate.cast<const ProxyCollisionDetector&>().limits()
-                                       : limitsOf(approximate, limits);
+        const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
-        // A detector gives its calibrated band: a model that closes a passage is retried as a
-        // hybrid of model and exact checker before planning on the exact one.
-        const std::variant<CalibratedModel, CollisionSource> source =
-            detector ? std::variant<CalibratedModel, CollisionSource>(
-                           approximate.cast<const ProxyCollisionDetector&>().calibratedModel())
-                     : sourceOf(approximate);
         VerifiedPlan plan;
-        {
+        if (py::isinstance<ProxyCollisionDetector>(approximate)) {
+          // A detector gives its calibrated band: a model that closes a passage is retried as a
+          // hybrid of model and exact checker before planning on the exact one.
+          const CalibratedModel model =
+              approximate.cast<const ProxyCollisionDetector&>().calibratedModel();
           py::gil_scoped_release released;
-          plan = std::visit([&](const auto& s) { return planVerified(s, exact, l, a, b, options); },
-                            source);
+          plan = planVerified(model, exact, l, a, b, options);
+        } else {
+          const CollisionSource source = sourceOf(approximate);
+          py::gil_scoped_release released;
+          plan = planVerified(source, exact, l, a, b, options);
         }
         return toPython(plan, l.dim());
       },

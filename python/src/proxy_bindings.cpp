@@ -15,10 +15,6 @@ namespace fastron::python {
 
 namespace {
 
-double seconds(std::chrono::nanoseconds t) {
-  return std::chrono::duration<double>(t).count();
-}
-
 /// A checker object, or any callable q -> bool (wrapped in a FunctionChecker of `dof` joints).
 std::shared_ptr<const CollisionChecker> oracleOf(py::handle oracle, std::size_t dof) {
   if (py::isinstance<CollisionChecker>(oracle))
@@ -27,7 +23,7 @@ std::shared_ptr<const CollisionChecker> oracleOf(py::handle oracle, std::size_t 
     return std::make_shared<PythonChecker>(py::reinterpret_borrow<py::function>(oracle), dof,
                                            "python");
   throw InvalidArgument("oracle: expected a CollisionChecker or a callable q -> bool, got " +
-                        std::string(py::str(py::type::handle_of(oracle).attr("__name__"))));
+                        typeName(oracle));
 }
 
 /// Stops the background thread without the GIL (its oracle may need it), then deletes.

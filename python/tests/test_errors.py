@@ -67,6 +67,8 @@ def test_bad_labels_and_training_arguments():
         fastron.train(x, [1, -1])
     with pytest.raises(fastron.InvalidArgument, match=r"X: expected shape \(n, d\), got shape \(2,\)"):
         fastron.train(np.zeros(2), [1])
+    with pytest.raises(fastron.InvalidArgument, match="no configurations"):
+        fastron.train(np.zeros((0, 2)), [])
     with pytest.raises(fastron.InvalidArgument, match="data's range"):
         fastron.train(x, [1, -1, 1])  # constant columns give no joint limits
     with pytest.raises(fastron.InvalidArgument, match="gamma"):

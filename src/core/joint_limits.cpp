@@ -24,6 +24,16 @@ JointLimits::JointLimits(Eigen::VectorXd lower, Eigen::VectorXd upper)
   offset_ = -(upper_ + lower_).array() / (upper_ - lower_).array();
 }
 
+JointLimits rangeOf(const Eigen::Ref<const Configurations>& q, std::string_view remedy) {
+  if (q.rows() == 0)
+    throw InvalidArgument("no configurations to take joint limits from; " + std::string(remedy));
+  try {
+    return {q.colwise().minCoeff().transpose(), q.colwise().maxCoeff().transpose()};
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(std::string(e.what()) + " in the data's range; " + std::string(remedy));
+  }
+}
+
 JointLimits JointLimits::unitBox(std::size_t dim) {
   const auto n = static_cast<Eigen::Index>(dim);
   return {Eigen::VectorXd::Constant(n, -1.0), Eigen::VectorXd::Constant(n, 1.0)};

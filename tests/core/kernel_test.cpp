@@ -1,5 +1,6 @@
 #include "fastron/core/kernel.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "fastron/core/error.h"
@@ -7,6 +8,10 @@
 
 namespace fastron {
 namespace {
+
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 TEST(Kernel, RationalQuadraticMatchesItsFormula) {
   const Kernel k{KernelType::RationalQuadratic, 4};
@@ -70,6 +75,21 @@ TEST(JointLimits, RejectsBadLimitsAndConfigurations) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("[1]"), std::string::npos) << e.what();
   }
+}
+
+// Data without limits gets its bounding box; no rows, or a constant column, say what to give.
+TEST(JointLimits, RangeOfData) {
+  Configurations q(3, 2);
+  q << 0, -1, 2, 0.5, 1, 3;
+  const JointLimits range = rangeOf(q, "give limits");
+  EXPECT_EQ(range.lower(), Eigen::Vector2d(0, -1));
+  EXPECT_EQ(range.upper(), Eigen::Vector2d(2, 3));
+  EXPECT_THAT([] { rangeOf(Configurations(0, 2), "give limits"); },
+              ThrowsMessage<InvalidArgument>(HasSubstr("no configurations")));
+  q.col(1).setConstant(4);
+  EXPECT_THAT([&] { rangeOf(q, "give --limits"); },
+              ThrowsMessage<InvalidArgument>(
+                  AllOf(HasSubstr("joint 1"), HasSubstr("data's range; give --limits"))));
 }
 
 }  // namespace

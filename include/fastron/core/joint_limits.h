@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <span>
+#include <string_view>
 
 #include "fastron/core/export.h"
 #include "fastron/core/types.h"
@@ -38,6 +39,11 @@ class JointLimits {
  private:
   Eigen::VectorXd lower_, upper_, scale_, offset_;
 };
+
+/// The bounding box of the rows of q (one configuration per row): the joint limits of data that
+/// came without any. Throws InvalidArgument for no rows or a constant column, ending the message
+/// with `remedy` (what the caller can give instead, e.g. "give --limits").
+JointLimits rangeOf(const Eigen::Ref<const Configurations>& q, std::string_view remedy);
 
 /// Throws InvalidArgument naming the first component of q that is not finite, or the size when
 /// it differs from `dim`. `what` names the value in the message (e.g. "configuration").
