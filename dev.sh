@@ -3,8 +3,10 @@
 # packages first (scripts/install-deps.sh), then builds what it needs.
 #
 #   ./dev.sh demo [ARGS]   build Release and run `fastron demo ARGS`
-#   ./dev.sh test          build and run the whole test suite: Release, then address+undefined
-#                          sanitizers, then ThreadSanitizer on the concurrency tests
+#   ./dev.sh test          build and run the whole test suite: Release; then a Clang build with
+#                          address+undefined sanitizers that runs the tests and fuzzes every
+#                          reader for FASTRON_FUZZ_SECONDS (default 20) each; then
+#                          ThreadSanitizer on the concurrency and soak tests
 #   ./dev.sh build         build Release into build/release
 #   ./dev.sh bench [ARGS]  build Release and run the Google Benchmark micro-benchmarks
 #   ./dev.sh format        reformat every source file with clang-format
@@ -35,11 +37,14 @@ case "$command" in
     build build/release Release
     ctest --test-dir build/release --output-on-failure -j "$jobs"
     # Sanitizer builds at -O1 without debug info: they compile in a fraction of the time, and
-    # the reports still name every function.
-    build build/sanitize Release -DFASTRON_SANITIZE=ON -DFASTRON_NATIVE=OFF -DFASTRON_BUILD_BENCH=OFF \
-      -DCMAKE_CXX_FLAGS_RELEASE=-O1
+    # the reports still name every function. The address+undefined build is Clang's, with the
+    # fuzz targets (fuzz/): one build of the library serves the tests and the fuzzers.
+    build build/sanitize Release -DCMAKE_CXX_COMPILER=clang++ -DFASTRON_SANITIZE=ON -DFASTRON_FUZZ=ON \
+      -DFASTRON_FUZZ_SECONDS="${FASTRON_FUZZ_SECONDS:-20}" -DFASTRON_NATIVE=OFF \
+      -DFASTRON_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
-    build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 --target proxy_tests planning_concurrency_tests
+    build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+      --target proxy_tests proxy_soak planning_concurrency_tests geometry_concurrency_tests
     ctest --test-dir build/tsan --output-on-failure -j "$jobs" -L concurrency
     ;;
   build)

@@ -4,8 +4,9 @@
 set -euo pipefail
 
 packages=(
-  # toolchain
-  g++ make cmake ninja-build pkg-config clang-format clang-tidy
+  # toolchain; Clang with its sanitizer and libFuzzer runtimes for the fuzz targets
+  g++ make cmake ninja-build pkg-config clang-format clang-tidy clang libclang-rt-14-dev
+  libfuzzer-14-dev
   # core
   libeigen3-dev zlib1g-dev
   # geometry: robots, meshes, scenes, exact collision checking

@@ -3,13 +3,13 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 
 namespace fastron {
 namespace {
@@ -65,11 +65,9 @@ Dataset fromRows(const std::vector<double>& values, std::size_t columns, Labels 
 
 }  // namespace
 
-Dataset readCsv(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw FileNotFound(file + ": cannot open dataset file");
-
+Dataset parseCsv(std::string_view text, const std::string& source) {
+  const std::string& file = source;
+  std::istringstream in{std::string(text)};
   std::vector<double> values;
   Labels labels;
   std::vector<std::string> header;
@@ -120,11 +118,8 @@ Dataset readCsv(const std::filesystem::path& path) {
   return data;
 }
 
-Dataset readNpy(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileNotFound(file + ": cannot open dataset file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+Dataset parseNpy(std::string_view bytes, const std::string& source) {
+  const std::string& file = source;
 
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) {
     throw FileError(file + ": not a .npy file (bad magic bytes)");
@@ -144,7 +139,7 @@ Dataset readNpy(const std::filesystem::path& path) {
     throw FileError(file + ": unsupported .npy version " + std::to_string(major));
   }
   if (bytes.size() < headerStart + headerLength) throw FileError(file + ": truncated .npy header");
-  const std::string header = bytes.substr(headerStart, headerLength);
+  const std::string header(bytes.substr(headerStart, headerLength));
 
   auto valueOf = [&](const std::string& key) {
     const std::size_t k = header.find("'" + key + "'");
@@ -239,6 +234,14 @@ Dataset readNpy(const std::filesystem::path& path) {
   return fromRows(values, columns, std::move(labels));
 }
 
+Dataset readCsv(const std::filesystem::path& path) {
+  return parseCsv(readFile(path, "dataset file"), path.string());
+}
+
+Dataset readNpy(const std::filesystem::path& path) {
+  return parseNpy(readFile(path, "dataset file"), path.string());
+}
+
 Dataset readDataset(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".npy") return readNpy(path);
@@ -254,7 +257,7 @@ void writeDataset(const Dataset& data, const std::filesystem::path& path) {
 }
 
 void writeCsv(const Dataset& data, const std::filesystem::path& path) {
-  std::ofstream out(path);
+  std::ostringstream out;
   if (!data.columnNames.empty()) {
     for (const auto& name : data.columnNames) out << name << ',';
     out << "label\n";
@@ -264,8 +267,7 @@ void writeCsv(const Dataset& data, const std::filesystem::path& path) {
     for (Eigen::Index j = 0; j < data.points.cols(); ++j) out << data.points(i, j) << ',';
     out << static_cast<int>(data.labels[static_cast<std::size_t>(i)]) << '\n';
   }
-  out.close();
-  if (!out) throw FileError(path.string() + ": cannot write dataset file");
+  writeFileAtomically(path, out.view(), "dataset file");
 }
 
 void writeNpy(const Dataset& data, const std::filesystem::path& path) {
@@ -290,10 +292,7 @@ void writeNpy(const Dataset& data, const std::filesystem::path& path) {
       bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
     }
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) throw FileError(path.string() + ": cannot write dataset file");
+  writeFileAtomically(path, bytes, "dataset file");
 }
 
 }  // namespace fastron

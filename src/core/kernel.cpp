@@ -1,5 +1,6 @@
 #include "fastron/core/kernel.h"
 
+#include <cstdio>
 #include <string>
 
 #include "fastron/core/error.h"
@@ -7,9 +8,11 @@
 namespace fastron {
 
 void validate(const Kernel& kernel) {
-  if (!std::isfinite(kernel.gamma) || kernel.gamma <= 0) {
-    throw InvalidArgument("kernel gamma must be a finite positive number, got " +
-                          std::to_string(kernel.gamma));
+  // Queries compute in float: a gamma beyond its range would be infinite there.
+  if (!(kernel.gamma >= kMinKernelGamma && kernel.gamma <= kMaxKernelGamma)) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", kernel.gamma);
+    throw InvalidArgument(std::string("kernel gamma must be between 1e-30 and 1e30, got ") + value);
   }
   if (kernel.type != KernelType::RationalQuadratic && kernel.type != KernelType::Gaussian) {
     throw InvalidArgument("unknown kernel type " + std::to_string(static_cast<int>(kernel.type)));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <string>
 #include <type_traits>
 
@@ -139,7 +140,9 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
       weights_(std::move(weights)) {
   validateSupport();
   support_ = features_.map(configurations_);  // checks that the configurations are finite
+  validateSupportFeatures();
   buildQueryCopies();
+  checksum_ = computeChecksum();
 }
 
 Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigurations,
@@ -151,6 +154,25 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
       weights_(std::move(weights)) {
   validateSupport();
   buildQueryCopies();
+  checksum_ = computeChecksum();
+}
+
+std::uint64_t Model::computeChecksum() const {
+  // FNV-1a over 8-byte words: a few microseconds for a support set of hundreds.
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto mix = [&](const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; i += 8) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, p + i, std::min<std::size_t>(8, bytes - i));
+      hash = (hash ^ word) * 0x100000001b3ULL;
+    }
+  };
+  mix(configurations_.data(), sizeof(double) * static_cast<std::size_t>(configurations_.size()));
+  mix(weights_.data(), sizeof(double) * static_cast<std::size_t>(weights_.size()));
+  mix(supportSoa_.data(), sizeof(float) * supportSoa_.size());
+  mix(weightsF_.data(), sizeof(float) * weightsF_.size());
+  return hash;
 }
 
 void Model::validateSupport() const {
@@ -168,7 +190,20 @@ void Model::validateSupport() const {
     throw InvalidArgument(std::to_string(configurations_.rows()) + " support points but " +
                           std::to_string(weights_.size()) + " weights");
   }
-  if (!weights_.allFinite()) throw InvalidArgument("weights must be finite");
+  // Queries sum in float: a weight beyond its range would be infinite there, and 0 * inf = NaN.
+  constexpr double kMaxWeight = 1e30;
+  if (!weights_.allFinite() || (weights_.size() > 0 && weights_.cwiseAbs().maxCoeff() > kMaxWeight))
+    throw InvalidArgument("weights must be finite and at most 1e30 in magnitude");
+}
+
+void Model::validateSupportFeatures() const {
+  // Queries compute in float: a feature beyond its range would be infinite there.
+  constexpr double kMaxFeature = 1e30;
+  if (support_.size() > 0 && !(support_.cwiseAbs().maxCoeff() <= kMaxFeature)) {
+    throw InvalidArgument(
+        "support features must be at most 1e30 in magnitude (a support configuration far outside "
+        "the joint limits?)");
+  }
 }
 
 void Model::buildQueryCopies() {

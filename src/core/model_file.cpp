@@ -5,13 +5,12 @@
 #include <array>
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 
 namespace fastron {
 namespace {
@@ -53,7 +52,7 @@ class Writer {
 /// themselves (the size and checksum were checked before), which is reported as invalid.
 class Reader {
  public:
-  Reader(const std::vector<char>& bytes, std::size_t end, const std::string& file)
+  Reader(std::string_view bytes, std::size_t end, const std::string& file)
       : bytes_(bytes), end_(end), file_(file) {}
   template <class T>
   T get(const char* field) {
@@ -88,19 +87,13 @@ class Reader {
       throw FileError(file_ + ": invalid model: the file ends inside " + std::string(field));
     }
   }
-  const std::vector<char>& bytes_;
+  std::string_view bytes_;
   std::size_t end_;
   const std::string& file_;
   std::size_t pos_ = 0;
 };
 
-std::vector<char> readBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileNotFound(path.string() + ": cannot open model file");
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void checkChecksum(const std::vector<char>& bytes, std::size_t size, const std::string& file) {
+void checkChecksum(std::string_view bytes, std::size_t size, const std::string& file) {
   std::uint32_t stored = 0;
   std::memcpy(&stored, bytes.data() + size - 4, sizeof(stored));
   if (stored != crc32Of(bytes.data(), size - 4)) {
@@ -157,7 +150,7 @@ void readSupport(Reader& r, Contents& c, const std::string& file) {
   for (Eigen::Index i = 0; i < n; ++i) c.weights[i] = r.getFinite("weight");
 }
 
-Contents readVersion1(const std::vector<char>& bytes, Contents c, const std::string& file) {
+Contents readVersion1(std::string_view bytes, Contents c, const std::string& file) {
   const std::size_t dim = c.header.dim;
   const std::size_t countOffset = kHeaderSizeV1 + 2 * sizeof(double) * dim;
   if (bytes.size() < countOffset + 8) {
@@ -190,7 +183,7 @@ Contents readVersion1(const std::vector<char>& bytes, Contents c, const std::str
   return c;
 }
 
-Contents readVersion2(const std::vector<char>& bytes, Contents c, const std::string& file) {
+Contents readVersion2(std::string_view bytes, Contents c, const std::string& file) {
   constexpr std::size_t kFixed = kVersionEnd + 8;
   if (bytes.size() < kFixed + 4) {
     throw FileError(file + ": truncated model file (" + std::to_string(bytes.size()) +
@@ -236,9 +229,7 @@ Contents readVersion2(const std::vector<char>& bytes, Contents c, const std::str
   return c;
 }
 
-Contents readContents(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const std::vector<char> bytes = readBytes(path);
+Contents readContents(std::string_view bytes, const std::string& file) {
   if (bytes.size() < kMagic.size() ||
       std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
     throw FileError(file + ": not a Fastron model file (bad magic bytes)");
@@ -341,20 +332,28 @@ void saveModel(const Model& model, const std::filesystem::path& path) {
   std::memcpy(w.bytes().data() + kVersionEnd, &size, sizeof(size));
   w.put<std::uint32_t>(crc32Of(w.bytes().data(), w.bytes().size()));
 
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(w.bytes().data(), static_cast<std::streamsize>(w.bytes().size()));
-  out.close();
-  if (!out) throw FileError(path.string() + ": cannot write model file");
+  writeFileAtomically(path, std::string_view(w.bytes().data(), w.bytes().size()), "model file");
+}
+
+ModelFileHeader parseModelHeader(std::string_view bytes, const std::string& source) {
+  return readContents(bytes, source).header;
 }
 
 ModelFileHeader readModelHeader(const std::filesystem::path& path) {
-  return readContents(path).header;
+  return parseModelHeader(readFile(path, "model file"), path.string());
 }
 
 Model loadModel(const std::filesystem::path& path, std::optional<std::size_t> expectedDim,
                 std::shared_ptr<const PointKinematics> kinematics) {
-  const std::string file = path.string();
-  Contents c = readContents(path);
+  return parseModel(readFile(path, "model file"), path.string(), expectedDim,
+                    std::move(kinematics));
+}
+
+Model parseModel(std::string_view bytes, const std::string& source,
+                 std::optional<std::size_t> expectedDim,
+                 std::shared_ptr<const PointKinematics> kinematics) {
+  const std::string& file = source;
+  Contents c = readContents(bytes, file);
   if (expectedDim && *expectedDim != c.header.dim) {
     throw FileError(file + ": model has dimension " + std::to_string(c.header.dim) + " but " +
                     std::to_string(*expectedDim) + " was expected");

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 #include "fastron/core/install_location.h"
 #include "fastron/geometry/srdf.h"
 #include "yaml_reader.h"
@@ -19,13 +20,11 @@ std::filesystem::path dataDirectory() {
       "(cmake --install) or set FASTRON_DATA_DIR to a folder with robots/ and scenes/");
 }
 
-std::vector<RobotEntry> shippedRobots() {
-  const std::filesystem::path catalogue = dataDirectory() / "robots" / "robots.yaml";
-  const std::string source = catalogue.string();
+std::vector<RobotEntry> parseRobotCatalogue(const std::string& yaml, const std::string& source,
+                                            const std::filesystem::path& directory) {
   return detail::namingYamlErrors(source, [&] {
     const detail::Reader r(source);
-    const YAML::Node root =
-        detail::parseYaml(detail::readText(catalogue, "robot catalogue"), source);
+    const YAML::Node root = detail::parseYaml(yaml, source);
     if (!root.IsMap()) r.fail(root, "the robot catalogue is a map of robots");
     std::vector<RobotEntry> robots;
     for (const auto& entry : root) {
@@ -35,8 +34,8 @@ std::vector<RobotEntry> shippedRobots() {
       const YAML::Node e = entry.second;
       r.onlyKeys(e, {"urdf", "srdf", "description", "joints", "held", "allowed_collisions"}, what);
       if (e["description"]) robot.description = r.text(e["description"], what + " description");
-      robot.urdf = catalogue.parent_path() / r.text(r.required(e, "urdf", what), what + " urdf");
-      if (e["srdf"]) robot.srdf = catalogue.parent_path() / r.text(e["srdf"], what + " srdf");
+      robot.urdf = directory / r.text(r.required(e, "urdf", what), what + " urdf");
+      if (e["srdf"]) robot.srdf = directory / r.text(e["srdf"], what + " srdf");
       for (const auto& j : r.list(r.required(e, "joints", what), what + " joints"))
         robot.joints.push_back(r.text(j, what + " joint"));
       if (e["held"]) {
@@ -57,6 +56,12 @@ std::vector<RobotEntry> shippedRobots() {
     }
     return robots;
   });
+}
+
+std::vector<RobotEntry> shippedRobots() {
+  const std::filesystem::path catalogue = dataDirectory() / "robots" / "robots.yaml";
+  return parseRobotCatalogue(readFile(catalogue, "robot catalogue"), catalogue.string(),
+                             catalogue.parent_path());
 }
 
 Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options,

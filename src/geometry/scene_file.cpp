@@ -1,6 +1,7 @@
 #include "fastron/geometry/scene_file.h"
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 #include "fastron/geometry/mesh_loader.h"
 #include "yaml_reader.h"
 
@@ -10,7 +11,6 @@ namespace {
 using detail::namingYamlErrors;
 using detail::parseYaml;
 using detail::Reader;
-using detail::readText;
 
 Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
                 const std::filesystem::path& base) {
@@ -284,13 +284,15 @@ Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
 }
 
 Scene loadScene(const std::filesystem::path& path) {
-  return parseScene(readText(path, "scene file"), path.string(), path.parent_path());
+  return parseScene(readFile(path, "scene file"), path.string(), path.parent_path());
+}
+
+PlanRequest parseMoveItRequest(const std::string& yaml, const std::string& source) {
+  return namingYamlErrors(source, [&] { return parseRequestText(yaml, source); });
 }
 
 PlanRequest loadMoveItRequest(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  const std::string yaml = readText(path, "motion plan request");
-  return namingYamlErrors(source, [&] { return parseRequestText(yaml, source); });
+  return parseMoveItRequest(readFile(path, "motion plan request"), path.string());
 }
 
 std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,

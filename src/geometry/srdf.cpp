@@ -1,8 +1,8 @@
 #include "fastron/geometry/srdf.h"
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 #include "xml_reader.h"
-#include "yaml_reader.h"  // readText
 
 namespace fastron {
 
@@ -38,7 +38,7 @@ AllowedCollisionMatrix parseSrdfDisabledCollisions(const std::string& xml,
 
 AllowedCollisionMatrix loadSrdfDisabledCollisions(const std::filesystem::path& file,
                                                   const Robot& robot) {
-  return parseSrdfDisabledCollisions(detail::readText(file, "SRDF file"), file.string(), robot);
+  return parseSrdfDisabledCollisions(readFile(file, "SRDF file"), file.string(), robot);
 }
 
 }  // namespace fastron

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 #include "fastron/geometry/mesh_loader.h"
 #include "xml_reader.h"
 
@@ -328,11 +329,7 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
 }
 
 Robot loadUrdf(const std::filesystem::path& file, const UrdfOptions& options) {
-  std::ifstream in(file);
-  if (!in) throw FileNotFound(file.string() + ": cannot open URDF file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseUrdf(text.str(), file.string(), options, file.parent_path());
+  return parseUrdf(readFile(file, "URDF file"), file.string(), options, file.parent_path());
 }
 
 }  // namespace fastron

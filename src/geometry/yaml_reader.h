@@ -135,14 +135,6 @@ inline YAML::Node parseYaml(const std::string& text, const std::string& source) 
   }
 }
 
-inline std::string readText(const std::filesystem::path& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw FileNotFound(path.string() + ": cannot open " + what);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// Runs `read`; a yaml-cpp error it did not foresee (a map where a list belongs, ...) becomes a
 /// FileError naming the file and the line.
 template <class Read>

@@ -1,5 +1,6 @@
 #include "fastron/proxy/proxy_collision_detector.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -49,8 +50,9 @@ StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point s
     const std::lock_guard lock(modelMutex_);
     published_.model.swap(next);
     published_.calibration = report.calibration;
+    published_.version = ++version_;
   }  // the previous model is released here, outside the lock, if no reader holds it
-  report.modelVersion = ++version_;
+  report.modelVersion = version_;
   report.total = Clock::now() - start;
   return report;
 }
@@ -63,9 +65,9 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   const Configurations q = uniformConfigurations(limits(), n + calibration, rng_);
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
-  const Labels labels = labelConfigurations(*oracle_, q, params_.labelThreads);
+  const Labels labels = labelConfigurations(*oracle_, q, params_.labelThreads, labelGuard({}));
   report.labelTime = Clock::now() - labelStart;
-  report.labelled = n + calibration;
+  report.labelled = n + calibration + std::min(params_.repeatedLabels, n + calibration);
   report.added = n;
   trainer_ = Trainer(features_, params_.train);
   const auto learned = static_cast<Eigen::Index>(n);
@@ -74,7 +76,17 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
                 Labels(labels.begin() + learned, labels.end()));
 }
 
+LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const {
+  LabelGuard guard{.repeatedRows = params_.repeatedLabels, .stop = stop};
+  if (params_.labelDeadline.count() > 0) guard.deadline = Clock::now() + params_.labelDeadline;
+  return guard;
+}
+
 StepReport ProxyCollisionDetector::step() {
+  return runStep(std::stop_token{});
+}
+
+StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   const std::lock_guard lock(stepMutex_);
   if (version_ == 0) throw Error("ProxyCollisionDetector::step() called before initialize()");
   const auto start = Clock::now();
@@ -94,9 +106,10 @@ StepReport ProxyCollisionDetector::step() {
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
-  const Labels labels = labelConfigurations(*oracle_, all, params_.labelThreads);
+  // Nothing above changed the trainer: a step the oracle fails leaves the detector as it was.
+  const Labels labels = labelConfigurations(*oracle_, all, params_.labelThreads, labelGuard(stop));
   report.labelTime = Clock::now() - labelStart;
-  report.labelled = labels.size();
+  report.labelled = labels.size() + std::min(params_.repeatedLabels, labels.size());
   report.added = static_cast<std::size_t>(fresh.rows());
 
   const auto freshBegin = labels.begin() + support;
@@ -200,22 +213,52 @@ void ProxyCollisionDetector::startBackground(std::function<void(const StepReport
     if (version_ == 0) throw Error("ProxyCollisionDetector: initialize() before startBackground()");
   }
   workerError_ = nullptr;
+  {
+    const std::lock_guard lock(healthMutex_);
+    health_ = BackgroundHealth{.modelVersion = version_};
+  }
   worker_ =
       std::jthread([this, onStep = std::move(onStep), minPeriod](const std::stop_token& stop) {
+        const auto pauseUntil = [&](Clock::time_point until) {
+          std::unique_lock lock(pauseMutex_);
+          pause_.wait_until(lock, stop, until, [] { return false; });
+        };
         try {
           while (!stop.stop_requested()) {
-            const auto began = std::chrono::steady_clock::now();
-            const StepReport report = step();
-            if (onStep) onStep(report);
-            if (minPeriod.count() > 0) {
-              std::unique_lock lock(pauseMutex_);
-              pause_.wait_until(lock, stop, began + minPeriod, [] { return false; });
+            const auto began = Clock::now();
+            StepReport report;
+            try {
+              report = runStep(stop);
+            } catch (const LabellingStopped&) {
+              break;
+            } catch (const OracleFault& fault) {
+              {
+                const std::lock_guard lock(healthMutex_);
+                ++health_.faults;
+                ++health_.consecutiveFaults;
+                health_.lastFault = fault.what();
+              }
+              pauseUntil(began + std::max(minPeriod, params_.faultRetryPeriod));
+              continue;
             }
+            {
+              const std::lock_guard lock(healthMutex_);
+              ++health_.steps;
+              health_.consecutiveFaults = 0;
+              health_.modelVersion = report.modelVersion;
+            }
+            if (onStep) onStep(report);
+            if (minPeriod.count() > 0) pauseUntil(began + minPeriod);
           }
         } catch (...) {
           workerError_ = std::current_exception();
         }
       });
+}
+
+BackgroundHealth ProxyCollisionDetector::backgroundHealth() const {
+  const std::lock_guard lock(healthMutex_);
+  return health_;
 }
 
 void ProxyCollisionDetector::stopBackground() {

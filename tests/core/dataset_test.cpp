@@ -147,5 +147,30 @@ TEST_F(DatasetFiles, BadNpyFilesAreRefused) {
   EXPECT_THAT(error(truncatedHeader), HasSubstr("truncated .npy header"));
 }
 
+// Found by fuzz/npy_fuzzer: a header field with a newline in it made a two-line message. Every
+// fastron::Error is one line, whatever it quotes.
+TEST_F(DatasetFiles, MessagesQuotingTheFileStayOnOneLine) {
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (2,\n 3), }";
+  std::string bytes = "\x93NUMPY";
+  bytes += '\x01';
+  bytes += '\x00';
+  bytes += static_cast<char>(header.size());
+  bytes += '\x00';
+  bytes += header;
+  const std::string message = messageOf<FileError>([&] { parseNpy(bytes, "n.npy"); });
+  EXPECT_THAT(message, HasSubstr("n.npy: bad .npy shape '2,\\n 3'"));
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  EXPECT_STREQ(Error("a\nb\tc\x01").what(), "a\\nb\\tc\\x01");
+}
+
+TEST_F(DatasetFiles, ParsesFromMemoryAsFromAFile) {
+  write("d.csv", "a,b,label\n0.5,1,1\n");
+  const Dataset fromFile = readCsv(path("d.csv"));
+  const Dataset fromText = parseCsv("a,b,label\n0.5,1,1\n", "d.csv");
+  EXPECT_EQ(fromText.points, fromFile.points);
+  EXPECT_EQ(fromText.labels, fromFile.labels);
+  EXPECT_EQ(fromText.columnNames, fromFile.columnNames);
+}
+
 }  // namespace
 }  // namespace fastron

@@ -2,6 +2,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "fastron/core/error.h"
@@ -136,7 +139,36 @@ TEST_F(ModelFile, VersionOneStillLoads) {
 TEST_F(ModelFile, UnwritablePathIsNamed) {
   EXPECT_THAT(
       messageOf<FileError>([&] { saveModel(sampleModel(), path("no/such/dir/m.fastron")); }),
-      HasSubstr("cannot write"));
+      HasSubstr("dir/m.fastron: cannot write model file"));
+}
+
+// Saving goes through a temporary file and a rename: a writer killed at any moment leaves the
+// old model or the new one, whole, where the model was (with the non-atomic writer this test saw
+// truncated files).
+TEST_F(ModelFile, AWriterKilledWhileSavingLeavesAWholeModel) {
+  const Model small = sampleModel();
+  // Big enough that a save takes milliseconds, so the kills land inside writes.
+  const Eigen::Index n = 100000;
+  const JointLimits limits = JointLimits::unitBox(7);
+  const Model big(FeatureMap::jointScaling(limits), Kernel{}, Configurations::Random(n, 7),
+                  Eigen::VectorXd::Constant(n, 0.5));
+  const auto file = path("m.fastron");
+  saveModel(small, file);
+  Rng rng(7);
+  for (int trial = 0; trial < 12; ++trial) {
+    const pid_t writer = ::fork();
+    ASSERT_GE(writer, 0);
+    if (writer == 0) {
+      for (int i = 0;; ++i) saveModel(i % 2 == 0 ? big : small, file);
+    }
+    ::usleep(static_cast<useconds_t>(std::uniform_int_distribution<int>(2000, 40000)(rng)));
+    ::kill(writer, SIGKILL);
+    ::waitpid(writer, nullptr, 0);
+    const Model loaded = loadModel(file);
+    EXPECT_TRUE(loaded.supportCount() == small.supportCount() ||
+                loaded.supportCount() == big.supportCount())
+        << loaded.supportCount();
+  }
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "fastron/core/error.h"
 #include "fastron/core/trainer.h"
 #include "test_worlds.h"
@@ -143,6 +145,26 @@ TEST(Model, RejectsBadConstructionAndQueries) {
   EXPECT_THROW(model.score(std::vector<double>{0.0}), InvalidArgument);
   EXPECT_THROW(model.score(std::vector<double>{0.0, std::nan("")}), InvalidArgument);
   EXPECT_THROW(model.scoreBatch(Configurations::Zero(4, 3)), InvalidArgument);
+}
+
+// Found by fuzz/model_fuzzer: model files whose weights, kernel width or support features lie
+// beyond float range loaded, and then scored NaN (the queries compute in float, 0 * inf = NaN).
+TEST(Model, RefusesValuesBeyondTheFloatRangeOfTheQueries) {
+  const FeatureMap joints = FeatureMap::jointScaling(JointLimits::unitBox(2));
+  const Configurations one = Configurations::Zero(1, 2);
+  EXPECT_THROW(Model(joints, Kernel{}, one, Eigen::VectorXd::Constant(1, 1e39)), InvalidArgument);
+  EXPECT_THROW(Model(joints, Kernel{KernelType::Gaussian, 1e-134}, one, Eigen::VectorXd::Ones(1)),
+               InvalidArgument);
+  EXPECT_THROW(Model(joints, Kernel{KernelType::Gaussian, 1e31}, one, Eigen::VectorXd::Ones(1)),
+               InvalidArgument);
+  const FeatureMap tiny =
+      FeatureMap::jointScaling(JointLimits(Eigen::Vector2d(0, 0), Eigen::Vector2d(1e-300, 1e-300)));
+  EXPECT_THROW(Model(tiny, Kernel{}, Configurations::Ones(1, 2), Eigen::VectorXd::Ones(1)),
+               InvalidArgument);
+  // The largest accepted values still score finitely.
+  const Model large(joints, Kernel{KernelType::Gaussian, 1e-30}, one,
+                    Eigen::VectorXd::Constant(1, 1e30));
+  EXPECT_TRUE(std::isfinite(large.score(std::vector<double>{0.5, 0.5})));
 }
 
 }  // namespace

@@ -266,5 +266,12 @@ world:
   EXPECT_THAT(moveitError("robot_state: {}\n"), HasSubstr("not a MoveIt PlanningScene"));
 }
 
+// Found by fuzz/scene_fuzzer: yaml-cpp's message for a bad escape quotes the escaped character,
+// a control character included; the error names it as an escape.
+TEST_F(SceneFiles, AMalformedEscapeIsReportedOnOneLine) {
+  const std::string message = error("obstacles:\n  - {name: \"a\\\x01\"}\n");
+  EXPECT_THAT(message, HasSubstr("s.yaml:2: malformed YAML: unknown escape character: \\x01"));
+}
+
 }  // namespace
 }  // namespace fastron

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -27,6 +28,9 @@ struct Dataset {
 Dataset readDataset(const std::filesystem::path& path);
 Dataset readCsv(const std::filesystem::path& path);
 Dataset readNpy(const std::filesystem::path& path);
+/// The same readers on the bytes of a file; errors name `source` as they would the file.
+Dataset parseCsv(std::string_view text, const std::string& source);
+Dataset parseNpy(std::string_view bytes, const std::string& source);
 
 /// Writes a .csv or .npy file (chosen by extension, as readDataset reads them); throws FileError
 /// naming the file for another extension.

@@ -5,4 +5,5 @@
 // 16-byte aligned) and crash them. Every public header opens `namespace FASTRON_API fastron`, so
 // the library's own classes and functions are exported and nothing else is.
 
-#define FASTRON_API __attribute__((visibility("default")))
+// The standard attribute syntax, which both GCC and Clang accept on a namespace.
+#define FASTRON_API [[gnu::visibility("default")]]

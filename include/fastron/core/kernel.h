@@ -18,6 +18,10 @@ enum class KernelType : std::uint8_t {
   Gaussian = 1,
 };
 
+/// The kernel widths accepted: queries compute in float, where a gamma outside this range would
+/// be 0 or infinite.
+inline constexpr double kMinKernelGamma = 1e-30, kMaxKernelGamma = 1e30;
+
 struct Kernel {
   KernelType type = KernelType::RationalQuadratic;
   double gamma = 10;  ///< width parameter, > 0; larger is narrower

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -43,6 +44,10 @@ class Model {
   /// Their features, one per row.
   const Eigen::MatrixXd& supportFeatures() const { return support_; }
   const Eigen::VectorXd& weights() const { return weights_; }
+  /// A checksum of the support set and weights (and of the float copies queries read), taken
+  /// when the model was built: a model never changes, so computeChecksum() always equals it.
+  std::uint64_t checksum() const { return checksum_; }
+  std::uint64_t computeChecksum() const;
 
   /// f(q) on the vectorised float path. q: dim() joint values. Throws InvalidArgument on a
   /// non-finite value.
@@ -78,6 +83,8 @@ class Model {
         Eigen::MatrixXd supportFeatures, Eigen::VectorXd weights);
   /// Throws InvalidArgument on a bad kernel, dimension, size or weight.
   void validateSupport() const;
+  /// Throws InvalidArgument on a support feature beyond float range.
+  void validateSupportFeatures() const;
   /// The float structure-of-arrays copies the queries read.
   void buildQueryCopies();
 
@@ -107,6 +114,7 @@ class Model {
   std::size_t paddedCount_ = 0;
   AlignedFloats supportSoa_;  // dim() blocks of paddedCount_ values
   AlignedFloats weightsF_;    // paddedCount_ values
+  std::uint64_t checksum_ = 0;
 };
 
 /// A joint-space model from support points given in input space [-1, 1]^d, where the paper's SVM

@@ -18,6 +18,8 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
@@ -27,7 +29,8 @@ namespace FASTRON_API fastron {
 
 inline constexpr std::uint32_t kModelFileVersion = 2;
 
-/// Writes `model` to `path`; throws FileError if the file cannot be written.
+/// Writes `model` to `path` atomically (writeFileAtomically: a crash while saving leaves the old
+/// file whole); throws FileError if the file cannot be written.
 void saveModel(const Model& model, const std::filesystem::path& path);
 
 /// What a model file says about its input, read without building the model: enough to build the
@@ -52,5 +55,11 @@ ModelFileHeader readModelHeader(const std::filesystem::path& path);
 Model loadModel(const std::filesystem::path& path,
                 std::optional<std::size_t> expectedDim = std::nullopt,
                 std::shared_ptr<const PointKinematics> kinematics = nullptr);
+
+/// readModelHeader and loadModel on the bytes of a model file; errors name `source`.
+ModelFileHeader parseModelHeader(std::string_view bytes, const std::string& source);
+Model parseModel(std::string_view bytes, const std::string& source,
+                 std::optional<std::size_t> expectedDim = std::nullopt,
+                 std::shared_ptr<const PointKinematics> kinematics = nullptr);
 
 }  // namespace fastron

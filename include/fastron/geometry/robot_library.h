@@ -28,6 +28,11 @@ std::filesystem::path dataDirectory();
 /// Every shipped robot, from data/robots/robots.yaml.
 std::vector<RobotEntry> shippedRobots();
 
+/// A robot catalogue from a string (the format of data/robots/robots.yaml); its urdf and srdf
+/// paths are taken relative to `directory`. Throws FileError naming `source` and the line.
+std::vector<RobotEntry> parseRobotCatalogue(const std::string& yaml, const std::string& source,
+                                            const std::filesystem::path& directory);
+
 /// A shipped robot by name (its catalogue joints actuated, its allowed pairs and SRDF applied;
 /// package:// meshes found beside its URDF), or else a URDF file (every movable joint actuated).
 /// A non-empty `srdf` adds that file's disabled collisions (loadSrdfDisabledCollisions). Throws

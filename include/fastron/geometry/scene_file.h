@@ -1,5 +1,5 @@
 #pragma once
-// Scene files: the project's own YAML (docs/scenes.md) and MoveIt's PlanningScene and
+// Scene files: the project's own YAML (docs/geometry.md, "Scenes") and MoveIt's PlanningScene and
 // MotionPlanRequest YAML, the format of public planning benchmarks.
 
 #include <filesystem>
@@ -36,6 +36,8 @@ struct PlanRequest {
   NamedPositions start, goal;
 };
 PlanRequest loadMoveItRequest(const std::filesystem::path& path);
+/// A MotionPlanRequest from a string; errors name `source` and the line.
+PlanRequest parseMoveItRequest(const std::string& yaml, const std::string& source);
 
 /// The robot's actuated joints taken from `positions` (extra names are ignored). Throws
 /// InvalidArgument naming the first actuated joint that is missing or out of its limits.

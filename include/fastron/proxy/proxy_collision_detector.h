@@ -9,6 +9,8 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <stop_token>
+#include <string>
 #include <thread>
 
 #include "fastron/core/active_learning.h"
@@ -19,6 +21,7 @@
 #include "fastron/core/model.h"
 #include "fastron/core/trainer.h"
 #include "fastron/core/uncertainty_band.h"
+#include "fastron/proxy/labelling.h"
 
 namespace FASTRON_API fastron {
 
@@ -41,12 +44,32 @@ struct ProxyParams {
   std::size_t calibrationSamples = 1000;
   /// What the band of each published model is calibrated to.
   BandTargets band{};
+  /// Longest the labelling of one initialize() or step() may take (0: no limit). An oracle slower
+  /// than that fails the step with an OracleFault soon after the deadline (a checker call already
+  /// running is not interrupted), and no model is published.
+  std::chrono::nanoseconds labelDeadline{0};
+  /// Configurations per labelling whose label is asked twice: two answers fail the step with an
+  /// OracleFault (an oracle that contradicts itself cannot be learned). Evenly spaced, not drawn
+  /// from the random engine, so they change no result.
+  std::size_t repeatedLabels = 8;
+  /// After a failed background step, the wait before the next attempt.
+  std::chrono::nanoseconds faultRetryPeriod = std::chrono::milliseconds(100);
+};
+
+/// How the background updates are faring (ProxyCollisionDetector::backgroundHealth).
+struct BackgroundHealth {
+  std::uint64_t steps = 0;              ///< background steps that published a model
+  std::uint64_t faults = 0;             ///< background steps that failed (OracleFault)
+  std::uint64_t consecutiveFaults = 0;  ///< faults since the last good step: 0 when healthy
+  std::string lastFault;                ///< the latest fault's message ("" if none yet)
+  std::uint64_t modelVersion = 0;       ///< version of the model being served
 };
 
 /// What one initialize() or step() did.
 struct StepReport {
   UpdateReport update;
-  /// Oracle calls made: support points relabelled, new points, and calibration points.
+  /// Oracle calls made: support points relabelled, new points, calibration points, and the
+  /// repeated calls of ProxyParams::repeatedLabels.
   std::size_t labelled = 0;
   std::size_t added = 0;     ///< new points from sampling or active learning
   std::size_t observed = 0;  ///< labelled configurations from addObservations learned in this step
@@ -59,6 +82,7 @@ struct StepReport {
 struct CalibratedModel {
   std::shared_ptr<const Model> model;
   BandCalibration calibration;
+  std::uint64_t version = 0;  ///< 1 for initialize()'s model, +1 per model published after it
 };
 
 class ProxyCollisionDetector {
@@ -79,7 +103,9 @@ class ProxyCollisionDetector {
   StepReport initialize(std::size_t n);
 
   /// One cycle for a changed environment: Algorithm 2 on the current support set, relabel the
-  /// support set, label the new points, Algorithm 1. Throws Error before initialize().
+  /// support set, label the new points, Algorithm 1. Throws Error before initialize(), and
+  /// OracleFault when the oracle fails (ProxyParams::labelDeadline, repeatedLabels): the
+  /// detector is then as it was before the call, serving the same model.
   StepReport step();
 
   /// Exact answers the caller already has (e.g. VerifiedPlan::exactAnswers from verifying and
@@ -115,11 +141,17 @@ class ProxyCollisionDetector {
   /// `minPeriod` (default: back to back). Give the period at which the world changes (e.g. the
   /// sensing rate): each step on an unchanged world only adds active-learning points near the
   /// boundary, so the support set, and with it the query time, keeps growing.
+  /// A step the oracle fails (OracleFault) is a fault, not the end: the last good model stays
+  /// published, backgroundHealth() reports it, and the loop tries again after
+  /// params.faultRetryPeriod until the oracle recovers.
   void startBackground(std::function<void(const StepReport&)> onStep = {},
                        std::chrono::nanoseconds minPeriod = {});
-  /// Stops and joins the background thread; rethrows an exception that ended its loop.
+  /// Stops and joins the background thread, interrupting a step between two oracle calls;
+  /// rethrows any other exception that ended its loop (e.g. one `onStep` threw).
   void stopBackground();
   bool backgroundRunning() const { return worker_.joinable(); }
+  /// Steps and faults of the background thread since startBackground().
+  BackgroundHealth backgroundHealth() const;
 
   const CollisionChecker& oracle() const { return *oracle_; }
   const FeatureMap& features() const { return features_; }
@@ -127,6 +159,10 @@ class ProxyCollisionDetector {
   const ProxyParams& params() const { return params_; }
 
  private:
+  /// step(), interrupted between oracle calls when `stop` is requested (LabellingStopped).
+  StepReport runStep(const std::stop_token& stop);
+  /// The labelling guard of a step that starts now.
+  LabelGuard labelGuard(const std::stop_token& stop) const;
   /// Moves the waiting observations into the trainer (stepMutex_ held); returns how many.
   std::size_t addPendingObservations();
   /// Trains, calibrates the new model's band on the held-out points and publishes both.
@@ -152,6 +188,8 @@ class ProxyCollisionDetector {
   std::condition_variable_any pause_;  // wakes the worker between steps when stopping
   std::jthread worker_;
   std::exception_ptr workerError_;
+  mutable std::mutex healthMutex_;  // for health_ only
+  BackgroundHealth health_;
 };
 
 /// The rows of `answers` whose label `model` gets wrong: where it would have misled a planner.

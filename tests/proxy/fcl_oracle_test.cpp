@@ -1,5 +1,5 @@
-// Exact checkers called from many threads while the scene is replaced (runs under ThreadSanitizer
-// in ./dev.sh test): every check answers for one whole scene, old or new.
+// The proxy on a real exact checker: parallel labelling with FCL, and the paper's pipeline learning
+// Baxter's C-space while the box moves (also runs under ThreadSanitizer in ./dev.sh test).
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,6 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -16,44 +15,7 @@
 namespace fastron {
 namespace {
 
-Scene ballAt(double y) {
-  Scene scene;
-  scene.add({"ball", Sphere{0.1}, makePose({0.3, y, 0}), std::nullopt});
-  return scene;
-}
-
-template <class Checker>
-void checkWhileTheSceneChanges() {
-  const Robot rod = loadRobot("rod2");
-  // The ball sits either on the rod at q = (0, 0) or far away: each answer belongs to one scene.
-  Checker checker(rod, ballAt(0));
-  const std::vector<double> q{0, 0};
-  std::atomic<bool> done{false};
-  std::atomic<std::size_t> hits{0}, misses{0};
-  auto worker = [&] {
-    while (!done) (checker.inCollision(q) ? hits : misses)++;
-  };
-  {
-    std::jthread a(worker), b(worker);
-    // Swap scenes until the workers have checked a good number of times during the swaps.
-    for (int i = 0; i < 200 || hits + misses < 2000; ++i)
-      checker.setScene(ballAt(i % 2 == 0 ? 2.0 : 0.0));
-    done = true;
-  }
-  // What each check saw depends on the scheduler; the race-freedom is ThreadSanitizer's to
-  // judge (./dev.sh test), the final answer below the test's.
-  checker.setScene(ballAt(2.0));
-  EXPECT_FALSE(checker.inCollision(q));
-}
-
-TEST(CheckerConcurrency, FclChecksDuringSceneUpdates) {
-  checkWhileTheSceneChanges<FclChecker>();
-}
-TEST(CheckerConcurrency, GjkChecksDuringSceneUpdates) {
-  checkWhileTheSceneChanges<GjkChecker>();
-}
-
-TEST(CheckerConcurrency, ParallelLabellingEqualsSerial) {
+TEST(FclOracle, ParallelLabellingEqualsSerial) {
   const Robot baxter = loadRobot("baxter");
   Scene scene;
   scene.add({"box", Box{Eigen::Vector3d::Constant(0.3)}, makePose({0.6, -0.6, 0.2}), std::nullopt});
@@ -65,7 +27,7 @@ TEST(CheckerConcurrency, ParallelLabellingEqualsSerial) {
 
 // The paper's pipeline on a real robot: the proxy learns Baxter's C-space from FCL while the box
 // moves, updating in the background as the scene is replaced under the checker.
-TEST(CheckerConcurrency, ProxyLearnsFromFclWhileTheBoxMoves) {
+TEST(FclOracle, ProxyLearnsFromFclWhileTheBoxMoves) {
   Robot baxter = loadRobot("baxter");
   baxter.setActuatedJoints({"right_s0", "right_s1", "right_e0", "right_e1"});
   Scene scene;

@@ -1,0 +1,9 @@
+// The project's scene YAML (fastron::parseScene).
+#include "fastron/geometry/scene_file.h"
+#include "fuzz_reader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace fastron;
+  fuzz::readOrRefuse("fuzz.yaml", [&] { parseScene(fuzz::textOf(data, size), "fuzz.yaml"); });
+  return 0;
+}

@@ -1,0 +1,13 @@
+// SRDF disabled collisions (fastron::parseSrdfDisabledCollisions), against the Panda.
+#include "fastron/geometry/srdf.h"
+#include "fuzz_reader.h"
+#include "robot_for_fuzzing.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace fastron;
+  const Robot& robot = fuzz::panda();
+  fuzz::readOrRefuse("fuzz.srdf", [&] {
+    parseSrdfDisabledCollisions(fuzz::textOf(data, size), "fuzz.srdf", robot);
+  });
+  return 0;
+}

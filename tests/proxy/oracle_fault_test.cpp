@@ -1,0 +1,174 @@
+// Faults injected into the oracle: one that throws, one that hangs past the labelling deadline,
+// one that answers the same configuration both ways. The detector keeps serving its last good
+// model, reports the fault, and recovers when the oracle does; stopBackground always returns.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "fastron/core/error.h"
+#include "fastron/proxy/labelling.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+#include "temp_dir.h"  // messageOf
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+enum class Fault { None, Throw, Hang, Alternate };
+
+/// A disc of radius 0.5 at the origin of [-1, 1]^2, with a fault switched on and off at will.
+class FaultyOracle final : public CollisionChecker {
+ public:
+  std::size_t dof() const override { return 2; }
+  std::string name() const override { return "faulty"; }
+  std::atomic<Fault> fault{Fault::None};
+
+ protected:
+  bool check(const double* q) const override {
+    const bool truth = q[0] * q[0] + q[1] * q[1] < 0.25;
+    switch (fault.load()) {
+      case Fault::Throw:
+        throw Error("lost the scene");
+      case Fault::Hang:
+        std::this_thread::sleep_for(20ms);
+        return truth;
+      case Fault::Alternate:
+        return (flips_.fetch_add(1) % 2 == 0) != truth;
+      case Fault::None:
+        break;
+    }
+    return truth;
+  }
+
+ private:
+  mutable std::atomic<std::uint64_t> flips_{0};
+};
+
+ProxyParams faultParams() {
+  ProxyParams p;
+  p.train.kernel.gamma = 10;
+  p.train.beta = 5;
+  p.activeLearning = {200, 4, 0};
+  p.calibrationSamples = 200;
+  p.labelThreads = 2;
+  p.labelDeadline = 200ms;
+  p.faultRetryPeriod = 5ms;
+  return p;
+}
+
+/// Waits (10 s at most) until `done` holds.
+template <class Done>
+bool eventually(Done done) {
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(1ms);
+  }
+  return true;
+}
+
+class OracleFaults : public ::testing::TestWithParam<Fault> {};
+
+TEST_P(OracleFaults, StepFailsWithoutChangingTheModel) {
+  auto oracle = std::make_shared<FaultyOracle>();
+  ProxyCollisionDetector proxy(oracle, JointLimits::unitBox(2), faultParams());
+  proxy.initialize(500);
+  const CalibratedModel before = proxy.calibratedModel();
+  oracle->fault = GetParam();
+  const std::string message = test::messageOf<OracleFault>([&] { proxy.step(); });
+  EXPECT_THAT(message, HasSubstr("oracle 'faulty'"));
+  const CalibratedModel after = proxy.calibratedModel();
+  EXPECT_EQ(after.model, before.model);
+  EXPECT_EQ(after.version, before.version);
+  oracle->fault = Fault::None;
+  EXPECT_EQ(proxy.step().modelVersion, before.version + 1);
+}
+
+TEST_P(OracleFaults, BackgroundServesTheLastGoodModelAndRecovers) {
+  auto oracle = std::make_shared<FaultyOracle>();
+  ProxyCollisionDetector proxy(oracle, JointLimits::unitBox(2), faultParams());
+  proxy.initialize(500);
+  const std::uint64_t calls = oracle->callCount();
+  oracle->fault = GetParam();
+  const CalibratedModel lastGood = proxy.calibratedModel();
+  proxy.startBackground();
+  ASSERT_TRUE(eventually([&] { return proxy.backgroundHealth().faults >= 2; }));
+  BackgroundHealth health = proxy.backgroundHealth();
+  EXPECT_EQ(health.steps, 0u);
+  EXPECT_GE(health.consecutiveFaults, 2u);
+  EXPECT_THAT(health.lastFault, HasSubstr("oracle 'faulty'"));
+  EXPECT_EQ(proxy.calibratedModel().model, lastGood.model);  // still served
+  EXPECT_GT(oracle->callCount(), calls);
+
+  oracle->fault = Fault::None;
+  ASSERT_TRUE(eventually([&] { return proxy.backgroundHealth().steps >= 2; }));
+  health = proxy.backgroundHealth();
+  EXPECT_EQ(health.consecutiveFaults, 0u);
+  EXPECT_GT(proxy.calibratedModel().version, lastGood.version);
+
+  // Faulty again when stopped: stopBackground returns at once, without an error.
+  oracle->fault = GetParam();
+  const auto stopping = std::chrono::steady_clock::now();
+  EXPECT_NO_THROW(proxy.stopBackground());
+  EXPECT_LT(std::chrono::steady_clock::now() - stopping, 2s);
+}
+
+INSTANTIATE_TEST_SUITE_P(, OracleFaults,
+                         ::testing::Values(Fault::Throw, Fault::Hang, Fault::Alternate),
+                         [](const auto& info) {
+                           switch (info.param) {
+                             case Fault::Throw:
+                               return "Throws";
+                             case Fault::Hang:
+                               return "HangsPastTheDeadline";
+                             default:
+                               return "AnswersBothWays";
+                           }
+                         });
+
+TEST(OracleFaultMessages, NameWhatTheOracleDid) {
+  FaultyOracle oracle;
+  const Configurations q = test::uniformPoints(400, 2, 5);
+  oracle.fault = Fault::Throw;
+  EXPECT_THAT(test::messageOf<OracleFault>([&] { labelConfigurations(oracle, q, 2); }),
+              HasSubstr("oracle 'faulty' failed: lost the scene"));
+  oracle.fault = Fault::Hang;
+  EXPECT_THAT(test::messageOf<OracleFault>([&] {
+                labelConfigurations(oracle, q, 2,
+                                    {.deadline = std::chrono::steady_clock::now() + 30ms});
+              }),
+              HasSubstr("passed its labelling deadline (400 configurations)"));
+  oracle.fault = Fault::Alternate;
+  EXPECT_THAT(
+      test::messageOf<OracleFault>([&] { labelConfigurations(oracle, q, 1, {.repeatedRows = 4}); }),
+      HasSubstr("gave two different answers for the same configuration"));
+  oracle.fault = Fault::None;
+  EXPECT_EQ(labelConfigurations(oracle, q, 2, {.repeatedRows = 400}),
+            labelConfigurations(oracle, q, 1));
+}
+
+// A stop requested while the oracle hangs ends the labelling after the calls under way.
+TEST(OracleFaultMessages, StopEndsAHangingLabelling) {
+  FaultyOracle oracle;
+  oracle.fault = Fault::Hang;
+  std::stop_source stop;
+  std::jthread stopper([&] {
+    std::this_thread::sleep_for(50ms);
+    stop.request_stop();
+  });
+  const auto began = std::chrono::steady_clock::now();
+  EXPECT_THROW(
+      labelConfigurations(oracle, test::uniformPoints(1000, 2, 6), 2, {.stop = stop.get_token()}),
+      LabellingStopped);
+  EXPECT_LT(std::chrono::steady_clock::now() - began, 2s);  // not 1000 * 20 ms / 2
+}
+
+}  // namespace
+}  // namespace fastron
