@@ -2,7 +2,7 @@
 // Markdown with the paper's values beside ours, and the paper's figures as PNG.
 
 #include <ompl/util/RandomNumbers.h>
-#include <chrono>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -10,14 +10,9 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
-#include "fastron/experiments/changing_experiment.h"
-#include "fastron/experiments/cspace_experiment.h"
-#include "fastron/experiments/motion_bench_experiment.h"
-#include "fastron/experiments/planning_experiment.h"
-#include "fastron/experiments/shelf_experiment.h"
-#include "fastron/experiments/static_experiment.h"
-#include "fastron/experiments/surgical_experiment.h"
+#include "fastron/experiments/registry.h"
 #include "plotting.h"
+#include "report_format.h"
 #include "robot_options.h"
 
 namespace fastron::cli {
@@ -25,150 +20,55 @@ namespace {
 
 struct BenchOptions {
   std::string name, out, problems, features = "fk";
-  std::size_t trials = 0;                    // 0: the experiment's default
-  double timeLimit = 0, resolution = 0;      // 0: the experiment's default
-  double simplifyTime = -1;                  // < 0: the experiment's default
-  double gamma = 0, beta = 0, variance = 0;  // changing only; 0: the default
-  std::uint64_t seed = 1;
-  bool quick = false, plot = true;
-  RobotOptions robot;                  // motion-bench only (default: panda)
-  bool selfCollision = false;          // motion-bench only
-  std::size_t queriesPerScene = 1;     // motion-bench only
-  bool selfModel = false;              // motion-bench only
-  bool learnFromVerification = false;  // motion-bench only
+  ExperimentSettings settings;
+  RobotOptions robot;  // motion-bench only (default: panda)
+  bool plot = true;
 };
 
-int runBench(const BenchOptions& o) {
+/// The options that only some experiments read, by name; a given one the experiment does not
+/// read is refused, naming the experiments that do.
+void refuseSettingsNotRead(const CLI::App& cmd, const Experiment& experiment) {
+  for (const CLI::Option* option : cmd.get_options()) {
+    const std::string name = option->get_lnames().empty() ? "" : option->get_lnames().front();
+    if (name.empty() || option->count() == 0) continue;
+    bool readBySome = false, readByThis = false;
+    std::string readers;
+    for (const Experiment& e : experimentRegistry()) {
+      if (std::find(e.settings.begin(), e.settings.end(), name) == e.settings.end()) continue;
+      readBySome = true;
+      readByThis = readByThis || &e == &experiment;
+      readers += (readers.empty() ? "" : ", ") + e.name;
+    }
+    if (readBySome && !readByThis) {
+      throw InvalidArgument("--" + name + " does not apply to " + experiment.name +
+                            ": it goes with " + readers);
+    }
+  }
+}
+
+int runBench(const CLI::App& cmd, BenchOptions o) {
+  const Experiment& experiment = findExperiment(o.name);
+  refuseSettingsNotRead(cmd, experiment);
+  ExperimentSettings& s = o.settings;
+  s.features = parseFeatureKind(o.features);
+  s.problems = o.problems;
+  s.robot = o.robot.robot;
+  for (const auto& p : o.robot.packagePaths) s.packagePaths.emplace_back(p);
+  s.srdf = o.robot.srdf;
+
   const std::filesystem::path dir = o.out.empty()
                                         ? std::filesystem::path("fastron-results") / o.name
                                         : std::filesystem::path(o.out);
-  if ((o.gamma > 0 || o.beta > 0 || o.variance > 0) && o.name != "changing") {
-    throw InvalidArgument("--gamma, --beta and --al-variance go with the changing experiment");
-  }
-  if ((o.robot.robot != "panda" || !o.robot.packagePaths.empty() || !o.robot.srdf.empty() ||
-       o.selfCollision || o.queriesPerScene != 1 || o.selfModel || o.learnFromVerification) &&
-      o.name != "motion-bench") {
-    throw InvalidArgument(
-        "--robot, --package-path, --srdf, --self-collision, --self-model, --queries-per-scene "
-        "and --learn-from-verification go with the motion-bench experiment");
-  }
   std::filesystem::create_directories(dir);
-  const auto start = std::chrono::steady_clock::now();
-  const Progress progress = [start](std::string_view line) {
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "[" << static_cast<int>(s) << " s] " << line << std::endl;
-  };
-
   // OMPL draws every planner's seeds from one global generator, which takes a seed only before
   // its first use: planning experiments are repeatable in their queries, not in planning times.
-  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
-  const auto setPlanning = [&o](auto& options, std::size_t defaultTrials) {
-    options.seed = o.seed;
-    options.quick = o.quick;
-    options.features = parseFeatureKind(o.features);
-    if (o.timeLimit > 0) options.timeLimit = o.timeLimit;
-    if (o.resolution > 0) options.resolution = o.resolution;
-    if (o.simplifyTime >= 0) options.simplifyTime = o.simplifyTime;
-    if constexpr (requires { options.trials; }) {
-      options.trials = o.trials ? o.trials : (o.quick ? 1 : defaultTrials);
-    }
-  };
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(s.seed));
+  const ExperimentOutput output = experiment.run(s, progressPrinter());
 
-  Table results;
-  std::string report;
-  StaticOptions options;
-  options.seed = o.seed;
-  options.quick = o.quick;
-  if (o.name == "static") {
-    options.trials = o.trials ? o.trials : (o.quick ? 1 : 10);
-    results = runStatic(options, progress);
-    report = staticReport(results, options);
-  } else if (o.name == "static-beta" || o.name == "static-gamma") {
-    options.trials = o.trials ? o.trials : (o.quick ? 1 : 10);
-    const std::string parameter = o.name.substr(7);
-    results = runStaticSweep(options, parameter, progress);
-    report = staticSweepReport(results, parameter, options);
-  } else if (o.name == "changing") {
-    ChangingOptions changing;
-    changing.trials = o.trials ? o.trials : (o.quick ? 1 : 3);
-    changing.steps = o.quick ? 3 : 50;
-    changing.seed = o.seed;
-    changing.quick = o.quick;
-    changing.features = parseFeatureKind(o.features);
-    changing.gamma = o.gamma;
-    changing.beta = o.beta;
-    changing.variance = o.variance;
-    if (o.quick) changing.cases = {"4dof", "7dof-3boxes"};
-    results = runChanging(changing, progress);
-    report = changingReport(results, changing);
-  } else if (o.name == "sweep") {
-    SweepOptions sweep;
-    sweep.trials = o.trials ? o.trials : (o.quick ? 1 : 3);
-    sweep.seed = o.seed;
-    sweep.quick = o.quick;
-    sweep.features = parseFeatureKind(o.features);
-    if (o.quick) sweep.obstacles = {1, 10};
-    results = runObstacleSweep(sweep, progress);
-    report = sweepReport(results, sweep);
-  } else if (o.name == "cspace") {
-    const CspaceOptions cspace{o.trials ? o.trials : (o.quick ? 1u : 3u), o.seed, o.quick};
-    const CspaceResults r = runCspace(cspace, progress);
-    results = r.summary;
-    r.grid.writeCsv(dir / "grid.csv");
-    r.support.writeCsv(dir / "support.csv");
-    r.cubes.writeCsv(dir / "cubes.csv");
-    report = cspaceReport(r, cspace);
-  } else if (o.name == "plan") {
-    PlanningOptions planning;
-    setPlanning(planning, planning.trials);
-    if (o.quick) {
-      planning.cases = {"4dof", "7dof-3boxes"};
-      planning.timeLimit = o.timeLimit > 0 ? o.timeLimit : 3;
-    }
-    const PlanRows plans = runPlanning(planning, progress);
-    results = plans.table();
-    report = planningReport(plans, planning);
-  } else if (o.name == "shelf") {
-    ShelfOptions shelf;
-    setPlanning(shelf, shelf.trials);
-    if (o.quick && o.timeLimit <= 0) shelf.timeLimit = 3;
-    const PlanRows plans = runShelf(shelf, progress);
-    results = plans.table();
-    report = shelfReport(plans, shelf);
-  } else if (o.name == "surgical") {
-    SurgicalOptions surgical;
-    setPlanning(surgical, 0);
-    if (o.trials) surgical.ticks = o.trials;
-    const PlanRows plans = runSurgical(surgical, progress);
-    results = plans.table();
-    report = surgicalReport(plans, surgical);
-  } else if (o.name == "motion-bench") {
-    if (o.problems.empty()) {
-      throw InvalidArgument(
-          "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
-          "requestNNNN.yaml files)");
-    }
-    MotionBenchOptions bench;
-    setPlanning(bench, 0);
-    bench.problems = o.problems;
-    bench.robot = o.robot.robot;
-    for (const auto& p : o.robot.packagePaths) bench.packagePaths.emplace_back(p);
-    bench.srdf = o.robot.srdf;
-    bench.selfCollision = o.selfCollision;
-    bench.queriesPerScene = o.queriesPerScene;
-    bench.selfModel = o.selfModel;
-    bench.learnFromVerification = o.learnFromVerification;
-    const PlanRows plans = runMotionBench(bench, progress);
-    results = plans.table();
-    report = motionBenchReport(plans, bench);
-  } else {
-    throw InvalidArgument("unknown experiment '" + o.name + "'");
-  }
-
-  results.writeCsv(dir / "results.csv");
-  std::ofstream(dir / "report.md") << report;
-  std::cout << '\n' << report << '\n';
+  output.results.writeCsv(dir / "results.csv");
+  for (const auto& [file, table] : output.tables) table.writeCsv(dir / file);
+  std::ofstream(dir / "report.md") << output.report;
+  std::cout << '\n' << output.report << '\n';
   if (o.plot) {
     const std::string error = runPlotScript("plot_experiments.py", {o.name, dir.string()});
     if (!error.empty()) std::cerr << "fastron: warning: no plots drawn: " << error << '\n';
@@ -183,15 +83,14 @@ int runBench(const BenchOptions& o) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Run one of the paper's experiments");
-  const std::vector<std::string> names{"static",   "static-beta", "static-gamma", "cspace",
-                                       "changing", "sweep",       "plan",         "shelf",
-                                       "surgical", "motion-bench"};
-  cmd->add_option("name", o->name,
-                  "static, static-beta, static-gamma, cspace, changing, sweep, plan, shelf, "
-                  "surgical, motion-bench")
-      ->required()
-      ->check(CLI::IsMember(names));
-  cmd->add_option("--trials", o->trials,
+  std::vector<std::string> names;
+  std::string described;
+  for (const Experiment& e : experimentRegistry()) {
+    names.push_back(e.name);
+    described += (described.empty() ? "" : "; ") + e.name + ": " + e.description;
+  }
+  cmd->add_option("name", o->name, described)->required()->check(CLI::IsMember(names));
+  cmd->add_option("--trials", o->settings.trials,
                   "trials (random environments, planning queries; surgical: ticks); default: the "
                   "experiment's own");
   cmd->add_option("--problems", o->problems,
@@ -204,41 +103,43 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "motion-bench: folder searched for the robot's package:// meshes (repeatable)");
   cmd->add_option("--srdf", o->robot.srdf,
                   "motion-bench: MoveIt SRDF whose disable_collisions pairs are skipped");
-  cmd->add_option("--queries-per-scene", o->queriesPerScene,
+  cmd->add_option("--queries-per-scene", o->settings.queriesPerScene,
                   "motion-bench: the request plus K-1 random free start/goal pairs per scene, on "
                   "one model")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_flag("--learn-from-verification", o->learnFromVerification,
+  cmd->add_flag("--learn-from-verification", o->settings.learnFromVerification,
                 "motion-bench: between a scene's queries, the model learns the exact answers of "
                 "the last plan's verification and repair that it got wrong");
-  cmd->add_flag("--self-model", o->selfModel,
+  cmd->add_flag("--self-model", o->settings.selfModel,
                 "motion-bench with --self-collision: also plan on a self-collision model learned "
                 "once for the robot beside each scene's obstacle model (method 'Fastron split')");
-  cmd->add_flag("--self-collision", o->selfCollision,
+  cmd->add_flag("--self-collision", o->settings.selfCollision,
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped)");
-  cmd->add_option("--time-limit", o->timeLimit, "planning experiments: seconds per query")
+  cmd->add_option("--time-limit", o->settings.timeLimit, "planning experiments: seconds per query")
       ->check(numberAbove(0));
-  cmd->add_option("--resolution", o->resolution,
+  cmd->add_option("--resolution", o->settings.resolution,
                   "planning experiments: joint-space step of edge checks")
       ->check(numberAbove(0));
-  cmd->add_option("--simplify-time", o->simplifyTime,
+  cmd->add_option("--simplify-time", o->settings.simplifyTime,
                   "planning experiments: seconds of OMPL path simplification per plan, every "
                   "checker alike (default 0.1; 0: off, the paper's setting)")
       ->check(numberAbove(0, true));
-  cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
+  cmd->add_option("--seed", o->settings.seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);  // changing, sweep and the planning experiments
-  cmd->add_option("--gamma", o->gamma, "changing: kernel width of the models on --features")
+  cmd->add_option("--gamma", o->settings.gamma,
+                  "changing: kernel width of the models on --features")
       ->check(numberAbove(0));
-  cmd->add_option("--beta", o->beta, "changing: conditional bias of the models on --features")
+  cmd->add_option("--beta", o->settings.beta,
+                  "changing: conditional bias of the models on --features")
       ->check(numberAbove(1, true));
-  cmd->add_option("--al-variance", o->variance,
+  cmd->add_option("--al-variance", o->settings.variance,
                   "changing: active-learning spread sigma^2 in scaled joint space")
       ->check(numberAbove(0));
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
-  cmd->add_flag("--quick", o->quick, "small sizes, for a fast check");
+  cmd->add_flag("--quick", o->settings.quick, "small sizes, for a fast check");
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");
-  cmd->callback([o, &exitCode] { exitCode = runBench(*o); });
+  cmd->callback([cmd, o, &exitCode] { exitCode = runBench(*cmd, *o); });
 }
 
 }  // namespace fastron::cli

@@ -12,6 +12,7 @@
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/demo_experiment.h"
 #include "plotting.h"
+#include "report_format.h"
 #include "robot_options.h"
 
 namespace fastron::cli {
@@ -30,12 +31,7 @@ int runDemoCommand(DemoCommandOptions o) {
   std::filesystem::create_directories(dir);
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.demo.seed));
   std::cout << "Fastron demo: Baxter's right arm (7 joints) among three boxes on random walks\n";
-  const auto start = std::chrono::steady_clock::now();
-  const DemoResults results = runDemo(o.demo, [start](std::string_view line) {
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "[" << static_cast<int>(s) << " s] " << line << std::endl;
-  });
+  const DemoResults results = runDemo(o.demo, progressPrinter());
 
   const std::string report = demoReport(results, o.demo);
   std::cout << '\n' << report << '\n';

@@ -86,12 +86,12 @@ int runEval(const EvalOptions& o) {
             << "\nTNR         " << rate(c.tnr()) << '\n';
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
-  std::cout << "query time  " << duration(query) << " per configuration (features "
-            << duration(features) << ", kernel sum " << duration(std::max(0.0, query - features))
-            << ")\n";
+  std::cout << "query time  " << durationText(query) << " per configuration (features "
+            << durationText(features) << ", kernel sum "
+            << durationText(std::max(0.0, query - features)) << ")\n";
   if (fcl) {
     const double exact = meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
-    std::cout << "FK+FCL      " << duration(exact) << " per configuration: the model is "
+    std::cout << "FK+FCL      " << durationText(exact) << " per configuration: the model is "
               << times(exact / query) << " faster\n";
   }
   return 0;

@@ -134,9 +134,8 @@ int runPlan(const PlanOptions& o) {
       calibrated = proxy.calibratedModel();
       std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
                 << " active-learning updates in "
-                << duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - began)
-                                .count())
-                << ", " << calibrated.model->supportCount() << " support points, features "
+                << durationText(seconds(std::chrono::steady_clock::now() - began)) << ", "
+                << calibrated.model->supportCount() << " support points, features "
                 << features.summary() << '\n';
     }
     plan = planVerified(calibrated, fcl, limits, start, goal, options);
@@ -146,11 +145,11 @@ int runPlan(const PlanOptions& o) {
             << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
             << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
-            << "time     plan " << duration(seconds(plan.planTime)) << " (of which simplify "
-            << duration(seconds(plan.simplifyTime)) << "), verify "
-            << duration(seconds(plan.verifyTime)) << ", repair "
-            << duration(seconds(plan.repairTime)) << ", total "
-            << duration(seconds(plan.totalTime())) << '\n';
+            << "time     plan " << durationText(seconds(plan.planTime)) << " (of which simplify "
+            << durationText(seconds(plan.simplifyTime)) << "), verify "
+            << durationText(seconds(plan.verifyTime)) << ", repair "
+            << durationText(seconds(plan.repairTime)) << ", total "
+            << durationText(seconds(plan.totalTime())) << '\n';
   if (!plan.solved()) return 1;
   std::cout << "path     " << plan.path.size() << " waypoints, length " << std::setprecision(4)
             << pathLength(plan.path) << " (joint space), " << plan.invalidStretches

@@ -1,11 +1,16 @@
 #pragma once
-// Number formatting shared by the subcommands' printed tables.
+// What the subcommands print alike: rates, ratios and progress lines. (Durations: durationText,
+// shared with the experiments' reports.)
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "fastron/experiments/common.h"  // seconds()
+#include <chrono>
+#include <iostream>
+#include <string_view>
+
+#include "fastron/experiments/common.h"  // Progress, seconds(), durationText()
 
 namespace fastron::cli {
 
@@ -17,26 +22,20 @@ inline std::string rate(double value) {
   return buffer;
 }
 
-/// A duration with a unit that keeps 3 significant digits: ns, us, ms or s.
-inline std::string duration(double seconds) {
-  char buffer[32];
-  if (seconds < 1e-6) {
-    std::snprintf(buffer, sizeof buffer, "%.0f ns", seconds * 1e9);
-  } else if (seconds < 1e-3) {
-    std::snprintf(buffer, sizeof buffer, "%.2f us", seconds * 1e6);
-  } else if (seconds < 1) {
-    std::snprintf(buffer, sizeof buffer, "%.2f ms", seconds * 1e3);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.2f s", seconds);
-  }
-  return buffer;
-}
-
 /// A speed ratio such as "3.4x".
 inline std::string times(double ratio) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.1fx", ratio);
   return buffer;
+}
+
+/// The progress printer of every long-running command: "[12 s] line", seconds since it was made.
+inline Progress progressPrinter() {
+  const auto start = std::chrono::steady_clock::now();
+  return [start](std::string_view line) {
+    const double s = seconds(std::chrono::steady_clock::now() - start);
+    std::cout << "[" << static_cast<int>(s) << " s] " << line << std::endl;
+  };
 }
 
 }  // namespace fastron::cli

@@ -2,6 +2,7 @@
 // self-collisions.
 
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -15,28 +16,44 @@
 namespace fastron::cli {
 namespace {
 
-int runRobots(const std::string& only) {
+void describeRobot(const Robot& robot, const std::string& description,
+                   const std::filesystem::path& urdf, const std::filesystem::path& srdf,
+                   const std::vector<std::pair<std::string, double>>& held) {
+  std::cout << robot.name() << ": " << description << '\n';
+  std::cout << "  urdf " << urdf.string() << ", " << robot.links().size() << " links, "
+            << robot.shapes().size() << " collision shapes\n";
+  if (!srdf.empty()) std::cout << "  srdf " << srdf.string() << '\n';
+  std::cout << "  link pairs skipped by self-collision checks besides adjacent ones: "
+            << robot.allowedCollisions().size() << '\n';
+  const JointLimits limits = robot.limits();
+  std::cout << "  actuated joints (" << robot.dof() << "):\n";
+  for (std::size_t j = 0; j < robot.dof(); ++j) {
+    const auto& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[j])];
+    std::cout << "    " << std::left << std::setw(22) << joint.name << std::setw(11)
+              << (joint.type == JointType::Prismatic ? "prismatic" : "revolute") << "["
+              << limits.lower()[static_cast<Eigen::Index>(j)] << ", "
+              << limits.upper()[static_cast<Eigen::Index>(j)] << "]\n";
+  }
+  for (const auto& [joint, value] : held)
+    std::cout << "  held: " << joint << " = " << value << '\n';
+  std::cout << '\n';
+}
+
+/// Every shipped robot, or only the one named; a name that is not shipped is a URDF file, read
+/// with the options' package paths and SRDF.
+int runRobots(const RobotOptions& options) {
+  bool shown = false;
   for (const RobotEntry& entry : shippedRobots()) {
-    if (!only.empty() && entry.name != only) continue;
-    const Robot robot = loadRobot(entry.name);
-    std::cout << entry.name << ": " << entry.description << '\n';
-    std::cout << "  urdf " << entry.urdf.string() << ", " << robot.links().size() << " links, "
-              << robot.shapes().size() << " collision shapes\n";
-    if (!entry.srdf.empty()) std::cout << "  srdf " << entry.srdf.string() << '\n';
-    std::cout << "  link pairs skipped by self-collision checks besides adjacent ones: "
-              << robot.allowedCollisions().size() << '\n';
-    const JointLimits limits = robot.limits();
-    std::cout << "  actuated joints (" << robot.dof() << "):\n";
-    for (std::size_t j = 0; j < robot.dof(); ++j) {
-      const auto& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[j])];
-      std::cout << "    " << std::left << std::setw(22) << joint.name << std::setw(11)
-                << (joint.type == JointType::Prismatic ? "prismatic" : "revolute") << "["
-                << limits.lower()[static_cast<Eigen::Index>(j)] << ", "
-                << limits.upper()[static_cast<Eigen::Index>(j)] << "]\n";
-    }
-    for (const auto& [joint, value] : entry.held)
-      std::cout << "  held: " << joint << " = " << value << '\n';
-    std::cout << '\n';
+    if (!options.robot.empty() && entry.name != options.robot) continue;
+    const Robot robot = loadRobotFromOptions(
+        {.robot = entry.name, .packagePaths = options.packagePaths, .srdf = options.srdf});
+    describeRobot(robot, entry.description, entry.urdf,
+                  options.srdf.empty() ? entry.srdf : std::filesystem::path(options.srdf),
+                  entry.held);
+    shown = true;
+  }
+  if (!shown) {
+    describeRobot(loadRobotFromOptions(options), "a URDF file", options.robot, options.srdf, {});
   }
   return 0;
 }
@@ -108,21 +125,19 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", options->seed, "random seed of the survey")->capture_default_str();
   auto files = std::make_shared<RobotOptions>();  // the robot is the positional name
   cmd->add_option("--package-path", files->packagePaths,
-                  "survey: folder searched for package:// and relative mesh paths (repeatable)");
+                  "folder searched for package:// and relative mesh paths (repeatable)");
   cmd->add_option("--srdf", files->srdf,
-                  "survey: MoveIt SRDF whose disable_collisions pairs are not surveyed");
+                  "MoveIt SRDF: its disable_collisions pairs are skipped (and not surveyed)");
   cmd->callback([only, survey, options, files, &exitCode] {
+    files->robot = *only;
     if (*survey) {
       if (only->empty()) throw InvalidArgument("--self-collisions needs a robot name or URDF file");
-      files->robot = *only;
       exitCode = runSurvey(*files, *options);
       return;
     }
-    if (!files->packagePaths.empty() || !files->srdf.empty()) {
-      throw InvalidArgument("--package-path and --srdf go with --self-collisions");
-    }
-    if (!only->empty()) loadRobot(*only);  // a clear error for an unknown name
-    exitCode = runRobots(*only);
+    if (only->empty() && !files->srdf.empty())
+      throw InvalidArgument("--srdf needs a robot name or URDF file");
+    exitCode = runRobots(*files);
   });
 }
 

@@ -107,7 +107,7 @@ void printReport(const UpdateReport& report) {
   std::cout << "update        " << report.iterations
             << " iterations, stopped: " << toString(report.stopReason)
             << (report.reverted ? " (reverted to the better earlier solution)" : "") << ", "
-            << duration(seconds(report.elapsed)) << '\n';
+            << durationText(seconds(report.elapsed)) << '\n';
   std::cout << "support set   " << report.supportCount << " points; " << report.misclassified
             << " training points misclassified\n";
 }
@@ -129,12 +129,12 @@ int trainOnScene(const TrainOptions& o) {
   ProxyCollisionDetector proxy(fcl, features, params);
   StepReport step = proxy.initialize(o.samples);
   std::cout << "samples       " << o.samples << " labelled by FCL in "
-            << duration(seconds(step.labelTime)) << '\n';
+            << durationText(seconds(step.labelTime)) << '\n';
   printReport(step.update);
   for (std::size_t k = 0; k < o.activeLearning; ++k) {
     step = proxy.step();
     std::cout << "active        round " << (k + 1) << ": " << step.added << " new points, |S| "
-              << step.update.supportCount << ", " << duration(seconds(step.total)) << '\n';
+              << step.update.supportCount << ", " << durationText(seconds(step.total)) << '\n';
   }
   saveModel(*proxy.model(), o.output);
   std::cout << "model         " << o.output << '\n';

@@ -1,0 +1,198 @@
+#include "fastron/experiments/registry.h"
+
+#include "fastron/core/error.h"
+#include "fastron/experiments/changing_experiment.h"
+#include "fastron/experiments/cspace_experiment.h"
+#include "fastron/experiments/motion_bench_experiment.h"
+#include "fastron/experiments/planning_experiment.h"
+#include "fastron/experiments/shelf_experiment.h"
+#include "fastron/experiments/static_experiment.h"
+#include "fastron/experiments/surgical_experiment.h"
+
+namespace fastron {
+namespace {
+
+/// The given trials, or the experiment's: one in quick mode.
+std::size_t trialsOr(const ExperimentSettings& s, std::size_t full) {
+  return s.trials != 0 ? s.trials : (s.quick ? 1 : full);
+}
+
+/// The settings every planning experiment shares.
+template <class Options>
+void applyPlanning(const ExperimentSettings& s, Options& options) {
+  options.seed = s.seed;
+  options.quick = s.quick;
+  options.features = s.features;
+  if (s.timeLimit > 0) options.timeLimit = s.timeLimit;
+  if (s.resolution > 0) options.resolution = s.resolution;
+  if (s.simplifyTime >= 0) options.simplifyTime = s.simplifyTime;
+}
+
+const std::vector<std::string> kPlanningSettings{"features", "time-limit", "resolution",
+                                                 "simplify-time"};
+
+std::vector<std::string> planningAnd(std::vector<std::string> more) {
+  more.insert(more.begin(), kPlanningSettings.begin(), kPlanningSettings.end());
+  return more;
+}
+
+StaticOptions staticOptions(const ExperimentSettings& s) {
+  StaticOptions o;
+  o.seed = s.seed;
+  o.quick = s.quick;
+  o.trials = trialsOr(s, 10);
+  return o;
+}
+
+ExperimentOutput runStaticSweepOf(const std::string& parameter, const ExperimentSettings& s,
+                                  const Progress& progress) {
+  const StaticOptions o = staticOptions(s);
+  ExperimentOutput out;
+  out.results = runStaticSweep(o, parameter, progress);
+  out.report = staticSweepReport(out.results, parameter, o);
+  return out;
+}
+
+std::vector<Experiment> makeRegistry() {
+  std::vector<Experiment> all;
+  all.push_back({"static",
+                 "Fastron against ISVM, SSVM and LIBSVM in static 2- and 4-DOF worlds",
+                 {},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   const StaticOptions o = staticOptions(s);
+                   ExperimentOutput out;
+                   out.results = runStatic(o, progress);
+                   out.report = staticReport(out.results, o);
+                   return out;
+                 }});
+  all.push_back({"static-beta",
+                 "Fastron's accuracy and support set over its conditional bias",
+                 {},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   return runStaticSweepOf("beta", s, progress);
+                 }});
+  all.push_back({"static-gamma",
+                 "Fastron's accuracy and support set over its kernel width",
+                 {},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   return runStaticSweepOf("gamma", s, progress);
+                 }});
+  all.push_back({"cspace",
+                 "The learned C-space of a 2-DOF arm beside the true one (Fig. 3)",
+                 {},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   const CspaceOptions o{trialsOr(s, 3), s.seed, s.quick};
+                   CspaceResults r = runCspace(o, progress);
+                   ExperimentOutput out;
+                   out.report = cspaceReport(r, o);
+                   out.results = std::move(r.summary);
+                   out.tables = {{"grid.csv", std::move(r.grid)},
+                                 {"support.csv", std::move(r.support)},
+                                 {"cubes.csv", std::move(r.cubes)}};
+                   return out;
+                 }});
+  all.push_back({"changing",
+                 "Baxter among moving boxes: accuracy and update time per step",
+                 {"features", "gamma", "beta", "al-variance"},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   ChangingOptions o;
+                   o.trials = trialsOr(s, 3);
+                   o.steps = s.quick ? 3 : 50;
+                   o.seed = s.seed;
+                   o.quick = s.quick;
+                   o.features = s.features;
+                   o.gamma = s.gamma;
+                   o.beta = s.beta;
+                   o.variance = s.variance;
+                   if (s.quick) o.cases = {"4dof", "7dof-3boxes"};
+                   ExperimentOutput out;
+                   out.results = runChanging(o, progress);
+                   out.report = changingReport(out.results, o);
+                   return out;
+                 }});
+  all.push_back({"sweep",
+                 "Query time over the number of obstacles (Fig. 5)",
+                 {"features"},
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   SweepOptions o;
+                   o.trials = trialsOr(s, 3);
+                   o.seed = s.seed;
+                   o.quick = s.quick;
+                   o.features = s.features;
+                   if (s.quick) o.obstacles = {1, 10};
+                   ExperimentOutput out;
+                   out.results = runObstacleSweep(o, progress);
+                   out.report = sweepReport(out.results, o);
+                   return out;
+                 }});
+  all.push_back({"plan", "Baxter planning with each OMPL planner on each checker (Table IV)",
+                 kPlanningSettings, [](const ExperimentSettings& s, const Progress& progress) {
+                   PlanningOptions o;
+                   applyPlanning(s, o);
+                   o.trials = trialsOr(s, o.trials);
+                   if (s.quick) {
+                     o.cases = {"4dof", "7dof-3boxes"};
+                     if (s.timeLimit <= 0) o.timeLimit = 3;
+                   }
+                   const PlanRows plans = runPlanning(o, progress);
+                   return ExperimentOutput{plans.table(), {}, planningReport(plans, o)};
+                 }});
+  all.push_back({"shelf", "UR3 from the lower to the higher shelf with RRT", kPlanningSettings,
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   ShelfOptions o;
+                   applyPlanning(s, o);
+                   o.trials = trialsOr(s, o.trials);
+                   if (s.quick && s.timeLimit <= 0) o.timeLimit = 3;
+                   const PlanRows plans = runShelf(o, progress);
+                   return ExperimentOutput{plans.table(), {}, shelfReport(plans, o)};
+                 }});
+  all.push_back({"surgical", "A surgical arm replanning among two moving arms every tick",
+                 kPlanningSettings, [](const ExperimentSettings& s, const Progress& progress) {
+                   SurgicalOptions o;
+                   applyPlanning(s, o);
+                   if (s.trials != 0) o.ticks = s.trials;
+                   const PlanRows plans = runSurgical(o, progress);
+                   return ExperimentOutput{plans.table(), {}, surgicalReport(plans, o)};
+                 }});
+  all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
+                 planningAnd({"problems", "robot", "package-path", "srdf", "self-collision",
+                              "self-model", "queries-per-scene", "learn-from-verification"}),
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   if (s.problems.empty()) {
+                     throw InvalidArgument(
+                         "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
+                         "requestNNNN.yaml files)");
+                   }
+                   MotionBenchOptions o;
+                   applyPlanning(s, o);
+                   o.problems = s.problems;
+                   o.robot = s.robot;
+                   o.packagePaths = s.packagePaths;
+                   o.srdf = s.srdf;
+                   o.selfCollision = s.selfCollision;
+                   o.queriesPerScene = s.queriesPerScene;
+                   o.selfModel = s.selfModel;
+                   o.learnFromVerification = s.learnFromVerification;
+                   const PlanRows plans = runMotionBench(o, progress);
+                   return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
+                 }});
+  return all;
+}
+
+}  // namespace
+
+const std::vector<Experiment>& experimentRegistry() {
+  static const std::vector<Experiment> registry = makeRegistry();
+  return registry;
+}
+
+const Experiment& findExperiment(std::string_view name) {
+  std::string names;
+  for (const Experiment& e : experimentRegistry()) {
+    if (e.name == name) return e;
+    names += (names.empty() ? "" : ", ") + e.name;
+  }
+  throw InvalidArgument("unknown experiment '" + std::string(name) + "' (" + names + ")");
+}
+
+}  // namespace fastron
