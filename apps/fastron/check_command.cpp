@@ -51,9 +51,7 @@ int runCheck(const CheckOptions& o) {
   const auto contact = fcl.firstContact(o.config);
   std::cout << "FCL     ";
   if (contact) {
-    std::cout << "in collision: " << contact->robotLink
-              << (contact->selfCollision ? " touches link " : " touches ") << contact->other
-              << '\n';
+    std::cout << "in collision: " << describe(*contact) << '\n';
   } else {
     std::cout << "free, " << std::fixed << std::setprecision(4) << fcl.distance(o.config)
               << " m from the nearest obstacle\n";

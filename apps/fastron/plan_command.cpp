@@ -43,22 +43,7 @@ struct PlanOptions {
 std::string contactAt(const FclChecker& fcl, const Eigen::VectorXd& q) {
   const auto contact =
       fcl.firstContact(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
-  if (!contact) return "";
-  return contact->robotLink + (contact->selfCollision ? " touches link " : " touches ") +
-         contact->other;
-}
-
-void writePath(const Path& path, const Robot& robot, const std::string& file) {
-  std::ofstream out(file);
-  const auto names = robot.actuatedJointNames();
-  for (std::size_t j = 0; j < names.size(); ++j) out << (j ? "," : "") << names[j];
-  out << '\n' << std::setprecision(17);
-  for (const Eigen::VectorXd& q : path) {
-    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j ? "," : "") << q[j];
-    out << '\n';
-  }
-  out.close();
-  if (!out) throw FileError(file + ": cannot write");
+  return contact ? describe(*contact) : "";
 }
 
 int runPlan(const PlanOptions& o) {
@@ -69,13 +54,9 @@ int runPlan(const PlanOptions& o) {
   if (!o.request.empty()) {
     if (!o.start.empty() || !o.goal.empty())
       throw InvalidArgument("give either --request or --start and --goal, not both");
-    const PlanRequest request = loadMoveItRequest(o.request);
-    const auto vector = [](const std::vector<double>& v) {
-      return Eigen::VectorXd(
-          Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
-    };
-    start = vector(actuatedConfiguration(robot, request.start, o.request + ": start"));
-    goal = vector(actuatedConfiguration(robot, request.goal, o.request + ": goal"));
+    RequestEnds ends = requestEnds(robot, loadMoveItRequest(o.request), o.request);
+    start = std::move(ends.start);
+    goal = std::move(ends.goal);
   } else {
     if (o.start.empty() || o.goal.empty())
       throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
@@ -128,13 +109,10 @@ int runPlan(const PlanOptions& o) {
       if (o.gamma) params.train.kernel.gamma = *o.gamma;
       if (o.beta) params.train.beta = *o.beta;
       ProxyCollisionDetector proxy(fcl, features, params);
-      const auto began = std::chrono::steady_clock::now();
-      proxy.initialize(o.samples);
-      for (std::size_t u = 0; u < o.updates; ++u) proxy.step();
+      const StepReport trained = trainStatic(proxy, o.samples, o.updates);
       calibrated = proxy.calibratedModel();
       std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
-                << " active-learning updates in "
-                << durationText(seconds(std::chrono::steady_clock::now() - began)) << ", "
+                << " active-learning updates in " << durationText(seconds(trained.total)) << ", "
                 << calibrated.model->supportCount() << " support points, features "
                 << features.summary() << '\n';
     }
@@ -155,7 +133,7 @@ int runPlan(const PlanOptions& o) {
             << pathLength(plan.path) << " (joint space), " << plan.invalidStretches
             << " stretch(es) repaired\n";
   if (!o.out.empty()) {
-    writePath(plan.path, robot, o.out);
+    writePathCsv(plan.path, robot.actuatedJointNames(), o.out);
     std::cout << "written  " << o.out << '\n';
   }
   return 0;

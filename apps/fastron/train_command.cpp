@@ -58,16 +58,6 @@ JointLimits parseLimits(const std::vector<std::string>& items, const Dataset& da
   return {lower, upper};
 }
 
-Dataset rows(const Dataset& data, const std::vector<Eigen::Index>& index) {
-  Dataset out;
-  out.points.resize(static_cast<Eigen::Index>(index.size()), data.points.cols());
-  for (std::size_t k = 0; k < index.size(); ++k) {
-    out.points.row(static_cast<Eigen::Index>(k)) = data.points.row(index[k]);
-    out.labels.push_back(data.labels[static_cast<std::size_t>(index[k])]);
-  }
-  return out;
-}
-
 /// `defaults` with what the options give instead.
 TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
   defaults.kernel.type = parseKernelType(o.kernel);
@@ -170,20 +160,7 @@ int runTrain(const TrainOptions& o) {
   const TrainParams params =
       withOptions(robot ? robotDefaults(features.kind(), 5000) : TrainParams{}, o);
 
-  // Split off a random held-out share for validation.
-  std::vector<Eigen::Index> order(data.size());
-  std::iota(order.begin(), order.end(), Eigen::Index{0});
-  const auto held = static_cast<std::size_t>(o.holdout * static_cast<double>(data.size()));
-  // Without a held-out share the data trains in file order: the same model as the library's (and
-  // the Python module's) Trainer on the same rows.
-  if (held > 0) {
-    Rng rng(o.seed);
-    std::shuffle(order.begin(), order.end(), rng);
-  }
-  const Dataset test =
-      rows(data, {order.begin(), order.begin() + static_cast<std::ptrdiff_t>(held)});
-  const Dataset train =
-      rows(data, {order.begin() + static_cast<std::ptrdiff_t>(held), order.end()});
+  const auto [train, test] = splitHoldout(data, o.holdout, o.seed);
 
   Trainer trainer(features, params);
   trainer.addPoints(train.points, train.labels);

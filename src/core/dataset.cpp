@@ -1,8 +1,10 @@
 #include "fastron/core/dataset.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -240,6 +242,29 @@ Dataset readCsv(const std::filesystem::path& path) {
 
 Dataset readNpy(const std::filesystem::path& path) {
   return parseNpy(readFile(path, "dataset file"), path.string());
+}
+
+Dataset rowsOf(const Dataset& data, const std::vector<Eigen::Index>& index) {
+  Dataset out;
+  out.points = data.points(index, Eigen::all);
+  out.labels.reserve(index.size());
+  for (const Eigen::Index i : index) out.labels.push_back(data.labels[static_cast<std::size_t>(i)]);
+  out.columnNames = data.columnNames;
+  return out;
+}
+
+DatasetSplit splitHoldout(const Dataset& data, double heldOut, std::uint64_t seed) {
+  if (!(heldOut >= 0 && heldOut < 1))
+    throw InvalidArgument("the held-out share must be in [0, 1), got " + std::to_string(heldOut));
+  std::vector<Eigen::Index> order(data.size());
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  const auto held = static_cast<std::size_t>(heldOut * static_cast<double>(data.size()));
+  if (held > 0) {
+    Rng rng(seed);
+    std::shuffle(order.begin(), order.end(), rng);
+  }
+  const auto middle = order.begin() + static_cast<std::ptrdiff_t>(held);
+  return {rowsOf(data, {middle, order.end()}), rowsOf(data, {order.begin(), middle})};
 }
 
 Dataset readDataset(const std::filesystem::path& path) {

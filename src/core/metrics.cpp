@@ -43,11 +43,8 @@ ConfusionCounts evaluate(const Model& model, const Configurations& q,
                           std::to_string(labels.size()) + " labels");
   }
   const Eigen::VectorXd scores = model.scoreBatch(q);
-  ConfusionCounts counts;
-  for (Eigen::Index i = 0; i < scores.size(); ++i) {
-    counts.add(scores[i] > 0, labels[static_cast<std::size_t>(i)] > 0);
-  }
-  return counts;
+  return confusionOf(labels,
+                     [&](std::size_t i) { return scores[static_cast<Eigen::Index>(i)] > 0; });
 }
 
 }  // namespace fastron

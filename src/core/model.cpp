@@ -18,12 +18,7 @@ using Lanes = Eigen::Array<float, kLanes, 1>;
 
 template <KernelType type>
 Lanes kernelOf(const Lanes& r2, float gamma) {
-  if constexpr (type == KernelType::RationalQuadratic) {
-    const Lanes t = 1.0f + (0.5f * gamma) * r2;
-    return (t * t).inverse();
-  } else {
-    return (-gamma * r2).exp();
-  }
+  return kernelOfSquaredDistance<type>(r2, gamma);
 }
 
 /// Calls f(std::integral_constant<std::size_t, D>) with D = dim for the feature dimensions of

@@ -34,8 +34,6 @@ void gramColumn(const Eigen::MatrixXd& x, Eigen::Index i, Eigen::Index from, con
   constexpr Eigen::Index kBlock = 256;
   const Eigen::Index n = x.rows() - from;
   const Eigen::Index features = x.cols();
-  const Kernel rq{KernelType::RationalQuadratic, kernel.gamma};
-  const Kernel gaussian{KernelType::Gaussian, kernel.gamma};
   for (Eigen::Index begin = 0; begin < n; begin += kBlock) {
     const Eigen::Index size = std::min(kBlock, n - begin);
     double* r2 = k + begin;
@@ -48,10 +46,13 @@ void gramColumn(const Eigen::MatrixXd& x, Eigen::Index i, Eigen::Index from, con
         r2[j] += t * t;
       }
     }
+    // One loop per kernel type: a branch inside would stop the loop vectorising.
     if (kernel.type == KernelType::RationalQuadratic) {
-      for (Eigen::Index j = 0; j < size; ++j) r2[j] = rq(r2[j]);
+      for (Eigen::Index j = 0; j < size; ++j)
+        r2[j] = kernelOfSquaredDistance<KernelType::RationalQuadratic>(r2[j], kernel.gamma);
     } else {
-      for (Eigen::Index j = 0; j < size; ++j) r2[j] = gaussian(r2[j]);
+      for (Eigen::Index j = 0; j < size; ++j)
+        r2[j] = kernelOfSquaredDistance<KernelType::Gaussian>(r2[j], kernel.gamma);
     }
   }
 }

@@ -24,12 +24,6 @@ using experiments::caseFor;
 using experiments::proxyParams;
 using experiments::sceneForTrial;
 
-ConfusionCounts against(const Labels& truth, const std::function<bool(std::size_t)>& predicted) {
-  ConfusionCounts c;
-  for (std::size_t i = 0; i < truth.size(); ++i) c.add(predicted(i), truth[i] > 0);
-  return c;
-}
-
 }  // namespace
 
 Table runChanging(const ChangingOptions& o, const Progress& progress) {
@@ -95,17 +89,17 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
           const auto model = proxy->model();
           const Eigen::VectorXd scores = model->scoreBatch(test);
           row(method,
-              against(truth,
-                      [&](std::size_t i) { return scores[static_cast<Eigen::Index>(i)] > 0; }),
+              confusionOf(truth,
+                          [&](std::size_t i) { return scores[static_cast<Eigen::Index>(i)] > 0; }),
               static_cast<double>(model->supportCount()),
               meanSecondsPerCall(
                   test, [&](const double* q) { return model->inCollision(q); }, 0.01),
               report);
         }
         const Labels gjkLabels = labelConfigurations(*gjk, test);
-        row("FK+GJK", against(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }), std::nan(""),
-            meanSecondsPerCheck(test, *gjk, 0.01), nullptr);
-        row("FK+FCL", against(truth, [&](std::size_t i) { return truth[i] > 0; }), std::nan(""),
+        row("FK+GJK", confusionOf(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }),
+            std::nan(""), meanSecondsPerCheck(test, *gjk, 0.01), nullptr);
+        row("FK+FCL", confusionOf(truth, [&](std::size_t i) { return truth[i] > 0; }), std::nan(""),
             meanSecondsPerCheck(test, *fcl, 0.01), nullptr);
       }
     }

@@ -89,8 +89,7 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
     const bool hand = contact->robotLink.find("hand") != std::string::npos ||
                       contact->robotLink.find("finger") != std::string::npos;
     if (contact->selfCollision || !hand) {
-      return note + (note.empty() ? "" : "; ") + "goal collides: " + contact->robotLink +
-             " touches " + contact->other;
+      return note + (note.empty() ? "" : "; ") + "goal collides: " + describe(*contact);
     }
     for (const Link& link : robot.links()) {
       if (link.name.find("hand") != std::string::npos ||
@@ -102,12 +101,9 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
   return note;
 }
 
-/// initialize(samples) then `updates` steps; the seconds they took.
+/// trainStatic; the seconds it took.
 double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {
-  const auto began = std::chrono::steady_clock::now();
-  proxy.initialize(samples);
-  for (std::size_t u = 0; u < updates; ++u) proxy.step();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  return seconds(trainStatic(proxy, samples, updates).total);
 }
 
 }  // namespace
@@ -148,14 +144,9 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
                problem.family + "/" + problem.scene.filename().string() + ")");
     Scene scene = loadScene(problem.scene);
     const PlanRequest request = loadMoveItRequest(problem.request);
-    const auto toVector = [](const std::vector<double>& v) {
-      return Eigen::VectorXd(
-          Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
-    };
-    const Eigen::VectorXd start =
-        toVector(actuatedConfiguration(robot, request.start, problem.request.string() + ": start"));
-    const Eigen::VectorXd goal =
-        toVector(actuatedConfiguration(robot, request.goal, problem.request.string() + ": goal"));
+    const RequestEnds ends = requestEnds(robot, request, problem.request.string());
+    const Eigen::VectorXd& start = ends.start;
+    const Eigen::VectorXd& goal = ends.goal;
     const std::string note = allowGrasp(robot, scene, goal);
     auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
     const FclChecker audit(robot, scene, checking);

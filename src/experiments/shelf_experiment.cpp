@@ -37,8 +37,7 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
   ProxyCollisionDetector proxy(fcl, robotFeatures(ur3, o.features, limits),
                                experimentProxyParams(o.features, 10, 100, o.seed));
   if (progress) progress("shelf: training the model");
-  proxy.initialize(o.quick ? 2000 : 8000);
-  for (int update = 0; update < (o.quick ? 2 : 5); ++update) proxy.step();
+  trainStatic(proxy, o.quick ? 2000 : 8000, o.quick ? 2 : 5);
   const CalibratedModel calibrated = proxy.calibratedModel();
   const auto& model = calibrated.model;
 

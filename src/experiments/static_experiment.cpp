@@ -62,11 +62,12 @@ struct Trial {
   }
 };
 
-ConfusionCounts confusion(const Trial& t, const std::function<bool(const double*)>& predict) {
-  ConfusionCounts c;
-  for (Eigen::Index i = 0; i < t.test.rows(); ++i)
-    c.add(predict(t.test.row(i).data()), t.truth[static_cast<std::size_t>(i)] > 0);
-  return c;
+/// The counts of `predict` on the trial's test points against their FCL labels.
+template <class Predict>
+ConfusionCounts confusion(const Trial& t, const Predict& predict) {
+  return confusionOf(t.truth, [&](std::size_t i) {
+    return predict(t.test.row(static_cast<Eigen::Index>(i)).data());
+  });
 }
 
 struct MethodResult {

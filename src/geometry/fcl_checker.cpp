@@ -270,4 +270,9 @@ double FclChecker::distance(std::span<const double> q) const {
   return best;
 }
 
+std::string describe(const Contact& contact) {
+  return contact.robotLink + (contact.selfCollision ? " touches link " : " touches ") +
+         contact.other;
+}
+
 }  // namespace fastron

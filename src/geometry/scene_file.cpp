@@ -314,4 +314,13 @@ std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositio
   return q;
 }
 
+RequestEnds requestEnds(const Robot& robot, const PlanRequest& request, const std::string& source) {
+  const auto asVector = [](const std::vector<double>& v) {
+    return Eigen::VectorXd(
+        Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
+  };
+  return {asVector(actuatedConfiguration(robot, request.start, source + ": start")),
+          asVector(actuatedConfiguration(robot, request.goal, source + ": goal"))};
+}
+
 }  // namespace fastron

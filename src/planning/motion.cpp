@@ -1,9 +1,12 @@
 #include "fastron/planning/motion.h"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "fastron/core/error.h"
+#include "fastron/core/file_io.h"
 
 namespace fastron {
 
@@ -85,6 +88,22 @@ PathCheck checkPath(const CollisionChecker& checker, const Path& path, double re
     }
   }
   return check;
+}
+
+void writePathCsv(const Path& path, const std::vector<std::string>& jointNames,
+                  const std::filesystem::path& file) {
+  std::ostringstream out;
+  for (std::size_t j = 0; j < jointNames.size(); ++j) out << (j ? "," : "") << jointNames[j];
+  out << '\n' << std::setprecision(17);
+  for (const Eigen::VectorXd& q : path) {
+    if (static_cast<std::size_t>(q.size()) != jointNames.size()) {
+      throw InvalidArgument("writePathCsv: a waypoint of " + std::to_string(q.size()) +
+                            " values for " + std::to_string(jointNames.size()) + " joints");
+    }
+    for (Eigen::Index j = 0; j < q.size(); ++j) out << (j ? "," : "") << q[j];
+    out << '\n';
+  }
+  writeFileAtomically(file, out.view(), "path file");
 }
 
 }  // namespace fastron

@@ -268,6 +268,14 @@ void ProxyCollisionDetector::stopBackground() {
   if (auto error = std::exchange(workerError_, nullptr)) std::rethrow_exception(error);
 }
 
+StepReport trainStatic(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {
+  const auto began = Clock::now();
+  StepReport report = proxy.initialize(samples);
+  for (std::size_t u = 0; u < updates; ++u) report = proxy.step();
+  report.total = Clock::now() - began;
+  return report;
+}
+
 Dataset answersMissedBy(const Model& model, const Dataset& answers) {
   Dataset missed;
   missed.points.resize(0, static_cast<Eigen::Index>(model.dim()));

@@ -172,5 +172,33 @@ TEST_F(DatasetFiles, ParsesFromMemoryAsFromAFile) {
   EXPECT_EQ(fromText.columnNames, fromFile.columnNames);
 }
 
+TEST(DatasetSplit, HoldsOutAShareAndKeepsFileOrderWithoutOne) {
+  Dataset data;
+  data.points = Configurations::Random(10, 2);
+  for (int i = 0; i < 10; ++i) data.labels.push_back(i % 2 == 0 ? 1 : -1);
+  const DatasetSplit none = splitHoldout(data, 0, 1);
+  EXPECT_EQ(none.train.points, data.points);
+  EXPECT_EQ(none.test.size(), 0u);
+  const DatasetSplit split = splitHoldout(data, 0.3, 1);
+  ASSERT_EQ(split.test.size(), 3u);
+  ASSERT_EQ(split.train.size(), 7u);
+  // Every row lands once, with its label.
+  std::size_t found = 0;
+  for (const Dataset* part : {&split.train, &split.test}) {
+    for (Eigen::Index r = 0; r < part->points.rows(); ++r) {
+      for (Eigen::Index i = 0; i < 10; ++i) {
+        if (part->points.row(r) == data.points.row(i)) {
+          ++found;
+          EXPECT_EQ(part->labels[static_cast<std::size_t>(r)],
+                    data.labels[static_cast<std::size_t>(i)]);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(found, 10u);
+  EXPECT_EQ(splitHoldout(data, 0.3, 1).test.points, split.test.points);  // the seed decides
+  EXPECT_THROW(splitHoldout(data, 1, 1), InvalidArgument);
+}
+
 }  // namespace
 }  // namespace fastron

@@ -3,6 +3,7 @@
 // and NumPy .npy (a 2-D array whose last column is the label).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -31,6 +32,18 @@ Dataset readNpy(const std::filesystem::path& path);
 /// The same readers on the bytes of a file; errors name `source` as they would the file.
 Dataset parseCsv(std::string_view text, const std::string& source);
 Dataset parseNpy(std::string_view bytes, const std::string& source);
+
+/// The rows of `data` at `index`, in that order (column names kept).
+Dataset rowsOf(const Dataset& data, const std::vector<Eigen::Index>& index);
+
+/// A random share `heldOut` (in [0, 1)) of the rows for validation, the rest for training. With
+/// nothing held out the training rows keep the data's order (the same model as training on the
+/// whole file); otherwise the rows are shuffled with `seed` first. Throws InvalidArgument on a
+/// share outside [0, 1).
+struct DatasetSplit {
+  Dataset train, test;
+};
+DatasetSplit splitHoldout(const Dataset& data, double heldOut, std::uint64_t seed);
 
 /// Writes a .csv or .npy file (chosen by extension, as readDataset reads them); throws FileError
 /// naming the file for another extension.

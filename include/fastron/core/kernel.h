@@ -22,18 +22,30 @@ enum class KernelType : std::uint8_t {
 /// be 0 or infinite.
 inline constexpr double kMinKernelGamma = 1e-30, kMaxKernelGamma = 1e30;
 
+/// The kernels' one formula, k as a function of the squared distance r2 = |x - x'|^2, for a
+/// scalar (training, double queries) or an Eigen array of them (the float query path). k(x, x) = 1
+/// for both kernels.
+template <KernelType type, class R, class Scalar>
+R kernelOfSquaredDistance(const R& r2, Scalar gamma) {
+  if constexpr (type == KernelType::RationalQuadratic) {
+    const R t = Scalar(1) + (Scalar(0.5) * gamma) * r2;
+    return Scalar(1) / (t * t);
+  } else {
+    using std::exp;  // Eigen's own exp for arrays, found by argument-dependent lookup
+    return exp(-gamma * r2);
+  }
+}
+
 struct Kernel {
   KernelType type = KernelType::RationalQuadratic;
   double gamma = 10;  ///< width parameter, > 0; larger is narrower
 
-  /// k as a function of the squared distance r2 = |x - x'|^2. k(x, x) = 1 for both kernels.
+  /// k as a function of the squared distance r2 (kernelOfSquaredDistance).
   template <class T>
   T operator()(T r2) const {
-    if (type == KernelType::RationalQuadratic) {
-      const T t = T(1) + T(0.5 * gamma) * r2;
-      return T(1) / (t * t);
-    }
-    return std::exp(T(-gamma) * r2);
+    return type == KernelType::RationalQuadratic
+               ? kernelOfSquaredDistance<KernelType::RationalQuadratic>(r2, T(gamma))
+               : kernelOfSquaredDistance<KernelType::Gaussian>(r2, T(gamma));
   }
 };
 

@@ -21,6 +21,15 @@ struct ConfusionCounts {
   double tnr() const;       ///< free samples classified as such; NaN with no negatives
 };
 
+/// The counts of predicted(i) (true: in collision) against labels[i] for every i: the one place
+/// predictions are counted.
+template <class Predicted>
+ConfusionCounts confusionOf(std::span<const std::int8_t> labels, const Predicted& predicted) {
+  ConfusionCounts counts;
+  for (std::size_t i = 0; i < labels.size(); ++i) counts.add(predicted(i), labels[i] > 0);
+  return counts;
+}
+
 /// Compares the model's predictions with the labels of `q` (joint values, one per row).
 ConfusionCounts evaluate(const Model& model, const Configurations& q,
                          std::span<const std::int8_t> labels);

@@ -26,6 +26,9 @@ struct Contact {
   bool selfCollision = false;
 };
 
+/// "right_hand touches box", or "panda_link7 touches link panda_link5" for a self-collision.
+std::string describe(const Contact& contact);
+
 class FclChecker final : public CollisionChecker {
  public:
   FclChecker(Robot robot, const Scene& scene, CheckerOptions options = {});

@@ -2,6 +2,7 @@
 // Scene files: the project's own YAML (docs/geometry.md, "Scenes") and MoveIt's PlanningScene and
 // MotionPlanRequest YAML, the format of public planning benchmarks.
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -43,5 +44,12 @@ PlanRequest parseMoveItRequest(const std::string& yaml, const std::string& sourc
 /// InvalidArgument naming the first actuated joint that is missing or out of its limits.
 std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,
                                           const std::string& what);
+
+/// A request's start and goal as configurations of `robot` (actuatedConfiguration of each);
+/// errors name `source` and which end.
+struct RequestEnds {
+  Eigen::VectorXd start, goal;
+};
+RequestEnds requestEnds(const Robot& robot, const PlanRequest& request, const std::string& source);
 
 }  // namespace fastron

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
@@ -31,6 +33,12 @@ void motionStates(const double* a, const double* b, std::size_t dim, std::size_t
 
 /// Sum of the Euclidean lengths of the path's edges.
 double pathLength(const Path& path);
+
+/// Writes `path` as CSV: a header of the joint names, then one waypoint per row at full
+/// precision (atomically, as every file Fastron writes). Throws InvalidArgument when a waypoint
+/// has another length than the names, FileError when the file cannot be written.
+void writePathCsv(const Path& path, const std::vector<std::string>& jointNames,
+                  const std::filesystem::path& file);
 
 /// What the exact checker says about a path.
 struct PathCheck {

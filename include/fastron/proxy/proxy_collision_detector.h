@@ -192,6 +192,11 @@ class ProxyCollisionDetector {
   BackgroundHealth health_;
 };
 
+/// A model of a scene that stands still, as `fastron plan` and the planning experiments train
+/// one: initialize(samples), then `updates` active-learning steps. Returns the last report, its
+/// `total` the time of them all.
+StepReport trainStatic(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates);
+
 /// The rows of `answers` whose label `model` gets wrong: where it would have misled a planner.
 /// Throws InvalidArgument when the column count is not the model's dimension.
 Dataset answersMissedBy(const Model& model, const Dataset& answers);
