@@ -113,8 +113,8 @@ void BM_PlanOnFastronVerifiedWithFcl(benchmark::State& state) {
 // checkPath (threads 0 here) or checkPathParallel on 1 or 2 threads.
 void BM_CheckPath(benchmark::State& state) {
   const BaxterQueries& b = baxterQueries();
-  static const std::vector<Path> paths = [&] {
-    std::vector<Path> out;
+  static const std::vector<JointPath> paths = [&] {
+    std::vector<JointPath> out;
     for (const auto& [start, goal] : b.queries) {
       out.push_back(planMotion(b.fcl, b.limits, start, goal, kOptions).path);
     }

@@ -16,6 +16,8 @@
 #include "robot_options.h"
 
 namespace fastron::cli {
+
+using namespace experiments;  // the command runs the experiments layer
 namespace {
 
 struct DemoCommandOptions {

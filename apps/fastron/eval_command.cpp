@@ -58,10 +58,10 @@ int runEval(const EvalOptions& o) {
   }
   const ConfusionCounts c = evaluate(model, data.points, data.labels);
 
-  const double query = meanSecondsPerCall(
+  const double query = experiments::meanSecondsPerCall(
       data.points, [&](const double* q) { return model.inCollision(q); }, kTimingSeconds);
   std::vector<float> x(model.featureDim());
-  const double features = meanSecondsPerCall(
+  const double features = experiments::meanSecondsPerCall(
       data.points,
       [&](const double* q) {
         model.features().map(q, x.data());
@@ -90,7 +90,7 @@ int runEval(const EvalOptions& o) {
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ")\n";
   if (fcl) {
-    const double exact = meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
+    const double exact = experiments::meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
     std::cout << "FK+FCL      " << durationText(exact) << " per configuration: the model is "
               << times(exact / query) << " faster\n";
   }

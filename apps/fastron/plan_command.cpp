@@ -24,6 +24,8 @@
 #include "robot_options.h"
 
 namespace fastron::cli {
+
+using namespace experiments;  // the command runs the experiments layer
 namespace {
 
 struct PlanOptions {
@@ -112,7 +114,7 @@ int runPlan(const PlanOptions& o) {
       const StepReport trained = trainStatic(proxy, o.samples, o.updates);
       calibrated = proxy.calibratedModel();
       std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
-                << " active-learning updates in " << durationText(seconds(trained.total)) << ", "
+                << " active-learning updates in " << durationText(inSeconds(trained.total)) << ", "
                 << calibrated.model->supportCount() << " support points, features "
                 << features.summary() << '\n';
     }
@@ -123,11 +125,11 @@ int runPlan(const PlanOptions& o) {
             << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
             << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
-            << "time     plan " << durationText(seconds(plan.planTime)) << " (of which simplify "
-            << durationText(seconds(plan.simplifyTime)) << "), verify "
-            << durationText(seconds(plan.verifyTime)) << ", repair "
-            << durationText(seconds(plan.repairTime)) << ", total "
-            << durationText(seconds(plan.totalTime())) << '\n';
+            << "time     plan " << durationText(inSeconds(plan.planTime)) << " (of which simplify "
+            << durationText(inSeconds(plan.simplifyTime)) << "), verify "
+            << durationText(inSeconds(plan.verifyTime)) << ", repair "
+            << durationText(inSeconds(plan.repairTime)) << ", total "
+            << durationText(inSeconds(plan.totalTime())) << '\n';
   if (!plan.solved()) return 1;
   std::cout << "path     " << plan.path.size() << " waypoints, length " << std::setprecision(4)
             << pathLength(plan.path) << " (joint space), " << plan.invalidStretches

@@ -10,9 +10,11 @@
 #include <iostream>
 #include <string_view>
 
-#include "fastron/experiments/common.h"  // Progress, seconds(), durationText()
+#include "fastron/experiments/common.h"  // Progress, durationText()
 
 namespace fastron::cli {
+
+using experiments::durationText;
 
 /// A rate in [0, 1] as a fixed-point number, or "n/a" when undefined (NaN).
 inline std::string rate(double value) {
@@ -30,10 +32,10 @@ inline std::string times(double ratio) {
 }
 
 /// The progress printer of every long-running command: "[12 s] line", seconds since it was made.
-inline Progress progressPrinter() {
+inline experiments::Progress progressPrinter() {
   const auto start = std::chrono::steady_clock::now();
   return [start](std::string_view line) {
-    const double s = seconds(std::chrono::steady_clock::now() - start);
+    const double s = inSeconds(std::chrono::steady_clock::now() - start);
     std::cout << "[" << static_cast<int>(s) << " s] " << line << std::endl;
   };
 }

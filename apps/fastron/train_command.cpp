@@ -97,7 +97,7 @@ void printReport(const UpdateReport& report) {
   std::cout << "update        " << report.iterations
             << " iterations, stopped: " << toString(report.stopReason)
             << (report.reverted ? " (reverted to the better earlier solution)" : "") << ", "
-            << durationText(seconds(report.elapsed)) << '\n';
+            << durationText(inSeconds(report.elapsed)) << '\n';
   std::cout << "support set   " << report.supportCount << " points; " << report.misclassified
             << " training points misclassified\n";
 }
@@ -119,12 +119,12 @@ int trainOnScene(const TrainOptions& o) {
   ProxyCollisionDetector proxy(fcl, features, params);
   StepReport step = proxy.initialize(o.samples);
   std::cout << "samples       " << o.samples << " labelled by FCL in "
-            << durationText(seconds(step.labelTime)) << '\n';
+            << durationText(inSeconds(step.labelTime)) << '\n';
   printReport(step.update);
   for (std::size_t k = 0; k < o.activeLearning; ++k) {
     step = proxy.step();
     std::cout << "active        round " << (k + 1) << ": " << step.added << " new points, |S| "
-              << step.update.supportCount << ", " << durationText(seconds(step.total)) << '\n';
+              << step.update.supportCount << ", " << durationText(inSeconds(step.total)) << '\n';
   }
   saveModel(*proxy.model(), o.output);
   std::cout << "model         " << o.output << '\n';

@@ -77,9 +77,4 @@ py::array readOnlyView(const Eigen::PlainObjectBase<Derived>& m, py::handle owne
 /// The Python type name of `value`, for messages.
 std::string typeName(py::handle value);
 
-/// A duration in seconds, as Python reports times.
-inline double seconds(std::chrono::nanoseconds t) {
-  return std::chrono::duration<double>(t).count();
-}
-
 }  // namespace fastron::python

@@ -123,7 +123,7 @@ void bindCore(py::module_& m) {
       .def_readonly("misclassified", &UpdateReport::misclassified)
       .def_readonly("support_count", &UpdateReport::supportCount)
       .def_readonly("reverted", &UpdateReport::reverted)
-      .def_property_readonly("seconds", [](const UpdateReport& r) { return seconds(r.elapsed); })
+      .def_property_readonly("seconds", [](const UpdateReport& r) { return inSeconds(r.elapsed); })
       .def("__repr__", [](const UpdateReport& r) {
         return "UpdateReport(support_count=" + std::to_string(r.supportCount) +
                ", iterations=" + std::to_string(r.iterations) + ", stop_reason='" +

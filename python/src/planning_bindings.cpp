@@ -48,16 +48,16 @@ CollisionSource sourceOf(py::handle source) {
   throw InvalidArgument("source: expected a Model or a CollisionChecker, got " + typeName(source));
 }
 
-py::array_t<double> pathArray(const Path& path, std::size_t dim) {
+py::array_t<double> pathArray(const JointPath& path, std::size_t dim) {
   py::array_t<double> out = newArray(path.size(), dim);
   for (std::size_t i = 0; i < path.size(); ++i)
     std::copy(path[i].data(), path[i].data() + dim, out.mutable_data() + i * dim);
   return out;
 }
 
-Path pathOf(py::handle waypoints, std::size_t dim) {
+JointPath pathOf(py::handle waypoints, std::size_t dim) {
   const ConfigurationRows rows = configurations(waypoints, dim, "path", false);
-  Path path;
+  JointPath path;
   for (std::size_t i = 0; i < rows.rows; ++i)
     path.emplace_back(
         Eigen::Map<const Eigen::VectorXd>(rows.data + i * dim, static_cast<Eigen::Index>(dim)));
@@ -82,13 +82,13 @@ struct PythonVerifiedPlan {
 };
 
 PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
-  return {toString(plan.status),
+  return {std::string(toString(plan.status)),
           plan.failure,
           plan.plannedOn,
           pathArray(plan.path, dim),
-          seconds(plan.planTime),
-          seconds(plan.verifyTime),
-          seconds(plan.repairTime),
+          inSeconds(plan.planTime),
+          inSeconds(plan.verifyTime),
+          inSeconds(plan.repairTime),
           plan.invalidStretches,
           plan.wholePathReplanned,
           toArray(plan.exactAnswers.points),
@@ -152,8 +152,8 @@ void bindPlanning(py::module_& m) {
           py::gil_scoped_release released;
           result = planMotion(s, l, a, b, options);
         }
-        return PythonPlan{toString(result.status), pathArray(result.path, l.dim()),
-                          seconds(result.time), seconds(result.simplifyTime)};
+        return PythonPlan{std::string(toString(result.status)), pathArray(result.path, l.dim()),
+                          inSeconds(result.time), inSeconds(result.simplifyTime)};
       },
       py::arg("source"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
@@ -196,7 +196,7 @@ void bindPlanning(py::module_& m) {
   m.def(
       "check_path",
       [](const CollisionChecker& checker, py::handle path, double resolution) {
-        const Path p = pathOf(path, checker.dof());
+        const JointPath p = pathOf(path, checker.dof());
         py::gil_scoped_release released;
         return checkPath(checker, p, resolution).valid();
       },

@@ -63,9 +63,9 @@ void bindProxy(py::module_& m) {
       .def_readonly("added", &StepReport::added)
       .def_readonly("observed", &StepReport::observed)
       .def_readonly("model_version", &StepReport::modelVersion)
-      .def_property_readonly("seconds", [](const StepReport& r) { return seconds(r.total); })
+      .def_property_readonly("seconds", [](const StepReport& r) { return inSeconds(r.total); })
       .def_property_readonly("label_seconds",
-                             [](const StepReport& r) { return seconds(r.labelTime); })
+                             [](const StepReport& r) { return inSeconds(r.labelTime); })
       .def("__repr__", [](const StepReport& r) {
         return "StepReport(model_version=" + std::to_string(r.modelVersion) +
                ", support_count=" + std::to_string(r.update.supportCount) +

@@ -15,7 +15,7 @@
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
-namespace fastron {
+namespace fastron::experiments {
 namespace {
 
 using experiments::baxterWithJoints;
@@ -252,4 +252,4 @@ std::string sweepReport(const Table& r, const SweepOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

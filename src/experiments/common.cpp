@@ -9,7 +9,7 @@
 
 #include "fastron/core/error.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 Summary summarize(const std::vector<double>& values) {
   Summary s;
@@ -251,4 +251,4 @@ ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jo
   return experimentProxyParams(defaults.kernel.gamma, defaults.beta, seed);
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -11,7 +11,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/proxy/labelling.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 CspaceResults runCspace(const CspaceOptions& o, const Progress& progress) {
   CspaceResults r;
@@ -111,4 +111,4 @@ std::string cspaceReport(const CspaceResults& r, const CspaceOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

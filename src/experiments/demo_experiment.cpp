@@ -15,7 +15,7 @@
 #include "fastron/proxy/labelling.h"
 #include "plan_rows.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 using experiments::baxterWithJoints;
 using experiments::caseFor;
@@ -57,7 +57,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       [&](const StepReport& report) {
         const std::lock_guard lock(updateMutex);
         ++updates;
-        updateSeconds += seconds(report.total);
+        updateSeconds += inSeconds(report.total);
       },
       std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::duration<double>(o.tickSeconds)));
@@ -110,7 +110,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
                                      {"updates", static_cast<double>(updatesSoFar)}}});
       char part[64];
       std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
-                    seconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
+                    inSeconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
       line += part;
     }
     if (progress && (tick % 10 == 0 || tick == 1)) progress(line);
@@ -179,4 +179,4 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

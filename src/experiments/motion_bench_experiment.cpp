@@ -15,7 +15,7 @@
 #include "fastron/planning/verify_repair.h"
 #include "plan_rows.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 using experiments::MethodPlan;
 using experiments::outcomeOf;
@@ -103,7 +103,7 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
 
 /// trainStatic; the seconds it took.
 double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {
-  return seconds(trainStatic(proxy, samples, updates).total);
+  return inSeconds(trainStatic(proxy, samples, updates).total);
 }
 
 }  // namespace
@@ -341,4 +341,4 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

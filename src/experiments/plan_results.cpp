@@ -4,7 +4,7 @@
 
 #include "fastron/core/error.h"
 
-namespace fastron {
+namespace fastron::experiments {
 namespace {
 
 template <class Value>
@@ -83,4 +83,4 @@ Table PlanRows::table() const {
   return table;
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -16,12 +16,12 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   const VerifiedPlan& plan = method.plan;
   PlanOutcome o;
   o.solved = plan.solved();
-  o.status = plan.failure.empty() ? toString(plan.status) : plan.failure;
-  o.planSeconds = seconds(plan.planTime);
-  o.simplifySeconds = seconds(plan.simplifyTime);
-  o.verifySeconds = seconds(plan.verifyTime);
-  o.repairSeconds = seconds(plan.repairTime);
-  o.totalSeconds = seconds(plan.totalTime());
+  o.status = plan.failure.empty() ? std::string(toString(plan.status)) : plan.failure;
+  o.planSeconds = inSeconds(plan.planTime);
+  o.simplifySeconds = inSeconds(plan.simplifyTime);
+  o.verifySeconds = inSeconds(plan.verifyTime);
+  o.repairSeconds = inSeconds(plan.repairTime);
+  o.totalSeconds = inSeconds(plan.totalTime());
   o.waypoints = plan.path.size();
   o.repairedStretches = plan.invalidStretches;
   o.wholeMotionReplanned = plan.wholePathReplanned;

@@ -11,7 +11,7 @@
 #include "fastron/proxy/labelling.h"
 #include "plan_rows.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 using experiments::baxterWithJoints;
 using experiments::caseFor;
@@ -113,4 +113,4 @@ std::string planningReport(const PlanRows& r, const PlanningOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -9,7 +9,7 @@
 #include "fastron/experiments/static_experiment.h"
 #include "fastron/experiments/surgical_experiment.h"
 
-namespace fastron {
+namespace fastron::experiments {
 namespace {
 
 /// The given trials, or the experiment's: one in quick mode.
@@ -195,4 +195,4 @@ const Experiment& findExperiment(std::string_view name) {
   throw InvalidArgument("unknown experiment '" + std::string(name) + "' (" + names + ")");
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

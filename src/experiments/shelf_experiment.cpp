@@ -11,7 +11,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "plan_rows.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 using experiments::freeUnder;
 using experiments::MethodPlan;
@@ -95,4 +95,4 @@ std::string shelfReport(const PlanRows& r, const ShelfOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -16,7 +16,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/proxy/labelling.h"
 
-namespace fastron {
+namespace fastron::experiments {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -275,4 +275,4 @@ std::string staticSweepReport(const Table& r, const std::string& parameter,
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

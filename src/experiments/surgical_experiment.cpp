@@ -12,7 +12,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "plan_rows.h"
 
-namespace fastron {
+namespace fastron::experiments {
 
 using experiments::freeUnder;
 using experiments::MethodPlan;
@@ -152,4 +152,4 @@ std::string surgicalReport(const PlanRows& r, const SurgicalOptions& o) {
   return md.str();
 }
 
-}  // namespace fastron
+}  // namespace fastron::experiments

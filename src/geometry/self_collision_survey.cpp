@@ -10,7 +10,7 @@
 
 namespace fastron {
 
-const char* toString(PairVerdict verdict) {
+std::string_view toString(PairVerdict verdict) {
   switch (verdict) {
     case PairVerdict::Default:
       return "default";

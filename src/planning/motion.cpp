@@ -46,13 +46,13 @@ void motionStates(const double* a, const double* b, std::size_t dim, std::size_t
   }
 }
 
-double pathLength(const Path& path) {
+double pathLength(const JointPath& path) {
   double length = 0;
   for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
   return length;
 }
 
-void checkWaypointSizes(const Path& path, std::size_t dim) {
+void checkWaypointSizes(const JointPath& path, std::size_t dim) {
   for (std::size_t i = 0; i < path.size(); ++i) {
     if (static_cast<std::size_t>(path[i].size()) != dim) {
       throw InvalidArgument("path waypoint " + std::to_string(i) + " has " +
@@ -62,7 +62,7 @@ void checkWaypointSizes(const Path& path, std::size_t dim) {
   }
 }
 
-PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution) {
+PathCheck checkPath(const CollisionChecker& checker, const JointPath& path, double resolution) {
   PathCheck check;
   if (path.empty()) {
     check.invalidWaypoints.push_back(0);
@@ -90,7 +90,7 @@ PathCheck checkPath(const CollisionChecker& checker, const Path& path, double re
   return check;
 }
 
-void writePathCsv(const Path& path, const std::vector<std::string>& jointNames,
+void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNames,
                   const std::filesystem::path& file) {
   std::ostringstream out;
   for (std::size_t j = 0; j < jointNames.size(); ++j) out << (j ? "," : "") << jointNames[j];

@@ -26,8 +26,8 @@ constexpr std::size_t kChunk = 8;
 
 }  // namespace
 
-PathCheck checkPathParallel(const CollisionChecker& checker, const Path& path, double resolution,
-                            unsigned threads) {
+PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
+                            double resolution, unsigned threads) {
   PathCheck check;
   if (path.empty()) {
     check.invalidWaypoints.push_back(0);

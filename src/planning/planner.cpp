@@ -108,7 +108,7 @@ ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptio
   throw InvalidArgument("unknown planner type");
 }
 
-std::string toString(PlanStatus status) {
+std::string_view toString(PlanStatus status) {
   switch (status) {
     case PlanStatus::Solved:
       return "solved";

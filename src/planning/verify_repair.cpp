@@ -74,7 +74,8 @@ void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const Join
 
 }  // namespace
 
-VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
+VerifiedPlan verifyAndRepair(const JointPath& path,
+                             const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options) {
   constexpr int kRounds = 3;  // a repaired stretch is planned on the exact checker, so one suffices
   checkExact(exact, limits);
@@ -90,7 +91,7 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
       result.failure.clear();
       return result;
     }
-    const Path& old = result.path;
+    const JointPath& old = result.path;
     if (old.empty() || contains(check.invalidWaypoints, 0)) {
       result.status = PlanStatus::InvalidStart;
       result.failure = "the path's start collides under " + exact->name();
@@ -103,7 +104,7 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
     }
 
     began = Clock::now();
-    Path repaired{old.front()};
+    JointPath repaired{old.front()};
     std::size_t i = 0;  // the last valid waypoint kept
     while (i + 1 < old.size()) {
       if (!contains(check.invalidEdges, i) && !contains(check.invalidWaypoints, i + 1)) {
@@ -127,7 +128,7 @@ VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const Colli
           result.status = PlanStatus::Timeout;
           result.failure = "could not replan the stretch between waypoints " + std::to_string(i) +
                            " and " + std::to_string(j) + " on " + exact->name() +
-                           ", nor the whole path (" + toString(whole.status) + ")";
+                           ", nor the whole path (" + std::string(toString(whole.status)) + ")";
           return result;
         }
         repaired = whole.path;
@@ -214,7 +215,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
     result.invalidStretches += 1;
   } else {
     result.status = exactPlan.status;
-    result.failure = toString(exactPlan.status) + " under " + exact->name();
+    result.failure = std::string(toString(exactPlan.status)) + " under " + exact->name();
   }
   result.planTime = planTime;
   result.repairTime += repairTime;

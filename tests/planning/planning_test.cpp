@@ -53,7 +53,7 @@ const Eigen::VectorXd kGoal = vec({0.8, -0.8});
 /// True when every waypoint of the path, and every state a + (b - a) i / n (n = ceil(|b - a| /
 /// resolution)) of every edge, is free under `collides`: written apart from checkPath on purpose.
 template <class Collides>
-bool pathIsFree(const Path& path, double resolution, const Collides& collides) {
+bool pathIsFree(const JointPath& path, double resolution, const Collides& collides) {
   for (std::size_t k = 0; k + 1 < path.size(); ++k) {
     const double length = (path[k + 1] - path[k]).norm();
     const auto n = std::max<long>(1, static_cast<long>(std::ceil(length / resolution)));
@@ -98,7 +98,7 @@ TEST(Motion, StatesCoverTheMotionOnceInBisectionOrder) {
 
 TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
   const auto wall = wallChecker();
-  const Path path{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
+  const JointPath path{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
   const PathCheck check = checkPath(*wall, path, 0.01);
   EXPECT_THAT(check.invalidWaypoints, ::testing::ElementsAre(2u));
   EXPECT_THAT(check.invalidEdges, ::testing::ElementsAre(1u, 2u));
@@ -112,7 +112,7 @@ TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
 // Baxter paths among three boxes (FCL, many invalid stretches), with 1, 2 and 3 threads.
 TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
   const auto wall = wallChecker();
-  const Path wallPath{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
+  const JointPath wallPath{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
   for (const unsigned threads : {1u, 2u, 3u}) {
     const PathCheck check = checkPathParallel(*wall, wallPath, 0.001, threads);
     EXPECT_THAT(check.invalidWaypoints, ::testing::ElementsAre(2u));
@@ -127,7 +127,7 @@ TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
   std::size_t invalidEdges = 0;
   for (int trial = 0; trial < 20; ++trial) {
     const Configurations waypoints = uniformConfigurations(baxter.limits(), 2 + trial % 6, rng);
-    Path path;
+    JointPath path;
     for (Eigen::Index i = 0; i < waypoints.rows(); ++i) path.emplace_back(waypoints.row(i));
     const PathCheck serial = checkPath(fcl, path, 0.05);
     invalidEdges += serial.invalidEdges.size();
@@ -148,7 +148,7 @@ TEST(Motion, ParallelCheckRethrowsACheckersError) {
     if (++calls == 100) throw Error("the checker failed");
     return false;
   });
-  const Path path{kStart, kGoal};
+  const JointPath path{kStart, kGoal};
   EXPECT_THAT(messageOf<Error>([&] { checkPathParallel(failing, path, 0.001, 2); }),
               HasSubstr("the checker failed"));
 }
@@ -371,7 +371,7 @@ TEST_F(Planning, RepairsAWaypointInsideAnObstacle) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
   const PlannerOptions options{.resolution = 0.01, .timeLimit = 5};
-  const Path broken{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.0}), kGoal};
+  const JointPath broken{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.0}), kGoal};
   const VerifiedPlan repaired = verifyAndRepair(broken, wall, limits, options);
   ASSERT_TRUE(repaired.solved()) << repaired.failure;
   EXPECT_EQ(repaired.invalidStretches, 1u);
@@ -390,7 +390,7 @@ TEST_F(Planning, RepairsAnEdgeThatCutsACorner) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
   const PlannerOptions options{.resolution = 0.005, .timeLimit = 5};
-  const Path cutting{kStart, vec({-0.15, 0.45}), vec({0.15, 0.55}), kGoal};
+  const JointPath cutting{kStart, vec({-0.15, 0.45}), vec({0.15, 0.55}), kGoal};
   ASSERT_TRUE(checkPath(*wall, {cutting[1]}, 0.005).valid());
   ASSERT_TRUE(checkPath(*wall, {cutting[2]}, 0.005).valid());
   const VerifiedPlan repaired = verifyAndRepair(cutting, wall, limits, options);

@@ -2,6 +2,7 @@
 // Vocabulary types shared by every layer.
 
 #include <Eigen/Core>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <random>
@@ -23,5 +24,10 @@ using Rng = std::mt19937_64;
 /// Largest configuration-space dimension a model accepts (queries keep the scaled query on the
 /// stack, so the hot path never allocates).
 inline constexpr std::size_t kMaxDimension = 64;
+
+/// A duration in seconds.
+inline double inSeconds(std::chrono::nanoseconds d) {
+  return std::chrono::duration<double>(d).count();
+}
 
 }  // namespace fastron

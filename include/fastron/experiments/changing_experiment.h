@@ -8,10 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct ChangingOptions {
   std::size_t trials = 3;
@@ -46,4 +45,4 @@ struct SweepOptions {
 Table runObstacleSweep(const SweepOptions& options, const Progress& progress);
 std::string sweepReport(const Table& results, const SweepOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

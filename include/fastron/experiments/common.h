@@ -10,14 +10,13 @@
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
-#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/types.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 /// Called with a line of progress; the command prints it, the library never does.
 using Progress = std::function<void(std::string_view)>;
@@ -35,10 +34,6 @@ std::string meanStd(const Summary& s, int digits);
 std::string durationMeanStd(const Summary& seconds);
 /// One duration in seconds with the unit durationMeanStd would choose, e.g. "2.14 µs".
 std::string durationText(double seconds);
-/// A duration in seconds.
-inline double seconds(std::chrono::nanoseconds d) {
-  return std::chrono::duration<double>(d).count();
-}
 
 /// A table of text cells with a header: written as CSV, read back by the plot scripts.
 struct Table {
@@ -94,4 +89,4 @@ ProxyParams withoutBand(ProxyParams params);
 /// upper half of the ball of radius `reach` around the robot's base, and clear of the base.
 Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double reach, Rng& rng);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -2,10 +2,9 @@
 // The paper's Fig. 7: for random 2-DOF environments, the exact C-space (FCL) beside the C-spaces
 // that Fastron, ISVM and SSVM learn, with their support points.
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct CspaceOptions {
   std::size_t environments = 3;
@@ -23,4 +22,4 @@ struct CspaceResults {
 CspaceResults runCspace(const CspaceOptions& options, const Progress& progress);
 std::string cspaceReport(const CspaceResults& results, const CspaceOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 #include "fastron/core/dataset.h"
-#include "fastron/core/export.h"
 #include "fastron/core/model.h"
 #include "fastron/core/uncertainty_band.h"
 
@@ -14,7 +13,7 @@
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct DemoOptions {
   std::size_t ticks = 150;   ///< obstacle moves, each followed by a fresh planning query
@@ -56,4 +55,4 @@ struct DemoResults {
 DemoResults runDemo(const DemoOptions& options, const Progress& progress);
 std::string demoReport(const DemoResults& results, const DemoOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

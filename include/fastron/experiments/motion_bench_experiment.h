@@ -5,12 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct MotionBenchOptions {
   /// A family: a folder of sceneNNNN.yaml / requestNNNN.yaml pairs; or a folder of families
@@ -54,4 +53,4 @@ struct MotionBenchOptions {
 PlanRows runMotionBench(const MotionBenchOptions& options, const Progress& progress);
 std::string motionBenchReport(const PlanRows& results, const MotionBenchOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

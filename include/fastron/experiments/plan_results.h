@@ -11,10 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 /// How one method's plan of one query went.
 struct PlanOutcome {
@@ -64,4 +63,4 @@ struct PlanRows {
   Table table() const;
 };
 
-}  // namespace fastron
+}  // namespace fastron::experiments

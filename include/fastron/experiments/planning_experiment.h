@@ -6,12 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct PlanningOptions {
   std::size_t trials = 10;  ///< obstacle positions, each with its own start and goal
@@ -32,4 +31,4 @@ struct PlanningOptions {
 PlanRows runPlanning(const PlanningOptions& options, const Progress& progress);
 std::string planningReport(const PlanRows& results, const PlanningOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -10,11 +10,10 @@
 #include <utility>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/experiments/common.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 /// What a user can set for any experiment; 0 (or -1, or empty) keeps the experiment's default,
 /// which --quick makes small. Each experiment reads the settings it lists in Experiment::settings.
@@ -59,4 +58,4 @@ const std::vector<Experiment>& experimentRegistry();
 /// The experiment named `name`; throws InvalidArgument naming the known ones.
 const Experiment& findExperiment(std::string_view name);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

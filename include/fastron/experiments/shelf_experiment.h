@@ -4,12 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct ShelfOptions {
   std::size_t trials = 10;  ///< start/goal pairs
@@ -28,4 +27,4 @@ struct ShelfOptions {
 PlanRows runShelf(const ShelfOptions& options, const Progress& progress);
 std::string shelfReport(const PlanRows& results, const ShelfOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -6,10 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct StaticOptions {
   std::size_t trials = 10;
@@ -33,4 +32,4 @@ std::string staticReport(const Table& results, const StaticOptions& options);
 std::string staticSweepReport(const Table& results, const std::string& parameter,
                               const StaticOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

@@ -4,12 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "fastron/core/export.h"
 #include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 
-namespace FASTRON_API fastron {
+namespace fastron::experiments {
 
 struct SurgicalOptions {
   std::size_t ticks = 200;  ///< simulation ticks; every method replans at each
@@ -30,4 +29,4 @@ struct SurgicalOptions {
 PlanRows runSurgical(const SurgicalOptions& options, const Progress& progress);
 std::string surgicalReport(const PlanRows& results, const SurgicalOptions& options);
 
-}  // namespace fastron
+}  // namespace fastron::experiments

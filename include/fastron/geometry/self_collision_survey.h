@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -21,7 +22,7 @@ enum class PairVerdict {
   Never,    ///< never in collision over all samples (disabling it only saves time)
   Enabled,  ///< collides sometimes: a real self-collision to keep checking
 };
-const char* toString(PairVerdict verdict);
+std::string_view toString(PairVerdict verdict);
 
 struct LinkPairSurvey {
   std::string linkA, linkB;

@@ -14,7 +14,7 @@
 namespace FASTRON_API fastron {
 
 /// A path of joint-space waypoints, joined by straight lines.
-using Path = std::vector<Eigen::VectorXd>;
+using JointPath = std::vector<Eigen::VectorXd>;
 
 /// Number of equal segments a motion from a to b is checked in: ceil(|b - a| / resolution), at
 /// least 1, so no two consecutive checked states are more than `resolution` apart (Euclidean
@@ -32,12 +32,12 @@ void motionStates(const double* a, const double* b, std::size_t dim, std::size_t
                   std::vector<double>& out);
 
 /// Sum of the Euclidean lengths of the path's edges.
-double pathLength(const Path& path);
+double pathLength(const JointPath& path);
 
 /// Writes `path` as CSV: a header of the joint names, then one waypoint per row at full
 /// precision (atomically, as every file Fastron writes). Throws InvalidArgument when a waypoint
 /// has another length than the names, FileError when the file cannot be written.
-void writePathCsv(const Path& path, const std::vector<std::string>& jointNames,
+void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNames,
                   const std::filesystem::path& file);
 
 /// What the exact checker says about a path.
@@ -48,10 +48,10 @@ struct PathCheck {
 };
 
 /// Throws InvalidArgument naming the first waypoint that does not hold `dim` values.
-void checkWaypointSizes(const Path& path, std::size_t dim);
+void checkWaypointSizes(const JointPath& path, std::size_t dim);
 
 /// Checks every waypoint, and every edge at `resolution`, with `checker`. An empty path is
 /// invalid (waypoint 0 is reported). Throws InvalidArgument on waypoints of the wrong dimension.
-PathCheck checkPath(const CollisionChecker& checker, const Path& path, double resolution);
+PathCheck checkPath(const CollisionChecker& checker, const JointPath& path, double resolution);
 
 }  // namespace fastron

@@ -15,7 +15,7 @@ namespace FASTRON_API fastron {
 /// collision. `checker` must be safe to call from many threads (every CollisionChecker of Fastron
 /// is). Throws InvalidArgument on waypoints of the wrong dimension, and rethrows the first
 /// exception a check throws.
-PathCheck checkPathParallel(const CollisionChecker& checker, const Path& path, double resolution,
-                            unsigned threads = 0);
+PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
+                            double resolution, unsigned threads = 0);
 
 }  // namespace fastron

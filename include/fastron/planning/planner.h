@@ -70,11 +70,11 @@ enum class PlanStatus {
   InvalidGoal,   ///< the goal configuration collides
   Timeout,       ///< no solution within the time limit
 };
-std::string toString(PlanStatus status);
+std::string_view toString(PlanStatus status);
 
 struct PlanResult {
   PlanStatus status = PlanStatus::Timeout;
-  Path path;                                 ///< start to goal when solved, empty otherwise
+  JointPath path;                            ///< start to goal when solved, empty otherwise
   std::chrono::nanoseconds time{0};          ///< everything, simplification included
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
   bool solved() const { return status == PlanStatus::Solved; }

@@ -18,7 +18,7 @@ namespace FASTRON_API fastron {
 struct VerifiedPlan {
   PlanStatus status =
       PlanStatus::Timeout;  ///< Solved only when `path` is valid under the exact checker
-  Path path;
+  JointPath path;
   std::chrono::nanoseconds planTime{0};      ///< the approximate checker's plan, simplified
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
   std::chrono::nanoseconds verifyTime{0};    ///< exact checks of the plan, and of the repaired path
@@ -49,7 +49,8 @@ struct VerifiedPlan {
 /// same planner on `exact` (options.stretchShare of the time limit; when that fails, the whole
 /// motion with the full limit), splices the pieces and checks the whole path again (up to three
 /// rounds). planTime is left 0.
-VerifiedPlan verifyAndRepair(const Path& path, const std::shared_ptr<const CollisionChecker>& exact,
+VerifiedPlan verifyAndRepair(const JointPath& path,
+                             const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
 
 /// Plans with `approximate` (e.g. a Fastron model) for at most options.approximateShare of the time
