@@ -137,6 +137,8 @@ void bindCore(py::module_& m) {
       .def_property_readonly("dim", &Model::dim, "Joint values per configuration.")
       .def_property_readonly("feature_dim", &Model::featureDim, "Features per configuration.")
       .def_property_readonly("support_count", &Model::supportCount)
+      .def_property_readonly("checksum", &Model::checksum,
+                             "Of the support set and weights, taken when the model was built.")
       .def_property_readonly("features", &Model::features)
       .def_property_readonly("limits", &Model::limits)
       .def_property_readonly("gamma", [](const Model& model) { return model.kernel().gamma; })

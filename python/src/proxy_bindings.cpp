@@ -72,6 +72,20 @@ void bindProxy(py::module_& m) {
                ", labelled=" + std::to_string(r.labelled) + ")";
       });
 
+  py::class_<BackgroundHealth>(m, "BackgroundHealth", "How the background updates are faring.")
+      .def_readonly("steps", &BackgroundHealth::steps, "Background steps that published a model.")
+      .def_readonly("faults", &BackgroundHealth::faults,
+                    "Background steps the oracle failed (OracleFault); the last good model stayed.")
+      .def_readonly("consecutive_faults", &BackgroundHealth::consecutiveFaults,
+                    "Faults since the last good step: 0 when healthy.")
+      .def_readonly("last_fault", &BackgroundHealth::lastFault)
+      .def_readonly("model_version", &BackgroundHealth::modelVersion)
+      .def("__repr__", [](const BackgroundHealth& h) {
+        return "BackgroundHealth(steps=" + std::to_string(h.steps) +
+               ", faults=" + std::to_string(h.faults) +
+               ", consecutive_faults=" + std::to_string(h.consecutiveFaults) + ")";
+      });
+
   py::class_<ProxyCollisionDetector, DetectorHolder>(
       m, "ProxyCollisionDetector",
       "Fig. 2 of the paper: keeps a Fastron model of an oracle's C-space current while the world "
@@ -87,7 +101,21 @@ void bindProxy(py::module_& m) {
            py::call_guard<py::gil_scoped_release>(),
            "Labels `samples` uniform configurations and trains the first model.")
       .def("step", &ProxyCollisionDetector::step, py::call_guard<py::gil_scoped_release>(),
-           "One update for a changed world: active learning, relabelling, Algorithm 1.")
+           "One update for a changed world: active learning, relabelling, Algorithm 1. Raises "
+           "OracleFault, keeping the model, when the oracle fails.")
+      .def(
+          "train_static",
+          [](ProxyCollisionDetector& d, std::size_t samples, std::size_t updates) {
+            return trainStatic(d, samples, updates);
+          },
+          py::arg("samples"), py::arg("updates") = 0, py::call_guard<py::gil_scoped_release>(),
+          "A model of a scene that stands still: initialize(samples), then `updates` steps.")
+      .def_property_readonly(
+          "model_version",
+          [](const ProxyCollisionDetector& d) { return d.calibratedModel().version; },
+          "1 for initialize()'s model, +1 per model published after it.")
+      .def("background_health", &ProxyCollisionDetector::backgroundHealth,
+           "Steps and faults of the background thread since start_background().")
       .def(
           "model",
           [](const ProxyCollisionDetector& d) { return std::const_pointer_cast<Model>(d.model()); },

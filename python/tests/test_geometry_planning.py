@@ -76,6 +76,40 @@ def test_python_oracle_and_gil(tmp_path):
         fastron.ProxyCollisionDetector(failing, features).initialize(10)
 
 
+def test_oracle_faults_keep_the_last_good_model():
+    broken = {"on": False}
+
+    def disc(q):
+        if broken["on"]:
+            raise RuntimeError("sensor offline")
+        return bool(np.hypot(q[0], q[1]) < 0.5)
+
+    features = fastron.FeatureMap.joint_scaling(fastron.JointLimits([-1, -1], [1, 1]))
+    detector = fastron.ProxyCollisionDetector(disc, features, gamma=30, beta=5,
+                                              calibration_samples=100)
+    detector.initialize(500)
+    version, checksum = detector.model_version, detector.model().checksum
+    broken["on"] = True
+    with pytest.raises(fastron.OracleFault, match="oracle 'python' failed: .*sensor offline"):
+        detector.step()
+    assert detector.model_version == version and detector.model().checksum == checksum
+
+    # In the background: faults are counted and reported, and the detector recovers.
+    detector.start_background()
+    deadline = time.time() + 10
+    while detector.background_health().faults < 2 and time.time() < deadline:
+        time.sleep(0.01)
+    health = detector.background_health()
+    assert health.faults >= 2 and health.steps == 0 and "sensor offline" in health.last_fault
+    broken["on"] = False
+    while detector.background_health().steps < 1 and time.time() < deadline:
+        time.sleep(0.01)
+    detector.stop_background()
+    health = detector.background_health()
+    assert health.steps >= 1 and health.consecutive_faults == 0
+    assert detector.model_version > version
+
+
 def test_long_calls_release_the_gil(baxter, baxter_fcl):
     """A Python thread keeps running while C++ labels and trains."""
     ticks = []

@@ -239,7 +239,7 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
     const std::lock_guard lock(urdfdomMutex);
     MessageCollector collector;
     console_bridge::useOutputHandler(&collector);
-    model = urdf::parseURDF(xml);
+    model = urdf::parseURDF(detail::paddedXml(xml, source));
     console_bridge::restorePreviousOutputHandler();
     if (!model) throw FileError(source + ": invalid URDF: " + collector.messages);
   }

@@ -255,5 +255,15 @@ TEST_F(RobotCatalogue, MistakesNameTheFileAndLine) {
   EXPECT_THAT(error("rod2: [\n"), HasSubstr("malformed YAML"));
 }
 
+// Found by fuzz/urdf_fuzzer: a file that ends inside a UTF-8 sequence made TinyXML read past the
+// end of the text (AddressSanitizer: heap-buffer-overflow); a NUL byte is no text at all.
+TEST_F(Urdf, ATruncatedUtf8SequenceOrANulByteIsRefusedCleanly) {
+  const std::string robot = "<robot name=\"r\"><link name=\"a\"/></robot>\n";
+  EXPECT_NO_THROW(parseUrdf(robot + "\xe3", "t.urdf"));
+  EXPECT_THAT(error("<robot name=\"r\"><link name=\"\xe3"), HasSubstr("t.urdf"));
+  EXPECT_THAT(error(robot + std::string(1, '\0') + "tail"),
+              HasSubstr("t.urdf: a NUL byte at offset 41: not a text file"));
+}
+
 }  // namespace
 }  // namespace fastron
