@@ -16,15 +16,6 @@
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron::experiments {
-namespace {
-
-using experiments::baxterWithJoints;
-using experiments::Case;
-using experiments::caseFor;
-using experiments::proxyParams;
-using experiments::sceneForTrial;
-
-}  // namespace
 
 Table runChanging(const ChangingOptions& o, const Progress& progress) {
   // update_s = sample_s + label_s + train_s (Algorithm 1) + the rest (calibrating the band,

@@ -17,18 +17,6 @@
 
 namespace fastron::experiments {
 
-using experiments::baxterWithJoints;
-using experiments::caseFor;
-using experiments::MethodPlan;
-using experiments::outcomeOf;
-using experiments::plannerOptions;
-using experiments::planTable;
-using experiments::planWithEachChecker;
-using experiments::proxyParams;
-using experiments::sceneForTrial;
-using experiments::speedups;
-using experiments::tryOppositeEnds;
-
 DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   const auto c = caseFor("7dof-3boxes");
   const Robot robot = baxterWithJoints(c.joints);

@@ -17,16 +17,6 @@
 
 namespace fastron::experiments {
 
-using experiments::MethodPlan;
-using experiments::outcomeOf;
-using experiments::plannerOptions;
-using experiments::planTable;
-using experiments::planWithEachChecker;
-using experiments::progressLine;
-using experiments::sampleFree;
-using experiments::speedups;
-using experiments::uniformIn;
-
 namespace {
 
 struct Problem {

@@ -13,20 +13,6 @@
 
 namespace fastron::experiments {
 
-using experiments::baxterWithJoints;
-using experiments::caseFor;
-using experiments::MethodPlan;
-using experiments::oppositeEnds;
-using experiments::outcomeOf;
-using experiments::plannerNames;
-using experiments::plannerOptions;
-using experiments::planTable;
-using experiments::planWithEachChecker;
-using experiments::progressLine;
-using experiments::proxyParams;
-using experiments::sceneForTrial;
-using experiments::speedups;
-
 PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
   PlanRows results;
   const std::size_t initial = o.quick ? 1000 : 3000;

@@ -13,16 +13,6 @@
 
 namespace fastron::experiments {
 
-using experiments::freeUnder;
-using experiments::MethodPlan;
-using experiments::outcomeOf;
-using experiments::plannerOptions;
-using experiments::planTable;
-using experiments::planWithEachChecker;
-using experiments::progressLine;
-using experiments::sampleReaching;
-using experiments::speedups;
-
 PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
   PlanRows results;
   const Robot ur3 = loadRobot("ur3");

@@ -14,17 +14,6 @@
 
 namespace fastron::experiments {
 
-using experiments::freeUnder;
-using experiments::MethodPlan;
-using experiments::outcomeOf;
-using experiments::plannerOptions;
-using experiments::planTable;
-using experiments::planWithEachChecker;
-using experiments::progressLine;
-using experiments::sampleFree;
-using experiments::sampleReaching;
-using experiments::uniformIn;
-
 PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
   PlanRows results;
   const Robot psm = loadRobot("psm");
