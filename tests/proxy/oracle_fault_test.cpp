@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <ostream>
+#include <string>
 #include <thread>
 
 #include "fastron/core/error.h"
@@ -22,6 +24,23 @@ using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
 enum class Fault { None, Throw, Hang, Alternate };
+
+const char* nameOf(Fault fault) {
+  switch (fault) {
+    case Fault::Throw:
+      return "Throws";
+    case Fault::Hang:
+      return "HangsPastTheDeadline";
+    case Fault::Alternate:
+      return "AnswersBothWays";
+    case Fault::None:
+      break;
+  }
+  return "None";
+}
+void PrintTo(Fault fault, std::ostream* out) {
+  *out << nameOf(fault);
+}
 
 /// A disc of radius 0.5 at the origin of [-1, 1]^2, with a fault switched on and off at will.
 class FaultyOracle final : public CollisionChecker {
@@ -122,16 +141,7 @@ TEST_P(OracleFaults, BackgroundServesTheLastGoodModelAndRecovers) {
 
 INSTANTIATE_TEST_SUITE_P(, OracleFaults,
                          ::testing::Values(Fault::Throw, Fault::Hang, Fault::Alternate),
-                         [](const auto& info) {
-                           switch (info.param) {
-                             case Fault::Throw:
-                               return "Throws";
-                             case Fault::Hang:
-                               return "HangsPastTheDeadline";
-                             default:
-                               return "AnswersBothWays";
-                           }
-                         });
+                         [](const auto& info) { return std::string(nameOf(info.param)); });
 
 TEST(OracleFaultMessages, NameWhatTheOracleDid) {
   FaultyOracle oracle;
