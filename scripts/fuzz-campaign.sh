@@ -53,7 +53,7 @@ done
 wait
 
 {
-  echo "| target | seconds | executions | exec/s | coverage (edges) | features | corpus | findings |"
+  echo "| target | seconds | executions | exec/s | coverage (edges) | features | corpus | findings (oom + timeout + crash) |"
   echo "|---|---:|---:|---:|---:|---:|---:|---:|"
   for name in "${targets[@]}"; do
     log=$logs/$name.log
@@ -64,7 +64,9 @@ wait
     ft=$(sed -E 's/.*ft: ([0-9]+).*/\1/' <<<"$last")
     corp=$(sed -E 's/.*corp: ([0-9]+).*/\1/' <<<"$last")
     rate=$(( ${runs:-0} / seconds ))
-    found=$(find "$fuzz/findings" -name "$name-*" | wc -l)
+    # Out-of-memory inputs, timeouts and crashes (sanitizer reports, failed checks, leaks).
+    found=$(sed -E 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1 + \2 + \3#' <<<"$last")
+    found=$(( ${found:-0} ))
     echo "| $name | $seconds | ${runs:-?} | $rate | ${cov:-?} | ${ft:-?} | ${corp:-?} | $found |"
   done
 } | tee "$build/campaign.md"
