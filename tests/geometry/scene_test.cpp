@@ -27,11 +27,13 @@ TEST(Scene, AddMoveRemove) {
   scene.remove("ball");
   EXPECT_EQ(scene.size(), 1u);
   EXPECT_THROW(scene.remove("ball"), InvalidArgument);
-  EXPECT_THROW(scene.add({"box", Sphere{1}, {}, std::nullopt}), InvalidArgument);  // name taken
-  EXPECT_THROW(scene.add({"", Sphere{1}, {}, std::nullopt}), InvalidArgument);
-  EXPECT_THROW(scene.add({"flat", Box{Eigen::Vector3d(0.2, 0, 0.2)}, {}, std::nullopt}),
-               InvalidArgument);
-  EXPECT_THROW(scene.add({"neg", Sphere{-1}, {}, std::nullopt}), InvalidArgument);
+  EXPECT_THROW(scene.add({"box", Sphere{1}, makePose({0, 0, 0}), std::nullopt}),
+               InvalidArgument);  // name taken
+  EXPECT_THROW(scene.add({"", Sphere{1}, makePose({0, 0, 0}), std::nullopt}), InvalidArgument);
+  EXPECT_THROW(
+      scene.add({"flat", Box{Eigen::Vector3d(0.2, 0, 0.2)}, makePose({0, 0, 0}), std::nullopt}),
+      InvalidArgument);
+  EXPECT_THROW(scene.add({"neg", Sphere{-1}, makePose({0, 0, 0}), std::nullopt}), InvalidArgument);
   EXPECT_THROW(scene.setPose("box", makePose({std::nan(""), 0, 0})), InvalidArgument);
 }
 
@@ -58,7 +60,8 @@ TEST(Scene, RandomWalkStaysInItsBoundsWithStepsInRange) {
 
 TEST(Scene, CircularAndScriptedMotions) {
   Scene scene;
-  scene.add({"c", Sphere{0.1}, {}, CircularPath{{1, 0, 0}, 0.5, Eigen::Vector3d::UnitZ(), 40, 0}});
+  scene.add({"c", Sphere{0.1}, makePose({0, 0, 0}),
+             CircularPath{{1, 0, 0}, 0.5, Eigen::Vector3d::UnitZ(), 40, 0}});
   const double r0 = (scene.obstacle("c").pose.translation() - Eigen::Vector3d(1, 0, 0)).norm();
   EXPECT_NEAR(r0, 0.5, 1e-12);
   const Eigen::Vector3d start = scene.obstacle("c").pose.translation();
@@ -72,16 +75,14 @@ TEST(Scene, CircularAndScriptedMotions) {
   Scene scripted;
   ScriptedPoses s{{0, 10},
                   {makePose({0, 0, 0}), makePose({1, 0, 0}, {0, 0, std::numbers::pi / 2})}};
-  scripted.add({"s", Sphere{0.1}, {}, s});
+  scripted.add({"s", Sphere{0.1}, makePose({0, 0, 0}), s});
   scripted.step(5);
   EXPECT_NEAR(scripted.obstacle("s").pose.translation().x(), 0.5, 1e-12);
   EXPECT_NEAR(Eigen::AngleAxisd(scripted.obstacle("s").pose.linear()).angle(), std::numbers::pi / 4,
               1e-9);
   scripted.step(100);
   EXPECT_NEAR(scripted.obstacle("s").pose.translation().x(), 1.0, 1e-12);
-  EXPECT_THROW(scripted.add({"bad",
-                             Sphere{0.1},
-                             {},
+  EXPECT_THROW(scripted.add({"bad", Sphere{0.1}, makePose({0, 0, 0}),
                              ScriptedPoses{{2, 1}, {makePose({0, 0, 0}), makePose({0, 0, 0})}}}),
                InvalidArgument);
 }
