@@ -45,8 +45,10 @@ int runRobots(const RobotOptions& options) {
   bool shown = false;
   for (const RobotEntry& entry : shippedRobots()) {
     if (!options.robot.empty() && entry.name != options.robot) continue;
-    const Robot robot = loadRobotFromOptions(
-        {.robot = entry.name, .packagePaths = options.packagePaths, .srdf = options.srdf});
+    const Robot robot = loadRobotFromOptions({.robot = entry.name,
+                                              .joints = {},
+                                              .packagePaths = options.packagePaths,
+                                              .srdf = options.srdf});
     describeRobot(robot, entry.description, entry.urdf,
                   options.srdf.empty() ? entry.srdf : std::filesystem::path(options.srdf),
                   entry.held);

@@ -30,7 +30,7 @@ py::object scores(const Model& model, py::handle q) {
     py::gil_scoped_release released;
     model.scoreBatch(rows.data, rows.rows, data);
   }
-  return std::move(out);
+  return out;
 }
 
 py::object inCollision(const Model& model, py::handle q) {
@@ -43,7 +43,7 @@ py::object inCollision(const Model& model, py::handle q) {
   }
   py::array_t<bool> out(static_cast<py::ssize_t>(rows.rows));
   std::transform(f.begin(), f.end(), out.mutable_data(), [](double v) { return v > 0; });
-  return std::move(out);
+  return out;
 }
 
 py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
@@ -254,7 +254,7 @@ void bindCore(py::module_& m) {
             }
             py::array_t<bool> out(static_cast<py::ssize_t>(hits.size()));
             std::copy(hits.begin(), hits.end(), out.mutable_data());
-            return std::move(out);
+            return out;
           },
           py::arg("q"),
           "The exact answer for one configuration (d,) -> bool, or each row of (n, d) -> (n,) "

@@ -103,13 +103,9 @@ void bindProxy(py::module_& m) {
       .def("step", &ProxyCollisionDetector::step, py::call_guard<py::gil_scoped_release>(),
            "One update for a changed world: active learning, relabelling, Algorithm 1. Raises "
            "OracleFault, keeping the model, when the oracle fails.")
-      .def(
-          "train_static",
-          [](ProxyCollisionDetector& d, std::size_t samples, std::size_t updates) {
-            return trainStatic(d, samples, updates);
-          },
-          py::arg("samples"), py::arg("updates") = 0, py::call_guard<py::gil_scoped_release>(),
-          "A model of a scene that stands still: initialize(samples), then `updates` steps.")
+      .def("train_static", &trainStatic, py::arg("samples"), py::arg("updates") = 0,
+           py::call_guard<py::gil_scoped_release>(),
+           "A model of a scene that stands still: initialize(samples), then `updates` steps.")
       .def_property_readonly(
           "model_version",
           [](const ProxyCollisionDetector& d) { return d.calibratedModel().version; },

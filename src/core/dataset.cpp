@@ -67,17 +67,20 @@ Dataset fromRows(const std::vector<double>& values, std::size_t columns, Labels 
 
 }  // namespace
 
-Dataset parseCsv(std::string_view text, const std::string& source) {
+Dataset parseCsv(std::string_view csv, const std::string& source) {
   const std::string& file = source;
-  std::istringstream in{std::string(text)};
   std::vector<double> values;
   Labels labels;
   std::vector<std::string> header;
   std::size_t columns = 0;
-  std::string line;
   bool first = true;
-  for (std::size_t lineNo = 1; std::getline(in, line); ++lineNo) {
-    const std::string_view text = trim(line);
+  // Line by line over the text itself, without copying it.
+  std::size_t lineNo = 0;
+  for (std::size_t begin = 0; begin < csv.size();) {
+    const std::size_t end = std::min(csv.find('\n', begin), csv.size());
+    const std::string_view text = trim(csv.substr(begin, end - begin));
+    begin = end + 1;
+    ++lineNo;
     if (text.empty()) continue;
     const std::vector<std::string_view> fields = splitFields(text);
     const std::string where = file + ":" + std::to_string(lineNo);

@@ -135,7 +135,6 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
       weights_(std::move(weights)) {
   validateSupport();
   support_ = features_.map(configurations_);  // checks that the configurations are finite
-  validateSupportFeatures();
   buildQueryCopies();
   checksum_ = computeChecksum();
 }
@@ -185,23 +184,20 @@ void Model::validateSupport() const {
     throw InvalidArgument(std::to_string(configurations_.rows()) + " support points but " +
                           std::to_string(weights_.size()) + " weights");
   }
-  // Queries sum in float: a weight beyond its range would be infinite there, and 0 * inf = NaN.
-  constexpr double kMaxWeight = 1e30;
-  if (!weights_.allFinite() || (weights_.size() > 0 && weights_.cwiseAbs().maxCoeff() > kMaxWeight))
-    throw InvalidArgument("weights must be finite and at most 1e30 in magnitude");
+  if (!weights_.allFinite()) throw InvalidArgument("weights must be finite");
 }
 
-void Model::validateSupportFeatures() const {
-  // Queries compute in float: a feature beyond its range would be infinite there.
-  constexpr double kMaxFeature = 1e30;
-  if (support_.size() > 0 && !(support_.cwiseAbs().maxCoeff() <= kMaxFeature)) {
+void Model::buildQueryCopies() {
+  // The copies are float: a weight or feature beyond its range would be infinite there (and
+  // 0 * inf = NaN in the kernel sum). The margin leaves room for sums of many of them.
+  constexpr double kMaxQueryValue = 1e30;
+  if (weights_.size() > 0 && weights_.cwiseAbs().maxCoeff() > kMaxQueryValue)
+    throw InvalidArgument("weights must be at most 1e30 in magnitude (queries sum in float)");
+  if (support_.size() > 0 && !(support_.cwiseAbs().maxCoeff() <= kMaxQueryValue)) {
     throw InvalidArgument(
         "support features must be at most 1e30 in magnitude (a support configuration far outside "
         "the joint limits?)");
   }
-}
-
-void Model::buildQueryCopies() {
   const std::size_t featureCount = featureDim();
   const std::size_t n = supportCount();
   paddedCount_ = (n + kLanes - 1) / kLanes * kLanes;

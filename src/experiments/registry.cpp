@@ -17,12 +17,18 @@ std::size_t trialsOr(const ExperimentSettings& s, std::size_t full) {
   return s.trials != 0 ? s.trials : (s.quick ? 1 : full);
 }
 
+/// The settings every experiment takes: seed, quick, and the features where it has them.
+template <class Options>
+void applyCommon(const ExperimentSettings& s, Options& options) {
+  options.seed = s.seed;
+  options.quick = s.quick;
+  if constexpr (requires { options.features; }) options.features = s.features;
+}
+
 /// The settings every planning experiment shares.
 template <class Options>
 void applyPlanning(const ExperimentSettings& s, Options& options) {
-  options.seed = s.seed;
-  options.quick = s.quick;
-  options.features = s.features;
+  applyCommon(s, options);
   if (s.timeLimit > 0) options.timeLimit = s.timeLimit;
   if (s.resolution > 0) options.resolution = s.resolution;
   if (s.simplifyTime >= 0) options.simplifyTime = s.simplifyTime;
@@ -36,10 +42,16 @@ std::vector<std::string> planningAnd(std::vector<std::string> more) {
   return more;
 }
 
+/// The output of an experiment whose results are one table, which its report reads.
+template <class Report>
+ExperimentOutput reported(Table results, const Report& report) {
+  std::string text = report(results);
+  return {std::move(results), {}, std::move(text)};
+}
+
 StaticOptions staticOptions(const ExperimentSettings& s) {
   StaticOptions o;
-  o.seed = s.seed;
-  o.quick = s.quick;
+  applyCommon(s, o);
   o.trials = trialsOr(s, 10);
   return o;
 }
@@ -47,10 +59,8 @@ StaticOptions staticOptions(const ExperimentSettings& s) {
 ExperimentOutput runStaticSweepOf(const std::string& parameter, const ExperimentSettings& s,
                                   const Progress& progress) {
   const StaticOptions o = staticOptions(s);
-  ExperimentOutput out;
-  out.results = runStaticSweep(o, parameter, progress);
-  out.report = staticSweepReport(out.results, parameter, o);
-  return out;
+  return reported(runStaticSweep(o, parameter, progress),
+                  [&](const Table& t) { return staticSweepReport(t, parameter, o); });
 }
 
 std::vector<Experiment> makeRegistry() {
@@ -60,10 +70,8 @@ std::vector<Experiment> makeRegistry() {
                  {},
                  [](const ExperimentSettings& s, const Progress& progress) {
                    const StaticOptions o = staticOptions(s);
-                   ExperimentOutput out;
-                   out.results = runStatic(o, progress);
-                   out.report = staticReport(out.results, o);
-                   return out;
+                   return reported(runStatic(o, progress),
+                                   [&](const Table& t) { return staticReport(t, o); });
                  }});
   all.push_back({"static-beta",
                  "Fastron's accuracy and support set over its conditional bias",
@@ -98,17 +106,13 @@ std::vector<Experiment> makeRegistry() {
                    ChangingOptions o;
                    o.trials = trialsOr(s, 3);
                    o.steps = s.quick ? 3 : 50;
-                   o.seed = s.seed;
-                   o.quick = s.quick;
-                   o.features = s.features;
+                   applyCommon(s, o);
                    o.gamma = s.gamma;
                    o.beta = s.beta;
                    o.variance = s.variance;
                    if (s.quick) o.cases = {"4dof", "7dof-3boxes"};
-                   ExperimentOutput out;
-                   out.results = runChanging(o, progress);
-                   out.report = changingReport(out.results, o);
-                   return out;
+                   return reported(runChanging(o, progress),
+                                   [&](const Table& t) { return changingReport(t, o); });
                  }});
   all.push_back({"sweep",
                  "Query time over the number of obstacles (Fig. 5)",
@@ -116,14 +120,10 @@ std::vector<Experiment> makeRegistry() {
                  [](const ExperimentSettings& s, const Progress& progress) {
                    SweepOptions o;
                    o.trials = trialsOr(s, 3);
-                   o.seed = s.seed;
-                   o.quick = s.quick;
-                   o.features = s.features;
+                   applyCommon(s, o);
                    if (s.quick) o.obstacles = {1, 10};
-                   ExperimentOutput out;
-                   out.results = runObstacleSweep(o, progress);
-                   out.report = sweepReport(out.results, o);
-                   return out;
+                   return reported(runObstacleSweep(o, progress),
+                                   [&](const Table& t) { return sweepReport(t, o); });
                  }});
   all.push_back({"plan", "Baxter planning with each OMPL planner on each checker (Table IV)",
                  kPlanningSettings, [](const ExperimentSettings& s, const Progress& progress) {

@@ -77,9 +77,10 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
 }
 
 LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const {
-  LabelGuard guard{.repeatedRows = params_.repeatedLabels, .stop = stop};
-  if (params_.labelDeadline.count() > 0) guard.deadline = Clock::now() + params_.labelDeadline;
-  return guard;
+  return {.deadline = params_.labelDeadline.count() > 0 ? Clock::now() + params_.labelDeadline
+                                                        : Clock::time_point::max(),
+          .repeatedRows = params_.repeatedLabels,
+          .stop = stop};
 }
 
 StepReport ProxyCollisionDetector::step() {
@@ -215,7 +216,7 @@ void ProxyCollisionDetector::startBackground(std::function<void(const StepReport
   workerError_ = nullptr;
   {
     const std::lock_guard lock(healthMutex_);
-    health_ = BackgroundHealth{.modelVersion = version_};
+    health_ = BackgroundHealth{};
   }
   worker_ =
       std::jthread([this, onStep = std::move(onStep), minPeriod](const std::stop_token& stop) {
@@ -245,7 +246,6 @@ void ProxyCollisionDetector::startBackground(std::function<void(const StepReport
               const std::lock_guard lock(healthMutex_);
               ++health_.steps;
               health_.consecutiveFaults = 0;
-              health_.modelVersion = report.modelVersion;
             }
             if (onStep) onStep(report);
             if (minPeriod.count() > 0) pauseUntil(began + minPeriod);
@@ -257,8 +257,14 @@ void ProxyCollisionDetector::startBackground(std::function<void(const StepReport
 }
 
 BackgroundHealth ProxyCollisionDetector::backgroundHealth() const {
-  const std::lock_guard lock(healthMutex_);
-  return health_;
+  BackgroundHealth health;
+  {
+    const std::lock_guard lock(healthMutex_);
+    health = health_;
+  }
+  const std::lock_guard lock(modelMutex_);
+  health.modelVersion = published_.version;
+  return health;
 }
 
 void ProxyCollisionDetector::stopBackground() {

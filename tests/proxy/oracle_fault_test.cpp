@@ -143,6 +143,12 @@ INSTANTIATE_TEST_SUITE_P(, OracleFaults,
                          ::testing::Values(Fault::Throw, Fault::Hang, Fault::Alternate),
                          [](const auto& info) { return std::string(nameOf(info.param)); });
 
+LabelGuard withRepeatedRows(std::size_t rows) {
+  LabelGuard guard;
+  guard.repeatedRows = rows;
+  return guard;
+}
+
 TEST(OracleFaultMessages, NameWhatTheOracleDid) {
   FaultyOracle oracle;
   const Configurations q = test::uniformPoints(400, 2, 5);
@@ -151,16 +157,17 @@ TEST(OracleFaultMessages, NameWhatTheOracleDid) {
               HasSubstr("oracle 'faulty' failed: lost the scene"));
   oracle.fault = Fault::Hang;
   EXPECT_THAT(test::messageOf<OracleFault>([&] {
-                labelConfigurations(oracle, q, 2,
-                                    {.deadline = std::chrono::steady_clock::now() + 30ms});
+                LabelGuard guard;
+                guard.deadline = std::chrono::steady_clock::now() + 30ms;
+                labelConfigurations(oracle, q, 2, guard);
               }),
               HasSubstr("passed its labelling deadline (400 configurations)"));
   oracle.fault = Fault::Alternate;
   EXPECT_THAT(
-      test::messageOf<OracleFault>([&] { labelConfigurations(oracle, q, 1, {.repeatedRows = 4}); }),
+      test::messageOf<OracleFault>([&] { labelConfigurations(oracle, q, 1, withRepeatedRows(4)); }),
       HasSubstr("gave two different answers for the same configuration"));
   oracle.fault = Fault::None;
-  EXPECT_EQ(labelConfigurations(oracle, q, 2, {.repeatedRows = 400}),
+  EXPECT_EQ(labelConfigurations(oracle, q, 2, withRepeatedRows(400)),
             labelConfigurations(oracle, q, 1));
 }
 
@@ -174,9 +181,11 @@ TEST(OracleFaultMessages, StopEndsAHangingLabelling) {
     stop.request_stop();
   });
   const auto began = std::chrono::steady_clock::now();
-  EXPECT_THROW(
-      labelConfigurations(oracle, test::uniformPoints(1000, 2, 6), 2, {.stop = stop.get_token()}),
-      LabellingStopped);
+  EXPECT_THROW(labelConfigurations(oracle, test::uniformPoints(1000, 2, 6), 2,
+                                   {.deadline = std::chrono::steady_clock::time_point::max(),
+                                    .repeatedRows = 0,
+                                    .stop = stop.get_token()}),
+               LabellingStopped);
   EXPECT_LT(std::chrono::steady_clock::now() - began, 2s);  // not 1000 * 20 ms / 2
 }
 

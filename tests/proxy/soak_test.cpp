@@ -192,8 +192,9 @@ TEST(Soak, QueriesUnderUpdatesAndSceneChanges) {
 #ifndef FASTRON_SANITIZED
   // The sanitizers keep freed memory in quarantine: memory is judged in plain builds only.
   const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables != nullptr && std::string(tunables).find("tcache_count=0") != std::string::npos)
+  if (tunables != nullptr && std::string(tunables).find("tcache_count=0") != std::string::npos) {
     EXPECT_LT(heapGrowth, 0.01);
+  }
 #endif
 }
 

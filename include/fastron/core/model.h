@@ -83,9 +83,8 @@ class Model {
         Eigen::MatrixXd supportFeatures, Eigen::VectorXd weights);
   /// Throws InvalidArgument on a bad kernel, dimension, size or weight.
   void validateSupport() const;
-  /// Throws InvalidArgument on a support feature beyond float range.
-  void validateSupportFeatures() const;
-  /// The float structure-of-arrays copies the queries read.
+  /// The float structure-of-arrays copies the queries read; throws InvalidArgument on a weight or
+  /// support feature beyond float range.
   void buildQueryCopies();
 
   float scoreInputFloat(const float* x) const;
