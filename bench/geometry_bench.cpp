@@ -3,7 +3,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "fastron/core/active_learning.h"
+#include "fastron/core/simd.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
@@ -143,11 +146,29 @@ void BM_TaskSpaceQuery(benchmark::State& state) {
     i = (i + batch) % (1024 - batch);
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(batch));
-  state.SetLabel("baxter, " + std::to_string(model.featureDim() / 3) + " points");
+  state.SetLabel("baxter, " + std::to_string(model.featureDim() / 3) + " points, " +
+                 std::string(toString(activeSimdPath())));
+}
+
+// The same on one SIMD path of the kernel sums (simd: 0 portable, 1 AVX2, 2 AVX-512; simd.h).
+void BM_TaskSpaceQueryOnSimdPath(benchmark::State& state) {
+  const auto path = static_cast<SimdPath>(state.range(2));
+  const std::vector<SimdPath> supported = supportedSimdPaths();
+  if (std::find(supported.begin(), supported.end(), path) == supported.end()) {
+    state.SkipWithError("this processor cannot run this SIMD path");
+    return;
+  }
+  const SimdPath saved = activeSimdPath();
+  useSimdPath(path);
+  BM_TaskSpaceQuery(state);
+  useSimdPath(saved);
 }
 BENCHMARK(BM_TaskSpaceQuery)
     ->ArgsProduct({{100, 300, 400, 1000}, {1, 16}})
     ->ArgNames({"S", "batch"});
+BENCHMARK(BM_TaskSpaceQueryOnSimdPath)
+    ->ArgsProduct({{300, 1000}, {1, 16}, {0, 1, 2}})
+    ->ArgNames({"S", "batch", "simd"});
 
 template <class Checker>
 void BM_Check(benchmark::State& state) {

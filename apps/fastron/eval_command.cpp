@@ -10,6 +10,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
+#include "fastron/core/simd.h"
 #include "fastron/experiments/common.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
@@ -88,7 +89,8 @@ int runEval(const EvalOptions& o) {
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
   std::cout << "query time  " << durationText(query) << " per configuration (features "
             << durationText(features) << ", kernel sum "
-            << durationText(std::max(0.0, query - features)) << ")\n";
+            << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
+            << ")\n";
   if (fcl) {
     const double exact = experiments::meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
     std::cout << "FK+FCL      " << durationText(exact) << " per configuration: the model is "

@@ -11,6 +11,7 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
+#include "fastron/core/simd.h"
 
 namespace {
 
@@ -27,6 +28,13 @@ int main(int argc, char** argv) {
   CLI::App app{"Fastron: learned proxy collision detection for motion planning", "fastron"};
   app.set_version_flag("--version", FASTRON_VERSION);
   app.require_subcommand(1);
+  // Applied while the command line is read, before the command runs (simd.h).
+  app.add_option_function<std::string>(
+         "--simd",
+         [](const std::string& name) { fastron::useSimdPath(fastron::parseSimdPath(name)); },
+         "SIMD instructions of the model's kernel sums: portable, avx2 or avx512 (default: the "
+         "widest this processor runs, or $FASTRON_SIMD)")
+      ->trigger_on_parse();
   // OMPL logs every planner's start and end on the console; the results carry what matters (a
   // plan's status), so the command keeps its output to its own tables.
   ompl::msg::noOutputHandler();

@@ -13,6 +13,7 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/model.h"
 #include "fastron/core/model_file.h"
+#include "fastron/core/simd.h"
 #include "fastron/core/trainer.h"
 #include "python_checker.h"
 
@@ -221,6 +222,22 @@ void bindCore(py::module_& m) {
       },
       py::arg("model"), py::arg("X"), py::arg("y"),
       "The model's predictions on X (n, d) against labels y: accuracy, TPR, TNR.");
+
+  m.def(
+      "simd_paths",
+      [] {
+        std::vector<std::string> names;
+        for (const SimdPath path : supportedSimdPaths()) names.emplace_back(toString(path));
+        return names;
+      },
+      "The SIMD paths of the kernel sums this processor runs, narrowest first ('portable', "
+      "'avx2', 'avx512').");
+  m.def(
+      "active_simd_path", [] { return std::string(toString(activeSimdPath())); },
+      "The SIMD path queries use now.");
+  m.def(
+      "use_simd_path", [](const std::string& name) { useSimdPath(parseSimdPath(name)); },
+      py::arg("name"), "Makes every query of the process use this SIMD path from now on.");
 
   m.def(
       "read_dataset",

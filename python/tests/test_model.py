@@ -37,6 +37,28 @@ def test_batch_and_single_queries_agree():
     assert model.first_in_collision(x[:50]) == (hits[0] if hits.size else None)
 
 
+def test_every_simd_path_gives_the_same_answers():
+    x, y = disc_data()
+    model, _ = fastron.train(x, y, gamma=30, beta=5)
+    paths = fastron.simd_paths()
+    assert paths[0] == "portable" and fastron.active_simd_path() in paths
+    saved = fastron.active_simd_path()
+    try:
+        scores = {}
+        for path in paths:
+            fastron.use_simd_path(path)
+            assert fastron.active_simd_path() == path
+            scores[path] = model.score(x[:200])
+        # Float sums with and without fused multiply-adds: apart by float rounding of each term.
+        tolerance = 1e-6 * np.abs(model.weights).sum()
+        for path in paths:
+            assert np.abs(scores[path] - scores["portable"]).max() <= tolerance, path
+    finally:
+        fastron.use_simd_path(saved)
+    with pytest.raises(fastron.InvalidArgument, match="unknown SIMD path 'sse9'"):
+        fastron.use_simd_path("sse9")
+
+
 def test_arrays_are_read_only_views_of_the_model():
     x, y = disc_data()
     model, _ = fastron.train(x, y, gamma=30, beta=5)

@@ -7,123 +7,15 @@
 #include <type_traits>
 
 #include "fastron/core/error.h"
+#include "kernel_sums.h"
 
 namespace fastron {
 namespace {
 
-// The float kernel sum runs over fixed-size blocks of support points; Eigen maps each block onto
-// SIMD registers (one AVX-512 or two AVX2 registers) and vectorises exp() for the Gaussian.
-constexpr std::size_t kLanes = 16;
-using Lanes = Eigen::Array<float, kLanes, 1>;
-
-template <KernelType type>
-Lanes kernelOf(const Lanes& r2, float gamma) {
-  return kernelOfSquaredDistance<type>(r2, gamma);
-}
-
-/// Calls f(std::integral_constant<std::size_t, D>) with D = dim for the feature dimensions of
-/// planar tests, 6- and 7-joint arms and 3- and 4-point task spaces, D = 0 for any other. Known
-/// at compile time, the loop over features unrolls into straight code: with the split sum below,
-/// 1.2 to 1.7 times faster single queries at d = 7 and 12 (BM_QueryFloat, BM_TaskSpaceQuery).
-template <class F>
-decltype(auto) withDimension(std::size_t dim, F f) {
-  switch (dim) {
-    case 2:
-      return f(std::integral_constant<std::size_t, 2>{});
-    case 6:
-      return f(std::integral_constant<std::size_t, 6>{});
-    case 7:
-      return f(std::integral_constant<std::size_t, 7>{});
-    case 9:
-      return f(std::integral_constant<std::size_t, 9>{});
-    case 12:
-      return f(std::integral_constant<std::size_t, 12>{});
-    default:
-      return f(std::integral_constant<std::size_t, 0>{});
-  }
-}
-
-// From this many features on, r^2 is summed in two chains (even and odd features) instead of
-// one: the chain of dependent multiply-adds per block is half as long, so more blocks are in
-// flight at once (on top of the unrolling: task-space batches of 16 at |S| 300 1.1x faster,
-// single queries from within noise to 1.2x). At d = 2 and 4 the split measured 0.7-0.9x.
-constexpr std::size_t kPairedFrom = 6;
-
-/// Calls f(kernel, paired) with the kernel type and whether r^2 is split in two chains, both as
-/// compile-time constants. The one place that decides the split: the single and the batched sums
-/// must compute r^2 alike, so that their scores are the same numbers
-/// (Model.EveryDimensionScoresAlikeOnEveryPath).
-template <class F>
-decltype(auto) withSumShape(KernelType type, std::size_t dim, F f) {
-  const auto withSplit = [&](auto kernel) {
-    return dim >= kPairedFrom ? f(kernel, std::true_type{}) : f(kernel, std::false_type{});
-  };
-  using RationalQuadratic = std::integral_constant<KernelType, KernelType::RationalQuadratic>;
-  using Gaussian = std::integral_constant<KernelType, KernelType::Gaussian>;
-  return type == KernelType::RationalQuadratic ? withSplit(RationalQuadratic{})
-                                               : withSplit(Gaussian{});
-}
-
-/// The kernel sum over the support set; `dim` is D when D is not 0.
-template <KernelType type, std::size_t D, bool paired>
-float kernelSum(const float* soa, const float* weights, std::size_t padded, std::size_t dim,
-                const float* x, float gamma) {
-  if constexpr (D != 0) dim = D;
-  Lanes sum = Lanes::Zero();
-  for (std::size_t b = 0; b < padded; b += kLanes) {
-    Lanes r2 = Lanes::Zero(), odd = Lanes::Zero();
-    std::size_t j = 0;
-    for (; paired && j + 1 < dim; j += 2) {
-      r2 += (Eigen::Map<const Lanes>(soa + j * padded + b) - x[j]).square();
-      odd += (Eigen::Map<const Lanes>(soa + (j + 1) * padded + b) - x[j + 1]).square();
-    }
-    for (; j < dim; ++j) r2 += (Eigen::Map<const Lanes>(soa + j * padded + b) - x[j]).square();
-    if constexpr (paired) r2 += odd;
-    sum += Eigen::Map<const Lanes>(weights + b) * kernelOf<type>(r2, gamma);
-  }
-  return sum.sum();
-}
-
-// kQueries kernel sums in one pass over the support set: each block of support coordinates is
-// loaded once for all of them (the batch and edge queries of motion planning).
-constexpr std::size_t kQueries = 4;
+constexpr std::size_t kLanes = detail::kSupportLanes;
+constexpr std::size_t kQueries = detail::kQueriesPerPass;
 // Configurations whose features are computed together (one per lane of the batched kinematics).
 constexpr std::size_t kFeatureBatch = 16;
-
-// (The dimension stays a run-time value here: unrolled over the features, four queries at a time
-// measured 1.1-1.7 times slower.)
-template <KernelType type, bool paired>
-std::array<float, kQueries> kernelSums(const float* soa, const float* weights, std::size_t padded,
-                                       std::size_t dim, const float* xs, float gamma) {
-  std::array<Lanes, kQueries> sums;
-  for (Lanes& s : sums) s.setZero();
-  for (std::size_t b = 0; b < padded; b += kLanes) {
-    std::array<Lanes, kQueries> r2, odd;
-    for (Lanes& r : r2) r.setZero();
-    for (Lanes& r : odd) r.setZero();
-    std::size_t j = 0;
-    for (; paired && j + 1 < dim; j += 2) {
-      const Lanes c0 = Eigen::Map<const Lanes>(soa + j * padded + b);
-      const Lanes c1 = Eigen::Map<const Lanes>(soa + (j + 1) * padded + b);
-      for (std::size_t q = 0; q < kQueries; ++q) {
-        r2[q] += (c0 - xs[q * dim + j]).square();
-        odd[q] += (c1 - xs[q * dim + j + 1]).square();
-      }
-    }
-    for (; j < dim; ++j) {
-      const Lanes c = Eigen::Map<const Lanes>(soa + j * padded + b);
-      for (std::size_t q = 0; q < kQueries; ++q) r2[q] += (c - xs[q * dim + j]).square();
-    }
-    const Lanes w = Eigen::Map<const Lanes>(weights + b);
-    for (std::size_t q = 0; q < kQueries; ++q) {
-      if constexpr (paired) r2[q] += odd[q];
-      sums[q] += w * kernelOf<type>(r2[q], gamma);
-    }
-  }
-  std::array<float, kQueries> out;
-  for (std::size_t q = 0; q < kQueries; ++q) out[q] = sums[q].sum();
-  return out;
-}
 
 }  // namespace
 
@@ -225,14 +117,17 @@ void Model::toFeatures(const double* q, std::size_t n, float* x, std::size_t fir
   features_.mapBatch(q, n, x);
 }
 
+detail::SupportView Model::supportView() const {
+  return {supportSoa_.data(),
+          weightsF_.data(),
+          paddedCount_,
+          featureDim(),
+          static_cast<float>(kernel_.gamma),
+          kernel_.type};
+}
+
 float Model::scoreInputFloat(const float* x) const {
-  const auto gamma = static_cast<float>(kernel_.gamma);
-  return withDimension(featureDim(), [&](auto d) {
-    return withSumShape(kernel_.type, featureDim(), [&](auto kernel, auto paired) {
-      return kernelSum<decltype(kernel)::value, decltype(d)::value, decltype(paired)::value>(
-          supportSoa_.data(), weightsF_.data(), paddedCount_, featureDim(), x, gamma);
-    });
-  });
+  return detail::activeKernelSums().one(supportView(), x);
 }
 
 double Model::score(const double* q) const {
@@ -263,11 +158,8 @@ void Model::scoreGroup(const float* xs, std::size_t count, float* out) const {
     out[0] = scoreInputFloat(xs);
     return;
   }
-  const auto gamma = static_cast<float>(kernel_.gamma);
-  const auto scores = withSumShape(kernel_.type, featureDim(), [&](auto kernel, auto paired) {
-    return kernelSums<decltype(kernel)::value, decltype(paired)::value>(
-        supportSoa_.data(), weightsF_.data(), paddedCount_, featureDim(), xs, gamma);
-  });
+  std::array<float, kQueries> scores;
+  detail::activeKernelSums().four(supportView(), xs, scores.data());
   std::copy_n(scores.begin(), count, out);
 }
 

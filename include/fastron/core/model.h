@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <span>
 #include <vector>
 
@@ -15,14 +16,28 @@
 #include "fastron/core/types.h"
 
 namespace FASTRON_API fastron {
+namespace detail {
+struct SupportView;
+
+/// Allocates on 64-byte boundaries (a cache line, and an AVX-512 register), whatever
+/// instruction set the including code is compiled for.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, std::size_t /*n*/) { ::operator delete(p, kAlignment); }
+  friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
+};
+}  // namespace detail
 
 /// Immutable once built, so one instance can be queried from any number of threads; queries do
 /// not allocate. Queries take joint values; the model maps them to its features itself (joint
 /// scaling to [-1, 1]^d, or the world positions of control points: see feature_map.h).
 ///
 /// Two evaluation paths are kept: `score` sums over a padded structure-of-arrays `float` copy of
-/// the support set, vectorised (AVX2 / AVX-512 when built with FASTRON_NATIVE); `scoreExact` sums
-/// in `double` over the same points, the precision used in training.
+/// the support set, vectorised for the processor it runs on (SSE2, AVX2 or AVX-512: simd.h);
+/// `scoreExact` sums in `double` over the same points, the precision used in training.
 class Model {
  public:
   /// `supportConfigurations`: one support configuration per row (joint values); `weights`: one
@@ -87,6 +102,8 @@ class Model {
   /// support feature beyond float range.
   void buildQueryCopies();
 
+  /// The float copies, as the kernel sums of simd.h read them.
+  detail::SupportView supportView() const;
   float scoreInputFloat(const float* x) const;
   /// f of the first `count` (1 to 4) of four consecutive feature rows of xs (a short group
   /// padded by the caller), in one pass over the support set.
@@ -106,10 +123,9 @@ class Model {
   Eigen::VectorXd weights_;
 
   // Hot-path copies: support_ transposed to structure-of-arrays float, each dimension padded to
-  // a multiple of the SIMD block with zero-weight points. Aligned to Eigen's largest vector
-  // (64 bytes with AVX-512) so that no block load straddles two cache lines (10% of a standalone
-  // kernel sum at d = 12).
-  using AlignedFloats = std::vector<float, Eigen::aligned_allocator<float>>;
+  // a multiple of the SIMD block with zero-weight points. Aligned to 64 bytes so that no block
+  // load straddles two cache lines (10% of a standalone kernel sum at d = 12).
+  using AlignedFloats = std::vector<float, detail::CacheLineAllocator<float>>;
   std::size_t paddedCount_ = 0;
   AlignedFloats supportSoa_;  // dim() blocks of paddedCount_ values
   AlignedFloats weightsF_;    // paddedCount_ values
