@@ -1,6 +1,7 @@
 #include "fastron/proxy/proxy_collision_detector.h"
 
 #include <algorithm>
+#include <future>
 #include <string>
 #include <utility>
 
@@ -41,7 +42,6 @@ ProxyCollisionDetector::~ProxyCollisionDetector() {
 StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start,
                                           const Configurations& heldOut,
                                           const Labels& heldOutLabels) {
-  report.update = trainer_.update();
   std::shared_ptr<const Model> next = trainer_.model();  // built outside the lock
   if (!heldOutLabels.empty()) {
     report.calibration = calibrateBand(next->scoreBatch(heldOut), heldOutLabels, params_.band);
@@ -72,6 +72,7 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   trainer_ = Trainer(features_, params_.train);
   const auto learned = static_cast<Eigen::Index>(n);
   trainer_.addPoints(q.topRows(learned), {labels.data(), n});
+  report.update = trainer_.update();
   return finish(report, start, q.bottomRows(static_cast<Eigen::Index>(calibration)),
                 Labels(labels.begin() + learned, labels.end()));
 }
@@ -95,31 +96,52 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
 
   // The published model is the trainer's current support set: nothing changes the trainer between
   // steps (stepMutex_), so Algorithm 2 samples around it instead of building the same model again.
-  // Labelled together: the support set, the active-learning points, and uniform points held out
-  // of the new model to calibrate its band.
   const Configurations fresh = activeLearning(*model(), params_.activeLearning, rng_);
   const Configurations calibration =
       uniformConfigurations(limits(), params_.calibrationSamples, rng_);
   const auto support = static_cast<Eigen::Index>(trainer_.size());
-  Configurations all(support + fresh.rows() + calibration.rows(),
-                     static_cast<Eigen::Index>(features_.configurationDim()));
-  all << trainer_.configurations(), fresh, calibration;
+  Configurations learnt(support + fresh.rows(),
+                        static_cast<Eigen::Index>(features_.configurationDim()));
+  learnt << trainer_.configurations(), fresh;
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
-  // Nothing above changed the trainer: a step the oracle fails leaves the detector as it was.
-  const Labels labels = labelConfigurations(*oracle_, all, params_.labelThreads, labelGuard(stop));
+  // The uniform points held out to calibrate the new model's band do not depend on it: they are
+  // labelled while the support set and the active-learning points are, and then while
+  // Algorithm 1 runs (which uses one core: the labelling threads take the others). An oracle
+  // that may only be called from one thread (labelThreads 1) labels them after Algorithm 1.
+  // (A future of std::async waits for its task when destroyed: if anything below throws, the
+  // labelling is over before the step returns.)
+  const auto policy = params_.labelThreads == 1 ? std::launch::deferred : std::launch::async;
+  // Their labels never enter the model: the repeated rows that test the oracle are asked among
+  // the labels that do.
+  LabelGuard heldOutGuard = labelGuard(stop);
+  heldOutGuard.repeatedRows = 0;
+  auto heldOut = std::async(policy, [&] {
+    return labelConfigurations(*oracle_, calibration, params_.labelThreads, heldOutGuard);
+  });
+  const Labels labels =
+      labelConfigurations(*oracle_, learnt, params_.labelThreads, labelGuard(stop));
   report.labelTime = Clock::now() - labelStart;
-  report.labelled = labels.size() + std::min(params_.repeatedLabels, labels.size());
+  report.labelled = labels.size() + static_cast<std::size_t>(calibration.rows()) +
+                    std::min(params_.repeatedLabels, labels.size());
   report.added = static_cast<std::size_t>(fresh.rows());
 
-  const auto freshBegin = labels.begin() + support;
-  const auto calibrationBegin = freshBegin + fresh.rows();
+  Trainer before = trainer_;  // restored when the held-out labelling fails
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
-  trainer_.addPoints(fresh, Labels(freshBegin, calibrationBegin));
-
+  trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()));
   report.observed = addPendingObservations();
-  return finish(report, start, calibration, Labels(calibrationBegin, labels.end()));
+  report.update = trainer_.update();
+  Labels heldOutLabels;
+  try {
+    const auto waitStart = Clock::now();
+    heldOutLabels = heldOut.get();
+    report.labelTime += Clock::now() - waitStart;  // the labelling Algorithm 1 did not hide
+  } catch (...) {
+    trainer_ = std::move(before);  // a step the oracle fails leaves the detector as it was
+    throw;
+  }
+  return finish(report, start, calibration, heldOutLabels);
 }
 
 std::size_t ProxyCollisionDetector::addPendingObservations() {
@@ -151,6 +173,7 @@ StepReport ProxyCollisionDetector::learnObservations() {
     return report;
   }
   report.calibration = calibratedModel().calibration;  // kept: nothing new was held out
+  report.update = trainer_.update();
   return finish(report, start, Configurations(0, 0), {});
 }
 

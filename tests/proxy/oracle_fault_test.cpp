@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <limits>
 #include <ostream>
 #include <string>
 #include <thread>
@@ -48,10 +50,16 @@ class FaultyOracle final : public CollisionChecker {
   std::size_t dof() const override { return 2; }
   std::string name() const override { return "faulty"; }
   std::atomic<Fault> fault{Fault::None};
+  /// Calls after this many (counted from when it is set) throw.
+  std::atomic<std::uint64_t> failAfter{std::numeric_limits<std::uint64_t>::max()};
 
  protected:
   bool check(const double* q) const override {
     const bool truth = q[0] * q[0] + q[1] * q[1] < 0.25;
+    if (failAfter.load() != std::numeric_limits<std::uint64_t>::max() &&
+        calls_.fetch_add(1) >= failAfter.load()) {
+      throw Error("lost the scene");
+    }
     switch (fault.load()) {
       case Fault::Throw:
         throw Error("lost the scene");
@@ -68,6 +76,7 @@ class FaultyOracle final : public CollisionChecker {
 
  private:
   mutable std::atomic<std::uint64_t> flips_{0};
+  mutable std::atomic<std::uint64_t> calls_{0};
 };
 
 ProxyParams faultParams() {
@@ -108,6 +117,25 @@ TEST_P(OracleFaults, StepFailsWithoutChangingTheModel) {
   EXPECT_EQ(after.version, before.version);
   oracle->fault = Fault::None;
   EXPECT_EQ(proxy.step().modelVersion, before.version + 1);
+}
+
+// The points held out for the band are labelled last (after Algorithm 1, with one labelling
+// thread): a fault there must undo the training the step already did.
+TEST(OracleFaultsAfterTraining, LeaveTheTrainerAsItWas) {
+  auto oracle = std::make_shared<FaultyOracle>();
+  ProxyParams params = faultParams();
+  params.labelThreads = 1;
+  ProxyCollisionDetector proxy(oracle, JointLimits::unitBox(2), params);
+  proxy.initialize(500);
+  const CalibratedModel before = proxy.calibratedModel();
+  const std::size_t support = before.model->supportCount();
+  // Support set, 200 active-learning points and the repeated rows, then the held-out points.
+  oracle->failAfter = support + 200 + params.repeatedLabels + 10;
+  EXPECT_THAT(test::messageOf<OracleFault>([&] { proxy.step(); }), HasSubstr("lost the scene"));
+  EXPECT_EQ(proxy.calibratedModel().model, before.model);
+  oracle->failAfter = std::numeric_limits<std::uint64_t>::max();
+  // The next step relabels the support set the published model has, not a trained-on one.
+  EXPECT_EQ(proxy.step().labelled, support + 200 + 200 + params.repeatedLabels);
 }
 
 TEST_P(OracleFaults, BackgroundServesTheLastGoodModelAndRecovers) {

@@ -165,7 +165,7 @@ class ProxyCollisionDetector {
   LabelGuard labelGuard(const std::stop_token& stop) const;
   /// Moves the waiting observations into the trainer (stepMutex_ held); returns how many.
   std::size_t addPendingObservations();
-  /// Trains, calibrates the new model's band on the held-out points and publishes both.
+  /// Builds the trained model, calibrates its band on the held-out points and publishes both.
   StepReport finish(StepReport report, std::chrono::steady_clock::time_point start,
                     const Configurations& heldOut, const Labels& heldOutLabels);
 
