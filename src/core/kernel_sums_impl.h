@@ -2,11 +2,7 @@
 // defines FASTRON_SIMD_NAMESPACE and FASTRON_SIMD_WIDTH (floats per register: 4, 8 or 16) and
 // includes this file with its own -march flags.
 //
-// Written with the compilers' vector extensions, not Eigen: every function here has internal
-// linkage, so the three compilations cannot exchange code at link time. (Eigen's templates would
-// be instantiated under the same names in the three objects, and the linker keeps one of each:
-// an AVX-512 copy could then run on a processor without AVX-512.) For the same reason nothing
-// here calls a function of the C++ standard library.
+// Written with the vector helpers of simd_lanes.h (which says why not with Eigen).
 //
 // No include guard: included once per translation unit.
 
@@ -15,73 +11,19 @@
 #endif
 
 #include <cstddef>
-#include <utility>
 
 #include "kernel_sums.h"
+#include "simd_lanes.h"
 
 namespace fastron::detail {
 namespace {
 
-// One register of floats. Vectors wider than the registers (sixteen floats on AVX2, say) would
-// compile too, but the compiler keeps them in memory: four AVX2 queries per pass measured 7.5
-// times slower than in registers of eight.
-constexpr std::size_t kWidth = FASTRON_SIMD_WIDTH;
-using Floats = float __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
-using Ints = int __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
-static_assert(sizeof(Floats) == kWidth * sizeof(float) && kSupportLanes % kWidth == 0);
-
-inline Floats load(const float* p) {
-  Floats v;
-  __builtin_memcpy(&v, p, sizeof v);  // an unaligned load (the support blocks are aligned)
-  return v;
-}
-
-inline Floats splat(float value) {
-  return Floats{} + value;
-}
-
-/// The sum of the lanes, adding the upper half of the vector to the lower half until one lane
-/// is left (in registers: through memory, single queries at |S| 100 were 8 ns slower). The same
-/// order for single and grouped sums, so their scores are the same numbers.
-template <class V, std::size_t... I>
-inline auto foldedInHalf(V v, std::index_sequence<I...> /*lower half*/) {
-  return __builtin_shufflevector(v, v, I...) + __builtin_shufflevector(v, v, (I + sizeof...(I))...);
-}
-
-template <class V>
-inline float laneSum(V v) {
-  constexpr std::size_t kLanesOfV = sizeof(V) / sizeof(float);
-  if constexpr (kLanesOfV == 1) {
-    return v[0];
-  } else {
-    return laneSum(foldedInHalf(v, std::make_index_sequence<kLanesOfV / 2>{}));
-  }
-}
-
-/// exp(x) for x <= 0 (Cephes' expf: x = n ln 2 + r with |r| <= ln 2 / 2, a degree-6 polynomial
-/// for exp(r), 2^n from the exponent bits); about 2 ulp. Below exp(-87), where 2^n would leave
-/// float's normal range, it stays at exp(-87) = 1.6e-38.
-inline Floats expOfNonPositive(Floats x) {
-  constexpr float kLowest = -87.0f;
-  x = x < kLowest ? splat(kLowest) : x;
-  // Round to nearest: x * log2(e) <= 0, so truncating it minus a half rounds it.
-  const Ints n = __builtin_convertvector(x * 1.44269504088896341f - 0.5f, Ints);
-  const Floats nf = __builtin_convertvector(n, Floats);
-  const Floats r = x - nf * 0.693359375f + nf * 2.12194440e-4f;
-  Floats p = splat(1.9875691500e-4f);
-  p = p * r + 1.3981999507e-3f;
-  p = p * r + 8.3334519073e-3f;
-  p = p * r + 4.1665795894e-2f;
-  p = p * r + 1.6666665459e-1f;
-  p = p * r + 5.0000001201e-1f;
-  const Floats e = p * (r * r) + r + 1.0f;
-  return e * reinterpret_cast<Floats>((n + 127) << 23);
-}
+static_assert(kSupportLanes % kWidth == 0);
 
 template <KernelType type>
 inline Floats kernelOf(Floats r2, float gamma) {
   if constexpr (type == KernelType::RationalQuadratic) {
-    const Floats t = 1.0f + (0.5f * gamma) * r2;  // the formula of kernelOfSquaredDistance
+    const Floats t = mulAdd(r2, 0.5f * gamma, 1.0f);  // the formula of kernelOfSquaredDistance
     return 1.0f / (t * t);
   } else {
     return expOfNonPositive(-gamma * r2);
@@ -108,15 +50,15 @@ float sumOne(const SupportView& s, const float* x) {
     for (; paired && j + 1 < dim; j += 2) {
       const Floats d0 = load(s.soa + j * s.padded + b) - x[j];
       const Floats d1 = load(s.soa + (j + 1) * s.padded + b) - x[j + 1];
-      r2 += d0 * d0;
-      odd += d1 * d1;
+      r2 = mulAdd(d0, d0, r2);
+      odd = mulAdd(d1, d1, odd);
     }
     for (; j < dim; ++j) {
       const Floats d0 = load(s.soa + j * s.padded + b) - x[j];
-      r2 += d0 * d0;
+      r2 = mulAdd(d0, d0, r2);
     }
     if constexpr (paired) r2 += odd;
-    sum += load(s.weights + b) * kernelOf<type>(r2, s.gamma);
+    sum = mulAdd(load(s.weights + b), kernelOf<type>(r2, s.gamma), sum);
   }
   return laneSum(sum);
 }
@@ -138,21 +80,21 @@ void sumFour(const SupportView& s, const float* xs, float* out) {
       const Floats c1 = load(s.soa + (j + 1) * s.padded + b);
       for (std::size_t q = 0; q < kQ; ++q) {
         const Floats d0 = c0 - xs[q * dim + j], d1 = c1 - xs[q * dim + j + 1];
-        r2[q] += d0 * d0;
-        odd[q] += d1 * d1;
+        r2[q] = mulAdd(d0, d0, r2[q]);
+        odd[q] = mulAdd(d1, d1, odd[q]);
       }
     }
     for (; j < dim; ++j) {
       const Floats c = load(s.soa + j * s.padded + b);
       for (std::size_t q = 0; q < kQ; ++q) {
         const Floats d0 = c - xs[q * dim + j];
-        r2[q] += d0 * d0;
+        r2[q] = mulAdd(d0, d0, r2[q]);
       }
     }
     const Floats w = load(s.weights + b);
     for (std::size_t q = 0; q < kQ; ++q) {
       if constexpr (paired) r2[q] += odd[q];
-      sums[q] += w * kernelOf<type>(r2[q], s.gamma);
+      sums[q] = mulAdd(w, kernelOf<type>(r2[q], s.gamma), sums[q]);
     }
   }
   for (std::size_t q = 0; q < kQ; ++q) out[q] = laneSum(sums[q]);

@@ -32,6 +32,10 @@ bool processorRuns(SimdPath path) {
 #endif
 }
 
+// The path queries use; -1 until the first query or useSimdPath chooses one. (The kernel sums
+// read their table through detail::activeKernelSumsTable, one load fewer per query.)
+std::atomic<int> activePath{-1};
+
 std::string namesOf(const std::vector<SimdPath>& paths) {
   std::string names;
   for (const SimdPath path : paths)
@@ -93,14 +97,16 @@ void useSimdPath(SimdPath path) {
                           "' (supported: " + namesOf(supportedSimdPaths()) + ")");
   }
   detail::activeKernelSumsTable.store(&detail::kernelSumsOf(path), std::memory_order_release);
+  activePath.store(static_cast<int>(path), std::memory_order_release);
 }
 
 SimdPath activeSimdPath() {
-  const detail::KernelSums* sums = &detail::activeKernelSums();
-  for (const SimdPath path : supportedSimdPaths()) {
-    if (&detail::kernelSumsOf(path) == sums) return path;
-  }
-  return SimdPath::Portable;  // not reached: the active table is one of the supported paths'
+  const int path = activePath.load(std::memory_order_acquire);
+  if (path >= 0) return static_cast<SimdPath>(path);
+  // First use: two threads may both get here; they choose the same path.
+  const SimdPath chosen = simdPathFor(std::getenv("FASTRON_SIMD"));
+  useSimdPath(chosen);
+  return chosen;
 }
 
 namespace detail {
@@ -117,10 +123,7 @@ const KernelSums& kernelSumsOf(SimdPath path) {
 std::atomic<const KernelSums*> activeKernelSumsTable{nullptr};
 
 const KernelSums& firstKernelSums() {
-  // Two threads may both get here; they choose the same table.
-  const KernelSums& chosen = kernelSumsOf(simdPathFor(std::getenv("FASTRON_SIMD")));
-  activeKernelSumsTable.store(&chosen, std::memory_order_release);
-  return chosen;
+  return kernelSumsOf(activeSimdPath());
 }
 
 }  // namespace detail

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
+#include "gram_columns.h"
 
 namespace fastron {
 namespace {
@@ -26,48 +27,22 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 // vectorised by the compiler (8 lanes with AVX-512): 8.5 us for 10000 x 7 on the project's
 // machine, against 113-225 us for Eigen expressions that allocated a fresh column each time.
 
-/// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()). Rows go in blocks whose squared
-/// distances stay in L1 while every feature column adds to them: with 27 features, summing into
-/// the whole column instead moved it through the cache 27 times.
+/// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()), on the active SIMD path
+/// (gram_columns_impl.h).
 void gramColumn(const Eigen::MatrixXd& x, Eigen::Index i, Eigen::Index from, const Kernel& kernel,
                 double* k) {
-  constexpr Eigen::Index kBlock = 256;
-  const Eigen::Index n = x.rows() - from;
-  const Eigen::Index features = x.cols();
-  for (Eigen::Index begin = 0; begin < n; begin += kBlock) {
-    const Eigen::Index size = std::min(kBlock, n - begin);
-    double* r2 = k + begin;
-    std::fill(r2, r2 + size, 0.0);
-    for (Eigen::Index c = 0; c < features; ++c) {
-      const double* column = x.col(c).data() + from + begin;
-      const double xi = x(i, c);
-      for (Eigen::Index j = 0; j < size; ++j) {
-        const double t = column[j] - xi;
-        r2[j] += t * t;
-      }
-    }
-    // One loop per kernel type: a branch inside would stop the loop vectorising.
-    if (kernel.type == KernelType::RationalQuadratic) {
-      for (Eigen::Index j = 0; j < size; ++j)
-        r2[j] = kernelOfSquaredDistance<KernelType::RationalQuadratic>(r2[j], kernel.gamma);
-    } else {
-      for (Eigen::Index j = 0; j < size; ++j)
-        r2[j] = kernelOfSquaredDistance<KernelType::Gaussian>(r2[j], kernel.gamma);
-    }
-  }
+  detail::activeGramPasses().column(x.data(), static_cast<std::size_t>(x.rows()),
+                                    static_cast<std::size_t>(x.cols()), static_cast<std::size_t>(i),
+                                    static_cast<std::size_t>(from), kernel.type, kernel.gamma, k);
 }
 
 /// f += delta k, then the most negative margin y_j f_j and its index (the first one on ties).
-/// Three passes that each vectorise (a fused loop does not: the compiler keeps a floating-point
-/// minimum in order), over data that stays in cache.
 double addAndFindWorst(Eigen::VectorXd& f, const Eigen::VectorXd& y, const double* k, double delta,
                        Eigen::Index& worst) {
-  const Eigen::Index n = f.size();
-  double* fj = f.data();
-  for (Eigen::Index j = 0; j < n; ++j) fj[j] += delta * k[j];
-  const double lowest = (y.array() * f.array()).minCoeff();
-  worst = 0;
-  while (worst + 1 < n && y[worst] * f[worst] != lowest) ++worst;
+  std::size_t at = 0;
+  const double lowest = detail::activeGramPasses().addAndFindWorst(
+      f.data(), y.data(), static_cast<std::size_t>(f.size()), k, delta, &at);
+  worst = static_cast<Eigen::Index>(at);
   return lowest;
 }
 

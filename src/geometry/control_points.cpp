@@ -11,6 +11,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/model_file.h"
 #include "fastron/geometry/kinematics.h"
+#include "lane_kinematics.h"
 
 namespace fastron {
 namespace {
@@ -149,7 +150,6 @@ std::array<To, N> castArray(const std::array<From, N>& a) {
 /// Configurations placed together by placeLanes, one per SIMD lane.
 constexpr std::size_t kConfigurationLanes = 16;
 constexpr std::size_t kOneByOne = 2;  // batches this short are placed one configuration at a time
-using ConfigurationLanes = Eigen::Array<float, kConfigurationLanes, 1>;
 
 /// cos and sin of `count` angles, one by one: the C library's scalar sine and cosine overlap the
 /// chain of frames (a SIMD sine and cosine of all angles first made it wait: 9-19 ns slower).
@@ -316,6 +316,20 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
   for (const auto& point : chain_.points) {
     chainF_.points.push_back({point.step, castArray<float>(point.local)});
   }
+  for (const auto& step : chainF_.steps) {
+    detail::LaneStep& lane = laneSteps_.emplace_back();
+    lane.parent = step.parent;
+    lane.joint = step.joint;
+    lane.prismatic = step.prismatic ? 1 : 0;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) lane.fixed[4 * i + j] = step.fixed(i, j);
+    }
+  }
+  for (const auto& point : chainF_.points) {
+    detail::LanePoint& lane = lanePoints_.emplace_back();
+    lane.step = point.step;
+    for (std::size_t i = 0; i < 3; ++i) lane.local[i] = point.local[i];
+  }
 
   description_.robot = robot.name();
   description_.joints = robot.actuatedJointNames();
@@ -383,67 +397,6 @@ void RobotPointKinematics::place(const double* q, T* out) const {
   }
 }
 
-void RobotPointKinematics::placeLanes(const double* q, std::size_t count, float* out) const {
-  using Lanes = ConfigurationLanes;
-  using LaneFrame = std::array<Lanes, 12>;  // r row by row, then t: one lane per configuration
-  const Chain<float>& c = chainF_;
-  const std::size_t n = c.steps.size();
-  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): each step's frame is filled in order
-  std::array<LaneFrame, kMaxKinematicSteps> frames;
-  for (std::size_t s = 0; s < n; ++s) {
-    const Step<float>& step = c.steps[s];
-    Lanes value = Lanes::Zero();  // lanes past `count` turn by 0 and are never written out
-    for (std::size_t l = 0; l < count; ++l) {
-      value[static_cast<Eigen::Index>(l)] =
-          static_cast<float>(q[l * dof_ + static_cast<std::size_t>(step.joint)]);
-    }
-    LaneFrame& f = frames[s];
-    if (step.parent >= 0) {  // parent (per lane) times the constant transform (broadcast)
-      const LaneFrame& a = frames[static_cast<std::size_t>(step.parent)];
-      const Frame<float>& b = step.fixed;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-          f[3 * i + j] = a[3 * i] * b(0, j) + a[3 * i + 1] * b(1, j) + a[3 * i + 2] * b(2, j);
-        }
-        f[9 + i] = a[3 * i] * b(0, 3) + a[3 * i + 1] * b(1, 3) + a[3 * i + 2] * b(2, 3) + a[9 + i];
-      }
-    } else {
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) f[3 * i + j] = Lanes::Constant(step.fixed(i, j));
-        f[9 + i] = Lanes::Constant(step.fixed(i, 3));
-      }
-    }
-    if (step.prismatic) {
-      for (int i = 0; i < 3; ++i) f[9 + i] += value * f[3 * i + 2];
-    } else {  // f * Rz(value): only the x and y columns turn
-      const Lanes co = value.cos(), si = value.sin();
-      for (int i = 0; i < 3; ++i) {
-        const Lanes x = f[3 * i], y = f[3 * i + 1];
-        f[3 * i] = co * x + si * y;
-        f[3 * i + 1] = co * y - si * x;
-      }
-    }
-  }
-  const std::size_t coordinates = 3 * c.points.size();
-  for (std::size_t k = 0; k < c.points.size(); ++k) {
-    const Point<float>& p = c.points[k];
-    for (int i = 0; i < 3; ++i) {
-      Lanes position;
-      if (p.step < 0) {
-        position = Lanes::Constant(p.local[static_cast<std::size_t>(i)]);
-      } else {
-        const LaneFrame& f = frames[static_cast<std::size_t>(p.step)];
-        position = f[3 * i] * p.local[0] + f[3 * i + 1] * p.local[1] + f[3 * i + 2] * p.local[2] +
-                   f[9 + i];
-      }
-      for (std::size_t l = 0; l < count; ++l) {
-        out[l * coordinates + 3 * k + static_cast<std::size_t>(i)] =
-            position[static_cast<Eigen::Index>(l)];
-      }
-    }
-  }
-}
-
 void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float* out) const {
   const std::size_t coordinates = 3 * pointCount();
   for (std::size_t b = 0; b < n; b += kConfigurationLanes) {
@@ -454,7 +407,9 @@ void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float*
     if (count <= kOneByOne) {
       for (std::size_t k = b; k < b + count; ++k) place(q + k * dof_, out + k * coordinates);
     } else {
-      placeLanes(q + b * dof_, count, out + b * coordinates);
+      const detail::LaneChain chain{laneSteps_.data(), laneSteps_.size(), lanePoints_.data(),
+                                    lanePoints_.size(), dof_};
+      detail::placeLanesOf(activeSimdPath())(chain, q + b * dof_, count, out + b * coordinates);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/reference_trainer.h"
+#include "fastron/core/simd.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -236,28 +237,35 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
   TrainParams p = uncapped(c.gamma, c.beta);
   p.maxSupportPoints = c.cap;
   const ReferenceTraining reference = trainReference(q, y, p);
-  Trainer trainer(JointLimits::unitBox(c.dim), p);
-  trainer.addPoints(q, y);
-  const UpdateReport report = trainer.update();
-  EXPECT_EQ(report.iterations, reference.report.iterations);
-  EXPECT_EQ(report.stopReason, reference.report.stopReason);
-  EXPECT_EQ(report.reverted, reference.report.reverted);
-  EXPECT_EQ(report.misclassified, reference.report.misclassified);
-  ASSERT_EQ(report.supportCount, reference.report.supportCount);
-  // The trainer keeps only its support points, in their original order.
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < c.n; ++i) {
-    if (reference.alpha[i] == 0) continue;
-    ASSERT_LT(k, trainer.size());
-    const auto row = static_cast<Eigen::Index>(k);
-    EXPECT_EQ(trainer.configurations().row(row), q.row(static_cast<Eigen::Index>(i)));
-    EXPECT_NEAR(trainer.weights()[row], reference.alpha[i], 1e-9 * std::max(1.0, c.beta));
-    EXPECT_NEAR(trainer.hypothesis()[row], reference.f[i], 1e-9 * std::max(1.0, c.beta));
-    ++k;
+  // Algorithm 1's passes run on the active SIMD path (gram_columns_impl.h): each must match.
+  const SimdPath saved = activeSimdPath();
+  for (const SimdPath path : supportedSimdPaths()) {
+    SCOPED_TRACE(toString(path));
+    useSimdPath(path);
+    Trainer trainer(JointLimits::unitBox(c.dim), p);
+    trainer.addPoints(q, y);
+    const UpdateReport report = trainer.update();
+    EXPECT_EQ(report.iterations, reference.report.iterations);
+    EXPECT_EQ(report.stopReason, reference.report.stopReason);
+    EXPECT_EQ(report.reverted, reference.report.reverted);
+    EXPECT_EQ(report.misclassified, reference.report.misclassified);
+    ASSERT_EQ(report.supportCount, reference.report.supportCount);
+    // The trainer keeps only its support points, in their original order.
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < c.n; ++i) {
+      if (reference.alpha[i] == 0) continue;
+      ASSERT_LT(k, trainer.size());
+      const auto row = static_cast<Eigen::Index>(k);
+      EXPECT_EQ(trainer.configurations().row(row), q.row(static_cast<Eigen::Index>(i)));
+      EXPECT_NEAR(trainer.weights()[row], reference.alpha[i], 1e-9 * std::max(1.0, c.beta));
+      EXPECT_NEAR(trainer.hypothesis()[row], reference.f[i], 1e-9 * std::max(1.0, c.beta));
+      ++k;
+    }
+    EXPECT_EQ(k, trainer.size());
+    EXPECT_GE(report.iterations, std::min<std::size_t>(100, c.cap))
+        << "the case must exercise Algorithm 1";
   }
-  EXPECT_EQ(k, trainer.size());
-  EXPECT_GE(report.iterations, std::min<std::size_t>(100, c.cap))
-      << "the case must exercise Algorithm 1";
+  useSimdPath(saved);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeded, AgainstReference,

@@ -13,6 +13,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
+#include "fastron/core/simd.h"
 #include "fastron/core/trainer.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/kinematics.h"
@@ -85,6 +86,35 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
       }
     }
   }
+}
+
+// The batched positions are compiled once per SIMD path (simd.h): each path this processor runs
+// places the points where the forward kinematics does, with angles beyond one turn too.
+TEST(ControlPoints, EverySimdPathPlacesThePointsLikeForwardKinematics) {
+  const SimdPath saved = activeSimdPath();
+  for (const std::string name : {"baxter", "panda", "psm"}) {
+    const Robot robot = loadRobot(name);
+    const RobotPointKinematics kinematics(robot, defaultControlPoints(robot));
+    Rng rng(8);
+    // 37 rows: two full AVX-512 registers and part of a third; one row beyond a turn.
+    Configurations q = uniformConfigurations(robot.limits(), 37, rng);
+    q.row(3) *= 7.0;
+    const std::size_t stride = 3 * kinematics.pointCount();
+    for (const SimdPath path : supportedSimdPaths()) {
+      useSimdPath(path);
+      std::vector<float> batch(static_cast<std::size_t>(q.rows()) * stride);
+      kinematics.positionsBatch(q.data(), static_cast<std::size_t>(q.rows()), batch.data());
+      std::vector<double> exact(stride);
+      for (Eigen::Index i = 0; i < q.rows(); ++i) {
+        kinematics.positions(q.row(i).data(), exact.data());
+        for (std::size_t k = 0; k < stride; ++k) {
+          EXPECT_NEAR(batch[static_cast<std::size_t>(i) * stride + k], exact[k], 2e-5)
+              << name << ", " << toString(path) << ", row " << i << ", coordinate " << k;
+        }
+      }
+    }
+  }
+  useSimdPath(saved);
 }
 
 TEST(ControlPoints, PositionsEqualForwardKinematicsOnEveryShippedRobot) {

@@ -12,6 +12,7 @@
 #include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/model.h"
+#include "fastron/geometry/detail/lane_chain.h"
 #include "fastron/geometry/robot.h"
 
 namespace FASTRON_API fastron {
@@ -105,17 +106,17 @@ class RobotPointKinematics final : public PointKinematics {
   const Chain<T>& chain() const;
   template <class T>
   void place(const double* q, T* out) const;
-  /// Float positions of `count` (1 to 16) configurations, one per lane.
-  void placeLanes(const double* q, std::size_t count, float* out) const;
 
   std::size_t dof_ = 0;
   Chain<double> chain_;
   Chain<float> chainF_;
+  std::vector<detail::LaneStep> laneSteps_;  // chainF_ for the batched kinematics
+  std::vector<detail::LanePoint> lanePoints_;
   KinematicsDescription description_;
 };
 
 /// Largest number of actuated joints between the base and a control point.
-inline constexpr std::size_t kMaxKinematicSteps = 64;
+inline constexpr std::size_t kMaxKinematicSteps = detail::kMaxLaneSteps;
 
 /// The model's features for `robot`: joint scaling by its limits, or the world positions of
 /// `points` (defaultControlPoints when empty).

@@ -1,0 +1,30 @@
+#pragma once
+// The batched positions of RobotPointKinematics, compiled once per SimdPath
+// (lane_kinematics_portable.cpp, lane_kinematics_avx2.cpp, lane_kinematics_avx512.cpp) like the
+// kernel sums of core. Private to geometry.
+
+#include <cstddef>
+
+#include "fastron/core/simd.h"
+#include "fastron/geometry/detail/lane_chain.h"
+
+namespace fastron::detail {
+
+/// Float positions of `count` configurations (rows of q, chain.dof values each), the lanes of a
+/// register computed together: `out` gets 3 * chain.pointCount values per configuration.
+using PlaceLanes = void (*)(const LaneChain& chain, const double* q, std::size_t count, float* out);
+
+/// The function of `path` (throws InvalidArgument when this build does not have it).
+PlaceLanes placeLanesOf(SimdPath path);
+
+namespace portable {
+extern const PlaceLanes kPlaceLanes;
+}
+namespace avx2 {
+extern const PlaceLanes kPlaceLanes;
+}
+namespace avx512 {
+extern const PlaceLanes kPlaceLanes;
+}
+
+}  // namespace fastron::detail
