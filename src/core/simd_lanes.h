@@ -37,8 +37,15 @@ inline Floats load(const float* p) {
   return v;
 }
 
+/// value in every lane: one broadcast. (Written as Floats{} + value it would also add 0, which the
+/// compiler must keep, -0 + 0 being +0; written lane by lane it became sixteen inserts.)
+template <std::size_t... I>
+inline Floats broadcast(float value, std::index_sequence<I...> /*lanes*/) {
+  const Floats first = {value};
+  return __builtin_shufflevector(first, first, (I * 0)...);
+}
 inline Floats splat(float value) {
-  return Floats{} + value;
+  return broadcast(value, std::make_index_sequence<kWidth>{});
 }
 
 /// a * b + c, one rounding where the instruction set has fused multiply-adds. Explicit, because

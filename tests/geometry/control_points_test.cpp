@@ -352,6 +352,41 @@ TEST(TaskSpaceFeatures, ClaimOneHoldsInFeatureSpace) {
   }
 }
 
+// Task-space queries sum in float: on a trained model they stay close to the double sum and give
+// its sign almost everywhere, batched or single, on every SIMD path. (Batched features come from
+// the lanes' own sine and cosine, so batched scores may differ from single ones in the last bits.)
+TEST(TaskSpaceFeatures, FloatQueriesFollowTheDoubleSum) {
+  const Robot baxter = loadRobot("baxter");
+  Trainer trainer(robotFeatures(baxter, FeatureKind::Kinematic),
+                  defaultTrainParams(FeatureKind::Kinematic));
+  Rng rng(16);
+  const FclChecker fcl(baxter, loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml"));
+  const Configurations train = uniformConfigurations(baxter.limits(), 3000, rng);
+  trainer.addPoints(train, labelConfigurations(fcl, train));
+  trainer.update();
+  const auto model = trainer.model();
+  const double weights = model->weights().cwiseAbs().sum();
+  const Configurations q = uniformConfigurations(baxter.limits(), 20000, rng);
+  const SimdPath saved = activeSimdPath();
+  for (const SimdPath path : supportedSimdPaths()) {
+    useSimdPath(path);
+    const Eigen::VectorXd batch = model->scoreBatch(q);
+    std::size_t signs = 0;
+    double worst = 0;
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      const double single = model->score(q.row(i).data());
+      const double exact = model->scoreExact(q.row(i).data());
+      worst = std::max({worst, std::abs(single - exact), std::abs(batch[i] - exact)});
+      signs += (single > 0) != (exact > 0);
+      signs += (batch[i] > 0) != (exact > 0);
+    }
+    EXPECT_LE(worst, 1e-5 * weights) << toString(path) << ": sum of |weights| " << weights;
+    EXPECT_LE(signs, 4u) << toString(path) << " (of 40000)";
+    RecordProperty("worst_" + std::string(toString(path)), std::to_string(worst / weights));
+  }
+  useSimdPath(saved);
+}
+
 // Features that coincide for distinct configurations (the last joint turns the hand about the
 // line through its control point, so it moves no point): two such configurations with opposite
 // labels cannot both get a positive margin. Algorithm 1 then stops at its iteration limit with
