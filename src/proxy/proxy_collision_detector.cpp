@@ -130,7 +130,7 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   Trainer before = trainer_;  // restored when the held-out labelling fails
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()));
-  report.observed = addPendingObservations();
+  report.observed = learnPendingObservations();
   report.update = trainer_.update();
   Labels heldOutLabels;
   try {
@@ -138,19 +138,20 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
     heldOutLabels = heldOut.get();
     report.labelTime += Clock::now() - waitStart;  // the labelling Algorithm 1 did not hide
   } catch (...) {
-    trainer_ = std::move(before);  // a step the oracle fails leaves the detector as it was
-    throw;
+    trainer_ = std::move(before);  // a step the oracle fails leaves the detector as it was,
+    throw;                         // its observations still waiting
   }
+  dropLearnedObservations(report.observed);
   return finish(report, start, calibration, heldOutLabels);
 }
 
-std::size_t ProxyCollisionDetector::addPendingObservations() {
+std::size_t ProxyCollisionDetector::learnPendingObservations() {
   std::vector<double> values;
   Labels labels;
   {
     const std::lock_guard pending(pendingMutex_);
-    values.swap(pendingValues_);
-    labels.swap(pendingLabels_);
+    values = pendingValues_;
+    labels = pendingLabels_;
   }
   if (labels.empty()) return 0;
   trainer_.addPoints(
@@ -160,6 +161,15 @@ std::size_t ProxyCollisionDetector::addPendingObservations() {
   return labels.size();
 }
 
+void ProxyCollisionDetector::dropLearnedObservations(std::size_t count) {
+  // New observations are appended: the first `count` are the ones learned.
+  const std::lock_guard pending(pendingMutex_);
+  const auto values = static_cast<std::ptrdiff_t>(count * features_.configurationDim());
+  pendingValues_.erase(pendingValues_.begin(), pendingValues_.begin() + values);
+  pendingLabels_.erase(pendingLabels_.begin(),
+                       pendingLabels_.begin() + static_cast<std::ptrdiff_t>(count));
+}
+
 StepReport ProxyCollisionDetector::learnObservations() {
   const std::lock_guard lock(stepMutex_);
   if (version_ == 0) {
@@ -167,7 +177,8 @@ StepReport ProxyCollisionDetector::learnObservations() {
   }
   const auto start = Clock::now();
   StepReport report;
-  report.observed = addPendingObservations();
+  report.observed = learnPendingObservations();
+  dropLearnedObservations(report.observed);
   if (report.observed == 0) {
     report.modelVersion = version_;
     return report;

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "fastron/core/dataset.h"
 #include "fastron/core/error.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -129,13 +130,21 @@ TEST(OracleFaultsAfterTraining, LeaveTheTrainerAsItWas) {
   proxy.initialize(500);
   const CalibratedModel before = proxy.calibratedModel();
   const std::size_t support = before.model->supportCount();
+  // Exact answers waiting to be learned: the failed step must leave them to the next one.
+  Configurations observed(3, 2);
+  observed << 0.1, 0.1, 0.9, 0.9, -0.2, 0.3;
+  proxy.addObservations(Dataset{observed, Labels{1, -1, 1}, {}});
   // Support set, 200 active-learning points and the repeated rows, then the held-out points.
   oracle->failAfter = support + 200 + params.repeatedLabels + 10;
   EXPECT_THAT(test::messageOf<OracleFault>([&] { proxy.step(); }), HasSubstr("lost the scene"));
   EXPECT_EQ(proxy.calibratedModel().model, before.model);
   oracle->failAfter = std::numeric_limits<std::uint64_t>::max();
-  // The next step relabels the support set the published model has, not a trained-on one.
-  EXPECT_EQ(proxy.step().labelled, support + 200 + 200 + params.repeatedLabels);
+  // The next step relabels the support set the published model has, not a trained-on one, and
+  // learns the observations.
+  const StepReport next = proxy.step();
+  EXPECT_EQ(next.labelled, support + 200 + 200 + params.repeatedLabels);
+  EXPECT_EQ(next.observed, 3u);
+  EXPECT_EQ(proxy.step().observed, 0u);  // learned once
 }
 
 TEST_P(OracleFaults, BackgroundServesTheLastGoodModelAndRecovers) {

@@ -163,8 +163,11 @@ class ProxyCollisionDetector {
   StepReport runStep(const std::stop_token& stop);
   /// The labelling guard of a step that starts now.
   LabelGuard labelGuard(const std::stop_token& stop) const;
-  /// Moves the waiting observations into the trainer (stepMutex_ held); returns how many.
-  std::size_t addPendingObservations();
+  /// Adds the waiting observations to the trainer (stepMutex_ held); returns how many. They keep
+  /// waiting until dropLearnedObservations: a step that fails after this leaves them to the next.
+  std::size_t learnPendingObservations();
+  /// Forgets the first `count` waiting observations (learned by a step that succeeded).
+  void dropLearnedObservations(std::size_t count);
   /// Builds the trained model, calibrates its band on the held-out points and publishes both.
   StepReport finish(StepReport report, std::chrono::steady_clock::time_point start,
                     const Configurations& heldOut, const Labels& heldOutLabels);
