@@ -4,7 +4,6 @@
 #include <array>
 #include <cstring>
 #include <string>
-#include <type_traits>
 
 #include "fastron/core/error.h"
 #include "kernel_sums.h"

@@ -147,7 +147,7 @@ std::array<To, N> castArray(const std::array<From, N>& a) {
   return out;
 }
 
-/// Configurations placed together by placeLanes, one per SIMD lane.
+/// Configurations handed to the lanes at once (a multiple of every path's register width).
 constexpr std::size_t kConfigurationLanes = 16;
 constexpr std::size_t kOneByOne = 2;  // batches this short are placed one configuration at a time
 
@@ -401,9 +401,9 @@ void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float*
   const std::size_t coordinates = 3 * pointCount();
   for (std::size_t b = 0; b < n; b += kConfigurationLanes) {
     const std::size_t count = std::min(kConfigurationLanes, n - b);
-    // Sixteen lanes cost 250-320 ns however many are used; one configuration is about 90 ns on
-    // the single chain, three 260 ns (BM_ControlPoints, BM_ControlPointsBatch): up to two go one
-    // by one.
+    // A pass costs about the same however many lanes are used (AVX-512: 183 ns for four, 229 ns
+    // for sixteen); one configuration is about 90 ns on the single chain (BM_ControlPoints,
+    // BM_ControlPointsBatch): up to two go one by one.
     if (count <= kOneByOne) {
       for (std::size_t k = b; k < b + count; ++k) place(q + k * dof_, out + k * coordinates);
     } else {

@@ -52,8 +52,7 @@ std::uint64_t kinematicsChecksum(const Robot& robot);
 /// World positions (in the robot's base frame) of control points. The robot's kinematic tree is
 /// compiled once: fixed and held joints are folded into constant transforms, each actuated joint
 /// on the way to a point becomes one rotation (or translation) about a local z axis, so a query
-/// costs two 3x3 products per joint, the sines and cosines of all joints are computed at once
-/// with SIMD (float path), and nothing is allocated.
+/// costs two 3x3 products per joint, and nothing is allocated.
 class RobotPointKinematics final : public PointKinematics {
  public:
   /// Throws InvalidArgument for an unknown link or no points.
@@ -63,8 +62,9 @@ class RobotPointKinematics final : public PointKinematics {
   std::size_t pointCount() const override { return chain_.points.size(); }
   void positions(const double* q, double* out) const override;
   void positions(const double* q, float* out) const override;
-  /// Sixteen configurations per pass, one per SIMD lane: the frames of a step are computed for
-  /// all of them at once (structure of arrays), so a batch costs a fraction of single queries.
+  /// One configuration per SIMD lane (16 on AVX-512, 8 on AVX2, 4 on SSE2: simd.h): the frames of
+  /// a step are computed for a register of them at once (structure of arrays), so a batch costs a
+  /// fraction of single queries.
   void positionsBatch(const double* q, std::size_t n, float* out) const override;
   KinematicsDescription description() const override { return description_; }
 
