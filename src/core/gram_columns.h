@@ -7,9 +7,13 @@
 #include <cstddef>
 
 #include "fastron/core/kernel.h"
-#include "fastron/core/simd.h"
+#include "simd_dispatch.h"
 
 namespace fastron::detail {
+
+/// The most features a training point has (kMaxFeatureDimension of feature_map.h, which
+/// trainer.cpp checks; this header stays free of Eigen for the files compiled per path).
+inline constexpr std::size_t kMaxGramFeatures = 192;
 
 struct GramPasses {
   /// k[j - from] = K(x_i, x_j) for the rows j in [from, rows); x is column-major, rows x
@@ -22,9 +26,6 @@ struct GramPasses {
                             double delta, std::size_t* worst);
 };
 
-/// The passes of activeSimdPath().
-const GramPasses& activeGramPasses();
-
 namespace portable {
 extern const GramPasses kGramPasses;
 }
@@ -33,6 +34,12 @@ extern const GramPasses kGramPasses;
 }
 namespace avx512 {
 extern const GramPasses kGramPasses;
+}
+
+/// The passes of the path in use.
+inline const GramPasses& activeGramPasses() {
+  return ofSimdPath(currentSimdPath(), portable::kGramPasses, avx2::kGramPasses,
+                    avx512::kGramPasses);
 }
 
 }  // namespace fastron::detail

@@ -1,7 +1,7 @@
 // The passes of Algorithm 1 over the training points, written once and compiled once per SimdPath:
 // each gram_columns_*.cpp defines FASTRON_SIMD_NAMESPACE and FASTRON_SIMD_WIDTH and includes this
-// file with its own -march flags. Vector-extension loops, in functions of internal linkage calling
-// nothing from outside but the C library's exp (see simd_lanes.h for why).
+// file with its own -march flags. Written with the vector helpers of simd_lanes.h (which says why
+// not with Eigen); the C library's exp is the one function called from outside.
 //
 // No include guard: included once per translation unit.
 
@@ -10,50 +10,12 @@
 #endif
 
 #include <cstddef>
-#if defined(__x86_64__)
-#include <immintrin.h>  // its functions are inline-only (GCC) or static (Clang): nothing shared
-#endif
 
 #include "gram_columns.h"
+#include "simd_lanes.h"
 
 namespace fastron::detail {
 namespace {
-
-/// a * b + c, fused where the instruction set can (these files compile with -ffp-contract=off;
-/// without FMA instructions, __builtin_fma would be a call to the C library).
-inline double mulAdd(double a, double b, double c) {
-#ifdef __FMA__
-  return __builtin_fma(a, b, c);
-#else
-  return a * b + c;
-#endif
-}
-
-// Doubles per register.
-constexpr std::size_t kDoubles = FASTRON_SIMD_WIDTH / 2;
-using Doubles = double __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
-
-inline Doubles loadDoubles(const double* p) {
-  Doubles v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-
-/// mulAdd of whole registers.
-inline Doubles mulAdd(Doubles a, Doubles b, Doubles c) {
-#if FASTRON_SIMD_WIDTH == 16 && defined(__AVX512F__)
-  return reinterpret_cast<Doubles>(_mm512_fmadd_pd(
-      reinterpret_cast<__m512d>(a), reinterpret_cast<__m512d>(b), reinterpret_cast<__m512d>(c)));
-#elif FASTRON_SIMD_WIDTH == 8 && defined(__FMA__)
-  return reinterpret_cast<Doubles>(_mm256_fmadd_pd(
-      reinterpret_cast<__m256d>(a), reinterpret_cast<__m256d>(b), reinterpret_cast<__m256d>(c)));
-#else
-  return a * b + c;
-#endif
-}
-
-/// The most features a training point has (kMaxFeatureDimension of feature_map.h).
-constexpr std::size_t kMaxFeatures = 192;
 
 /// Few features: a register of rows at a time, every feature column adding to squared distances
 /// held in a register, then the kernel: one store per register of rows. (Summing one feature column
@@ -63,7 +25,7 @@ constexpr std::size_t kMaxFeatures = 192;
 void columnByRow(const double* x, std::size_t rows, std::size_t features, std::size_t i,
                  std::size_t from, KernelType type, double gamma, double* k) {
   const std::size_t n = rows - from;
-  double xi[kMaxFeatures];
+  double xi[kMaxGramFeatures];
   for (std::size_t c = 0; c < features; ++c) xi[c] = x[c * rows + i];
   const double halfGamma = 0.5 * gamma;
   const bool rationalQuadratic = type == KernelType::RationalQuadratic;
@@ -72,7 +34,7 @@ void columnByRow(const double* x, std::size_t rows, std::size_t features, std::s
   for (; j + kDoubles <= n; j += kDoubles) {
     Doubles r2 = {};
     for (std::size_t c = 0; c < features; ++c) {
-      const Doubles t = loadDoubles(x + c * rows + from + j) - xi[c];
+      const Doubles t = load(x + c * rows + from + j) - xi[c];
       r2 = mulAdd(t, t, r2);
     }
     if (rationalQuadratic) {  // the formula of kernelOfSquaredDistance
@@ -156,9 +118,9 @@ double addAndFindWorst(double* f, const double* y, std::size_t n, const double* 
   Doubles lowestLanes = y[0] * mulAdd(delta, k[0], f[0]) - Doubles{};
   std::size_t j = 0;
   for (; j + kDoubles <= n; j += kDoubles) {
-    const Doubles updated = mulAdd(deltas, loadDoubles(k + j), loadDoubles(f + j));
+    const Doubles updated = mulAdd(deltas, load(k + j), load(f + j));
     __builtin_memcpy(f + j, &updated, sizeof updated);
-    const Doubles margin = loadDoubles(y + j) * updated;
+    const Doubles margin = load(y + j) * updated;
     lowestLanes = margin < lowestLanes ? margin : lowestLanes;
   }
   double lowest = lowestLanes[0];

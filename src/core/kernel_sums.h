@@ -1,13 +1,12 @@
 #pragma once
 // The model's float kernel sums, f(x) = sum_i w_i k(s_i, x), compiled once per SimdPath
 // (kernel_sums_portable.cpp, kernel_sums_avx2.cpp, kernel_sums_avx512.cpp, each with its own
-// instruction set) and reached through the active path's table (simd.cpp). Private to core.
+// instruction set) and reached through the table of the path in use. Private to core.
 
-#include <atomic>
 #include <cstddef>
 
 #include "fastron/core/kernel.h"
-#include "fastron/core/simd.h"
+#include "simd_dispatch.h"
 
 namespace fastron::detail {
 
@@ -35,19 +34,6 @@ struct KernelSums {
   void (*four)(const SupportView& support, const float* xs, float* out);
 };
 
-/// The table of one path (throws InvalidArgument when this build does not have it).
-const KernelSums& kernelSumsOf(SimdPath path);
-/// The active path's table; null until the first query or useSimdPath chooses one.
-extern std::atomic<const KernelSums*> activeKernelSumsTable;
-/// Chooses the table on first use (FASTRON_SIMD, else the widest path) and returns it.
-const KernelSums& firstKernelSums();
-
-/// The table of activeSimdPath(): inline, an atomic load per query.
-inline const KernelSums& activeKernelSums() {
-  const KernelSums* sums = activeKernelSumsTable.load(std::memory_order_acquire);
-  return sums != nullptr ? *sums : firstKernelSums();
-}
-
 // One namespace per compiled path, defined by kernel_sums_impl.h.
 namespace portable {
 extern const KernelSums kKernelSums;
@@ -57,6 +43,12 @@ extern const KernelSums kKernelSums;
 }
 namespace avx512 {
 extern const KernelSums kKernelSums;
+}
+
+/// The table of the path in use: an atomic load per query.
+inline const KernelSums& activeKernelSums() {
+  return ofSimdPath(currentSimdPath(), portable::kKernelSums, avx2::kKernelSums,
+                    avx512::kKernelSums);
 }
 
 }  // namespace fastron::detail

@@ -5,17 +5,18 @@
 #include <string>
 
 #include "fastron/core/error.h"
-#include "kernel_sums.h"
+#include "simd_dispatch.h"
 
 namespace fastron {
 namespace {
 
-/// Whether this build has `path` and this processor can run it. FASTRON_SIMD_DISPATCH: the build
-/// compiled the x86-64 paths (src/CMakeLists.txt).
+/// Whether this processor can run `path` as built. FASTRON_SIMD_X86: the per-path files were
+/// compiled for their x86-64 instruction sets (src/CMakeLists.txt); elsewhere all three hold
+/// portable code, and only the portable path is offered.
 bool processorRuns(SimdPath path) {
-#ifdef FASTRON_SIMD_DISPATCH
+#ifdef FASTRON_SIMD_X86
   __builtin_cpu_init();
-  // The instruction sets kernel_sums_avx2.cpp and kernel_sums_avx512.cpp are compiled for.
+  // The instruction sets the *_avx2.cpp and *_avx512.cpp files are compiled for.
   const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   switch (path) {
     case SimdPath::Portable:
@@ -31,10 +32,6 @@ bool processorRuns(SimdPath path) {
   return path == SimdPath::Portable;
 #endif
 }
-
-// The path queries use; -1 until the first query or useSimdPath chooses one. (The kernel sums
-// read their table through detail::activeKernelSumsTable, one load fewer per query.)
-std::atomic<int> activePath{-1};
 
 std::string namesOf(const std::vector<SimdPath>& paths) {
   std::string names;
@@ -96,12 +93,11 @@ void useSimdPath(SimdPath path) {
                           std::string(toString(path)) +
                           "' (supported: " + namesOf(supportedSimdPaths()) + ")");
   }
-  detail::activeKernelSumsTable.store(&detail::kernelSumsOf(path), std::memory_order_release);
-  activePath.store(static_cast<int>(path), std::memory_order_release);
+  detail::activeSimdPathIndex.store(static_cast<int>(path), std::memory_order_release);
 }
 
 SimdPath activeSimdPath() {
-  const int path = activePath.load(std::memory_order_acquire);
+  const int path = detail::activeSimdPathIndex.load(std::memory_order_acquire);
   if (path >= 0) return static_cast<SimdPath>(path);
   // First use: two threads may both get here; they choose the same path.
   const SimdPath chosen = simdPathFor(std::getenv("FASTRON_SIMD"));
@@ -110,21 +106,6 @@ SimdPath activeSimdPath() {
 }
 
 namespace detail {
-
-const KernelSums& kernelSumsOf(SimdPath path) {
-#ifdef FASTRON_SIMD_DISPATCH
-  if (path == SimdPath::Avx2) return avx2::kKernelSums;
-  if (path == SimdPath::Avx512) return avx512::kKernelSums;
-#endif
-  if (path == SimdPath::Portable) return portable::kKernelSums;
-  throw InvalidArgument("this build has no SIMD path '" + std::string(toString(path)) + "'");
-}
-
-std::atomic<const KernelSums*> activeKernelSumsTable{nullptr};
-
-const KernelSums& firstKernelSums() {
-  return kernelSumsOf(activeSimdPath());
-}
-
+std::atomic<int> activeSimdPathIndex{-1};
 }  // namespace detail
 }  // namespace fastron

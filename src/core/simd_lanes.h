@@ -1,6 +1,7 @@
-// Vectors of floats for the code compiled once per SimdPath (kernel_sums_impl.h,
-// geometry/lane_kinematics_impl.h): the including file defines FASTRON_SIMD_WIDTH, the floats per
-// register of its instruction set (4, 8 or 16), and includes this file once.
+// Vectors of floats and doubles for the code compiled once per SimdPath (kernel_sums_impl.h,
+// gram_columns_impl.h, geometry/lane_kinematics_impl.h): the including file defines
+// FASTRON_SIMD_WIDTH, the floats per register of its instruction set (4, 8 or 16), and includes
+// this file once.
 //
 // Written with the compilers' vector extensions, not Eigen: every function here has internal
 // linkage, so the three compilations cannot exchange code at link time. (Eigen's templates would
@@ -30,10 +31,18 @@ constexpr std::size_t kWidth = FASTRON_SIMD_WIDTH;
 using Floats = float __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
 using Ints = int __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
 static_assert(sizeof(Floats) == kWidth * sizeof(float));
+// One register of doubles (Algorithm 1 sums in double).
+constexpr std::size_t kDoubles = FASTRON_SIMD_WIDTH / 2;
+using Doubles = double __attribute__((vector_size(FASTRON_SIMD_WIDTH * 4)));
 
 inline Floats load(const float* p) {
   Floats v;
   __builtin_memcpy(&v, p, sizeof v);  // an unaligned load (the support blocks are aligned)
+  return v;
+}
+inline Doubles load(const double* p) {
+  Doubles v;
+  __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
 
@@ -59,6 +68,25 @@ inline Floats mulAdd(Floats a, Floats b, Floats c) {
 #elif FASTRON_SIMD_WIDTH == 8 && defined(__FMA__)
   return reinterpret_cast<Floats>(_mm256_fmadd_ps(
       reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b), reinterpret_cast<__m256>(c)));
+#else
+  return a * b + c;
+#endif
+}
+inline Doubles mulAdd(Doubles a, Doubles b, Doubles c) {
+#if FASTRON_SIMD_WIDTH == 16 && defined(__AVX512F__)
+  return reinterpret_cast<Doubles>(_mm512_fmadd_pd(
+      reinterpret_cast<__m512d>(a), reinterpret_cast<__m512d>(b), reinterpret_cast<__m512d>(c)));
+#elif FASTRON_SIMD_WIDTH == 8 && defined(__FMA__)
+  return reinterpret_cast<Doubles>(_mm256_fmadd_pd(
+      reinterpret_cast<__m256d>(a), reinterpret_cast<__m256d>(b), reinterpret_cast<__m256d>(c)));
+#else
+  return a * b + c;
+#endif
+}
+/// The same for one double (without FMA instructions __builtin_fma would call the C library).
+inline double mulAdd(double a, double b, double c) {
+#ifdef __FMA__
+  return __builtin_fma(a, b, c);
 #else
   return a * b + c;
 #endif

@@ -11,6 +11,8 @@
 namespace fastron {
 namespace {
 
+static_assert(detail::kMaxGramFeatures == kMaxFeatureDimension);
+
 void checkLabels(std::span<const std::int8_t> labels, const char* what) {
   for (std::size_t i = 0; i < labels.size(); ++i) {
     if (labels[i] != 1 && labels[i] != -1) {

@@ -409,7 +409,7 @@ void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float*
     } else {
       const detail::LaneChain chain{laneSteps_.data(), laneSteps_.size(), lanePoints_.data(),
                                     lanePoints_.size(), dof_};
-      detail::placeLanesOf(activeSimdPath())(chain, q + b * dof_, count, out + b * coordinates);
+      detail::activePlaceLanes()(chain, q + b * dof_, count, out + b * coordinates);
     }
   }
 }

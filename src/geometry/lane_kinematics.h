@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "fastron/core/simd.h"
+#include "../core/simd_dispatch.h"
 #include "fastron/geometry/detail/lane_chain.h"
 
 namespace fastron::detail {
@@ -13,9 +13,6 @@ namespace fastron::detail {
 /// Float positions of `count` configurations (rows of q, chain.dof values each), the lanes of a
 /// register computed together: `out` gets 3 * chain.pointCount values per configuration.
 using PlaceLanes = void (*)(const LaneChain& chain, const double* q, std::size_t count, float* out);
-
-/// The function of `path` (throws InvalidArgument when this build does not have it).
-PlaceLanes placeLanesOf(SimdPath path);
 
 namespace portable {
 extern const PlaceLanes kPlaceLanes;
@@ -25,6 +22,13 @@ extern const PlaceLanes kPlaceLanes;
 }
 namespace avx512 {
 extern const PlaceLanes kPlaceLanes;
+}
+
+/// The function of the path in use (through activeSimdPath(): the atomic of core's inline
+/// currentSimdPath is not exported; one call per batch of up to sixteen configurations).
+inline PlaceLanes activePlaceLanes() {
+  return ofSimdPath(activeSimdPath(), portable::kPlaceLanes, avx2::kPlaceLanes,
+                    avx512::kPlaceLanes);
 }
 
 }  // namespace fastron::detail

@@ -15,22 +15,13 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/model.h"
+#include "simd_path_guard.h"
 #include "test_worlds.h"
 
 namespace fastron {
 namespace {
 
-/// Puts the path back as it was when the test ends.
-class SimdPathGuard {
- public:
-  SimdPathGuard() : saved_(activeSimdPath()) {}
-  ~SimdPathGuard() { useSimdPath(saved_); }
-  SimdPathGuard(const SimdPathGuard&) = delete;
-  SimdPathGuard& operator=(const SimdPathGuard&) = delete;
-
- private:
-  SimdPath saved_;
-};
+using test::SimdPathGuard;
 
 Model randomModel(std::size_t dim, KernelType type, double gamma, unsigned seed) {
   const Configurations s = test::uniformPoints(53, dim, seed);  // 53: a partly padded block

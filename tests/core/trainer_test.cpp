@@ -9,6 +9,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/reference_trainer.h"
 #include "fastron/core/simd.h"
+#include "simd_path_guard.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -238,7 +239,7 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
   p.maxSupportPoints = c.cap;
   const ReferenceTraining reference = trainReference(q, y, p);
   // Algorithm 1's passes run on the active SIMD path (gram_columns_impl.h): each must match.
-  const SimdPath saved = activeSimdPath();
+  const test::SimdPathGuard guard;
   for (const SimdPath path : supportedSimdPaths()) {
     SCOPED_TRACE(toString(path));
     useSimdPath(path);
@@ -265,7 +266,6 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
     EXPECT_GE(report.iterations, std::min<std::size_t>(100, c.cap))
         << "the case must exercise Algorithm 1";
   }
-  useSimdPath(saved);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeded, AgainstReference,

@@ -20,6 +20,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"
+#include "simd_path_guard.h"
 #include "temp_dir.h"
 #include "test_worlds.h"
 
@@ -91,7 +92,7 @@ void expectPositionsMatchForwardKinematics(const Robot& robot,
 // The batched positions are compiled once per SIMD path (simd.h): each path this processor runs
 // places the points where the forward kinematics does, with angles beyond one turn too.
 TEST(ControlPoints, EverySimdPathPlacesThePointsLikeForwardKinematics) {
-  const SimdPath saved = activeSimdPath();
+  const test::SimdPathGuard guard;
   for (const std::string name : {"baxter", "panda", "psm"}) {
     const Robot robot = loadRobot(name);
     const RobotPointKinematics kinematics(robot, defaultControlPoints(robot));
@@ -114,7 +115,6 @@ TEST(ControlPoints, EverySimdPathPlacesThePointsLikeForwardKinematics) {
       }
     }
   }
-  useSimdPath(saved);
 }
 
 TEST(ControlPoints, PositionsEqualForwardKinematicsOnEveryShippedRobot) {
@@ -367,7 +367,7 @@ TEST(TaskSpaceFeatures, FloatQueriesFollowTheDoubleSum) {
   const auto model = trainer.model();
   const double weights = model->weights().cwiseAbs().sum();
   const Configurations q = uniformConfigurations(baxter.limits(), 20000, rng);
-  const SimdPath saved = activeSimdPath();
+  const test::SimdPathGuard guard;
   for (const SimdPath path : supportedSimdPaths()) {
     useSimdPath(path);
     const Eigen::VectorXd batch = model->scoreBatch(q);
@@ -384,7 +384,6 @@ TEST(TaskSpaceFeatures, FloatQueriesFollowTheDoubleSum) {
     EXPECT_LE(signs, 4u) << toString(path) << " (of 40000)";
     RecordProperty("worst_" + std::string(toString(path)), std::to_string(worst / weights));
   }
-  useSimdPath(saved);
 }
 
 // Features that coincide for distinct configurations (the last joint turns the hand about the

@@ -1,12 +1,11 @@
 #pragma once
-// Which SIMD instructions the model's kernel sums and the batched task-space features run on,
-// chosen when the program runs.
+// Which SIMD instructions the library's hot loops run on, chosen when the program runs.
 //
-// The kernel sums (every `Model` query) and the batched control-point positions
-// (`RobotPointKinematics::positionsBatch`, every edge check on a task-space model) are compiled
-// three times, for plain x86-64 (SSE2), for AVX2 with FMA and for AVX-512, and the library picks
-// the widest this processor supports, so a binary built on one x86-64 machine runs on any other
-// (a portable build: FASTRON_NATIVE=OFF).
+// The kernel sums of every `Model` query, the batched control-point positions
+// (`RobotPointKinematics::positionsBatch`, every edge check on a task-space model) and the two
+// passes of each Algorithm 1 iteration are compiled three times, for plain x86-64 (SSE2), for
+// AVX2 with FMA and for AVX-512, and the library picks the widest this processor supports, so a
+// binary built on one x86-64 machine runs on any other (a portable build: FASTRON_NATIVE=OFF).
 // On other processors there is one path, `portable`. The environment variable FASTRON_SIMD
 // (`portable`, `avx2`, `avx512`) or `useSimdPath` chooses another, to compare them.
 
