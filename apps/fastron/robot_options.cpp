@@ -60,6 +60,9 @@ void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
   cmd.add_option("--control-spacing", options.automatic.minSpacing,
                  "fk: automatic control points at least this far apart on average (m)")
       ->capture_default_str();
+  cmd.add_option("--control-per-body", options.automatic.maxPerBody,
+                 "fk: at most this many automatic control points on one rigid body (0: no limit)")
+      ->capture_default_str();
 }
 
 FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot) {

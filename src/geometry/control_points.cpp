@@ -64,26 +64,43 @@ bool isAncestor(const Robot& robot, int ancestor, int link) {
 
 struct Candidate {
   std::size_t link = 0;
+  std::size_t body = 0;  // the link that starts its rigid body (see rigidBodyOf)
   ControlPoint point;
   std::vector<Eigen::Vector3d> samples;  // world position at each sampled configuration
   double spread = 0;                     // RMS distance from the mean position
 };
 
+/// The link that starts `link`'s rigid body under the actuated joints: the nearest link, `link`
+/// itself or an ancestor, whose parent joint is actuated (or the root). Links joined by fixed or
+/// held joints share it.
+std::size_t rigidBodyOf(const Robot& robot, std::size_t link) {
+  const auto& actuated = robot.actuatedJoints();
+  for (;;) {
+    const int joint = robot.links()[link].parentJoint;
+    if (joint < 0 || std::find(actuated.begin(), actuated.end(), joint) != actuated.end()) {
+      return link;
+    }
+    link = static_cast<std::size_t>(robot.joints()[static_cast<std::size_t>(joint)].parent);
+  }
+}
+
 std::vector<Candidate> candidatePoints(const Robot& robot) {
   std::vector<Candidate> candidates;
   const auto& links = robot.links();
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    candidates.push_back({l, {links[l].name, Eigen::Vector3d::Zero()}, {}, 0});
-  }
+  const auto add = [&](std::size_t link, const Eigen::Vector3d& offset) {
+    candidates.push_back({link, rigidBodyOf(robot, link), {links[link].name, offset}, {}, 0});
+  };
+  for (std::size_t l = 0; l < links.size(); ++l) add(l, Eigen::Vector3d::Zero());
   for (std::size_t l = 0; l < links.size(); ++l) {
     const Eigen::AlignedBox3d bounds = linkBounds(robot, static_cast<int>(l));
     if (bounds.isEmpty()) continue;
+    add(l, bounds.center());
     // A movable joint below the link: its parent is the link or one of the link's descendants.
     const bool hasMovingDescendant =
         std::any_of(robot.joints().begin(), robot.joints().end(), [&](const Joint& joint) {
           return joint.movable() && isAncestor(robot, static_cast<int>(l), joint.parent);
         });
-    if (!hasMovingDescendant) candidates.push_back({l, {links[l].name, farEnd(bounds)}, {}, 0});
+    if (!hasMovingDescendant) add(l, farEnd(bounds));
   }
   return candidates;
 }
@@ -181,7 +198,12 @@ std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
     const bool tooClose = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* other) {
       return meanDistance(c, *other) < std::max(options.minSpacing, kStaticTolerance);
     });
-    if (!tooClose) chosen.push_back(&c);
+    const auto onBody = std::count_if(chosen.begin(), chosen.end(), [&](const Candidate* other) {
+      return other->body == c.body;
+    });
+    const bool bodyFull =
+        options.maxPerBody > 0 && static_cast<std::size_t>(onBody) >= options.maxPerBody;
+    if (!tooClose && !bodyFull) chosen.push_back(&c);
   }
   if (chosen.empty()) {
     throw InvalidArgument(

@@ -8,6 +8,7 @@
 #include <zlib.h>
 
 #include <cstring>
+#include <set>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -144,7 +145,8 @@ TEST(ControlPoints, AutomaticChoiceIsStableAndDocumented) {
   std::vector<std::string> links;
   for (const auto& p : points) links.push_back(p.link);
   EXPECT_THAT(links, ::testing::ElementsAre("right_hand", "right_wrist", "right_lower_forearm",
-                                            "right_upper_forearm"));
+                                            "right_lower_elbow_cover"));
+  EXPECT_EQ(points[3].offset, Eigen::Vector3d(0, 0, 0.136));  // the centre of its geometry
   for (const auto& name : kRobots) {
     const Robot robot = loadRobot(name);
     const auto chosen = defaultControlPoints(robot);
@@ -153,6 +155,21 @@ TEST(ControlPoints, AutomaticChoiceIsStableAndDocumented) {
   }
   EXPECT_EQ(defaultControlPoints(baxter, {.maxPoints = 2}).size(), 2u);
   EXPECT_THROW(defaultControlPoints(baxter, {.minSpacing = -1}), InvalidArgument);
+}
+
+TEST(ControlPoints, AtMostThreeAutomaticPointsOnOneRigidBody) {
+  // The mesh Panda's hand is large: without the limit its fingertips, its far side and its origin
+  // took all four points, and the forearm, which collides most often after the hand, had none.
+  const Robot panda = loadRobot("panda-mesh");
+  const std::set<std::string> gripper{"panda_link7", "panda_link8", "panda_hand",
+                                      "panda_leftfinger", "panda_rightfinger"};
+  const auto onGripper = [&](const std::vector<ControlPoint>& points) {
+    return std::count_if(points.begin(), points.end(),
+                         [&](const ControlPoint& p) { return gripper.contains(p.link); });
+  };
+  EXPECT_EQ(onGripper(defaultControlPoints(panda)), 3);
+  EXPECT_EQ(onGripper(defaultControlPoints(panda, {.maxPerBody = 0})), 4);
+  EXPECT_EQ(onGripper(defaultControlPoints(panda, {.maxPerBody = 1})), 1);
 }
 
 TEST(ControlPoints, RefusesUnknownLinksAndNoPoints) {

@@ -26,6 +26,10 @@ struct ControlPointOptions {
   /// A candidate closer than this (mean distance over sampled configurations, metres) to a point
   /// already chosen adds little and is skipped.
   double minSpacing = 0.1;
+  /// At most this many points on one rigid body (links joined by fixed or held joints; 0 = no
+  /// limit): a third point on a body adds nothing a kernel over positions can use, and without
+  /// the limit a large hand took every point and left the forearm unseen.
+  std::size_t maxPerBody = 3;
 };
 
 /// The control points a task-space model of `robot` uses by default. Candidates are the origins
