@@ -138,6 +138,14 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--al-variance", o->settings.variance,
                   "changing: active-learning spread sigma^2 in scaled joint space")
       ->check(numberAbove(0));
+  cmd->add_option("--prune-samples", o->settings.pruneSamples,
+                  "changing: also a row 'Fastron (FCL, pruned)': each model without the support "
+                  "points that no answer on this many fresh uniform configurations needs");
+  cmd->add_option(
+         "--merge-radius", o->settings.mergeRadius,
+         "changing: also a row 'Fastron (FCL, merged)': each model with its support points "
+         "of one sign closer than this in feature space merged (D-Fastron)")
+      ->check(numberAbove(0));
   cmd->add_option("--out", o->out, "output folder (default: fastron-results/NAME)");
   cmd->add_flag("--quick", o->settings.quick, "small sizes, for a fast check");
   cmd->add_flag("!--no-plot", o->plot, "skip the PNG plots");

@@ -7,6 +7,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
+#include "fastron/core/support_reduction.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
@@ -47,6 +48,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       fromGjk.initialize(initial);
       if (jointRow) inJoints.initialize(initial);
       Rng rng(seed);
+      Rng reductionRng(seed + 1);  // its own, so the other rows are those of a run without it
       for (std::size_t step = 1; step <= o.steps; ++step) {
         if (progress && (step == 1 || step % 10 == 0)) {
           progress("changing " + name + ", trial " + std::to_string(trial + 1) + "/" +
@@ -76,16 +78,37 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         std::vector<std::tuple<const char*, const ProxyCollisionDetector*, const StepReport*>>
             proxies{{"Fastron (FCL)", &fromFcl, &rf}, {"Fastron (GJK)", &fromGjk, &rg}};
         if (jointRow) proxies.emplace_back("Fastron (FCL, joints)", &inJoints, &rj);
-        for (const auto& [method, proxy, report] : proxies) {
-          const auto model = proxy->model();
-          const Eigen::VectorXd scores = model->scoreBatch(test);
+        const auto modelRow = [&](const std::string& method, const Model& model,
+                                  const StepReport* report) {
+          const Eigen::VectorXd scores = model.scoreBatch(test);
           row(method,
               confusionOf(truth,
                           [&](std::size_t i) { return scores[static_cast<Eigen::Index>(i)] > 0; }),
-              static_cast<double>(model->supportCount()),
+              static_cast<double>(model.supportCount()),
               meanSecondsPerCall(
-                  test, [&](const double* q) { return model->inCollision(q); }, 0.01),
+                  test, [&](const double* q) { return model.inCollision(q); }, 0.01),
               report);
+        };
+        for (const auto& [method, proxy, report] : proxies) {
+          modelRow(method, *proxy->model(), report);
+        }
+        // The reductions of support_reduction.h, timed as part of the update they follow.
+        const auto reducedRow = [&](const std::string& method, auto reduce) {
+          StepReport report = rf;
+          const auto began = std::chrono::steady_clock::now();
+          const std::shared_ptr<const Model> reduced = reduce(*fromFcl.model());
+          report.total += std::chrono::steady_clock::now() - began;
+          modelRow(method, *reduced, &report);
+        };
+        if (o.pruneSamples > 0) {
+          const Configurations heldOut =
+              uniformConfigurations(limits, o.pruneSamples, reductionRng);
+          reducedRow("Fastron (FCL, pruned)",
+                     [&](const Model& m) { return pruneSupport(m, heldOut); });
+        }
+        if (o.mergeRadius > 0) {
+          reducedRow("Fastron (FCL, merged)",
+                     [&](const Model& m) { return mergeSupport(m, o.mergeRadius); });
         }
         const Labels gjkLabels = labelConfigurations(*gjk, test);
         row("FK+GJK", confusionOf(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }),
@@ -136,6 +159,10 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
      << (o.gamma > 0 ? ", gamma " + cell(o.gamma) : "")
      << (o.beta > 0 ? ", beta " + cell(o.beta) : "")
      << (o.variance > 0 ? ", active-learning variance " + cell(o.variance) : "")
+     << (o.pruneSamples > 0 ? "; 'pruned': pruneSupport on " + std::to_string(o.pruneSamples) +
+                                  " fresh uniform configurations per update"
+                            : "")
+     << (o.mergeRadius > 0 ? "; 'merged': mergeSupport with radius " + cell(o.mergeRadius) : "")
      << ". Accuracy, TPR and TNR against FCL on fresh configurations after every update; mean ± "
         "standard deviation over all "
      << "updates of all trials; the paper's values (C++, MoveIt's Baxter, 2018 hardware) beside "
@@ -146,10 +173,11 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
           "paper query | paper update |\n"
        << "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string method :
-         {"Fastron (FCL)", "Fastron (GJK)", "Fastron (FCL, joints)", "FK+GJK", "FK+FCL"}) {
+         {"Fastron (FCL)", "Fastron (FCL, pruned)", "Fastron (FCL, merged)", "Fastron (GJK)",
+          "Fastron (FCL, joints)", "FK+GJK", "FK+FCL"}) {
       if (r.numbers("accuracy", {{"case", name}, {"method", method}}).empty()) continue;
       const auto paper = kPaperChanging.find(
-          {name, method == "Fastron (FCL, joints)" ? std::string("Fastron (FCL)") : method});
+          {name, method.starts_with("Fastron (FCL") ? std::string("Fastron (FCL)") : method});
       md << methodRow(r, method, {{"case", name}, {"method", method}}, "update_s",
                       paper == kPaperChanging.end() ? std::array<std::string, 3>{} : paper->second);
     }

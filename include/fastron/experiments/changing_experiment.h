@@ -24,12 +24,18 @@ struct ChangingOptions {
   /// them), for tuning; 0 keeps the default: the case's gamma and beta for joints,
   /// defaultTrainParams for task space, defaultVariance for the active-learning spread.
   double gamma = 0, beta = 0, variance = 0;
+  /// When > 0, a row "Fastron (FCL, pruned)": the Fastron (FCL) model of each update reduced by
+  /// pruneSupport on this many fresh uniform configurations (support_reduction.h).
+  std::size_t pruneSamples = 0;
+  /// When > 0, a row "Fastron (FCL, merged)": the same model reduced by mergeSupport(radius).
+  double mergeRadius = 0;
   std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
 };
 
 /// One row per (case, trial, step, method): accuracy, tpr, tnr against FCL, support, query_s,
 /// update_s (labelling + training). Methods: "Fastron (FCL)", "Fastron (GJK)" on
-/// options.features, "Fastron (FCL, joints)" when those are task-space, "FK+GJK", "FK+FCL".
+/// options.features, "Fastron (FCL, joints)" when those are task-space, the pruned and merged
+/// rows when asked for, "FK+GJK", "FK+FCL". Their update_s includes the reduction.
 Table runChanging(const ChangingOptions& options, const Progress& progress);
 std::string changingReport(const Table& results, const ChangingOptions& options);
 

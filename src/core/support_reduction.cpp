@@ -1,0 +1,85 @@
+#include "fastron/core/support_reduction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "fastron/core/error.h"
+
+namespace fastron {
+namespace {
+
+/// Support point indices ordered by |weight|, increasing or decreasing.
+std::vector<Eigen::Index> byWeight(const Eigen::VectorXd& weights, bool increasing) {
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(weights.size()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::stable_sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+    return increasing ? std::abs(weights[a]) < std::abs(weights[b])
+                      : std::abs(weights[a]) > std::abs(weights[b]);
+  });
+  return order;
+}
+
+/// `model` with only the support points `rows` (in the support set's order) and these weights.
+std::shared_ptr<const Model> withSupport(const Model& model, std::vector<Eigen::Index> rows,
+                                         const Eigen::VectorXd& weights) {
+  std::sort(rows.begin(), rows.end());
+  return std::make_shared<const Model>(
+      model.features(), model.kernel(),
+      Configurations(model.supportConfigurations()(rows, Eigen::all)),
+      Eigen::VectorXd(weights(rows)));
+}
+
+}  // namespace
+
+std::shared_ptr<const Model> pruneSupport(const Model& model, const Configurations& heldOut) {
+  const Eigen::MatrixXd x = model.features().map(heldOut);  // checks columns and finiteness
+  const Eigen::MatrixXd& support = model.supportFeatures();
+  const Eigen::VectorXd& weights = model.weights();
+
+  // Each support point's term at every held-out point, and their sum f.
+  Eigen::MatrixXd terms(x.rows(), support.rows());
+  for (Eigen::Index i = 0; i < support.rows(); ++i) {
+    const Eigen::VectorXd r2 = (x.rowwise() - support.row(i)).rowwise().squaredNorm();
+    terms.col(i) = weights[i] * r2.unaryExpr([&](double v) { return model.kernel()(v); });
+  }
+  Eigen::VectorXd f = terms.rowwise().sum();
+  const Eigen::Array<bool, Eigen::Dynamic, 1> answers = f.array() > 0;
+
+  std::vector<Eigen::Index> kept;
+  Eigen::VectorXd without(f.size());
+  for (const Eigen::Index i : byWeight(weights, true)) {
+    without = f - terms.col(i);
+    if (((without.array() > 0) == answers).all()) {
+      f.swap(without);
+    } else {
+      kept.push_back(i);
+    }
+  }
+  return withSupport(model, std::move(kept), weights);
+}
+
+std::shared_ptr<const Model> mergeSupport(const Model& model, double radius) {
+  if (!(radius >= 0) || !std::isfinite(radius)) {
+    throw InvalidArgument("merge radius must be finite and >= 0, got " + std::to_string(radius));
+  }
+  const Eigen::MatrixXd& support = model.supportFeatures();
+  Eigen::VectorXd weights = model.weights();
+  std::vector<Eigen::Index> kept;
+  for (const Eigen::Index i : byWeight(model.weights(), false)) {
+    const auto into = std::find_if(kept.begin(), kept.end(), [&](Eigen::Index k) {
+      return (weights[k] > 0) == (weights[i] > 0) &&
+             (support.row(k) - support.row(i)).squaredNorm() < radius * radius;
+    });
+    if (into == kept.end()) {
+      kept.push_back(i);
+    } else {
+      weights[*into] += weights[i];
+    }
+  }
+  return withSupport(model, std::move(kept), weights);
+}
+
+}  // namespace fastron
