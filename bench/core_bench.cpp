@@ -42,7 +42,9 @@ struct TrainingCase {
 TrainingCase trainingCase(const benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto d = static_cast<std::size_t>(state.range(1));
-  TrainingCase c{d, test::uniformPoints(n, d, 1), {}, {}};
+  // Values a float holds exactly: the features a Trainer stores (trainer.cpp), so that the
+  // reference trains on the same ones.
+  TrainingCase c{d, test::uniformPoints(n, d, 1).cast<float>().cast<double>(), {}, {}};
   c.y = ballLabels(c.q, d);
   c.params.kernel.gamma = paperGamma(d);
   c.params.maxIterations = 1'000'000;

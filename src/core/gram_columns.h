@@ -2,7 +2,7 @@
 // The two passes over the training points of each Algorithm 1 iteration (a Gram column; the F
 // update with the search for the most negative margin), compiled once per SimdPath
 // (gram_columns_portable.cpp, gram_columns_avx2.cpp, gram_columns_avx512.cpp) like the kernel
-// sums. In double: see trainer.cpp. Private to core.
+// sums. Summed in double: see trainer.cpp. Private to core.
 
 #include <cstddef>
 
@@ -17,9 +17,11 @@ inline constexpr std::size_t kMaxGramFeatures = 192;
 
 struct GramPasses {
   /// k[j - from] = K(x_i, x_j) for the rows j in [from, rows); x is column-major, rows x
-  /// features.
-  void (*column)(const double* x, std::size_t rows, std::size_t features, std::size_t i,
-                 std::size_t from, KernelType type, double gamma, double* k);
+  /// features, and xf the same values as floats (a Trainer's features are rounded to float):
+  /// which one is read depends on the number of features (gram_columns_impl.h); each float is
+  /// widened to double before any arithmetic, so the column is the same either way.
+  void (*column)(const double* x, const float* xf, std::size_t rows, std::size_t features,
+                 std::size_t i, std::size_t from, KernelType type, double gamma, double* k);
   /// f += delta k over n values, then the most negative margin y_j f_j (returned) and its index
   /// (the first one on ties, in *worst).
   double (*addAndFindWorst)(double* f, const double* y, std::size_t n, const double* k,

@@ -25,7 +25,9 @@ Model::Model(FeatureMap features, Kernel kernel, Configurations supportConfigura
       configurations_(std::move(supportConfigurations)),
       weights_(std::move(weights)) {
   validateSupport();
-  support_ = features_.map(configurations_);  // checks that the configurations are finite
+  // Checks that the configurations are finite. Rounded to float as a Trainer stores them, so a
+  // model rebuilt from its configurations (a file) scores as the trained one did.
+  support_ = features_.map(configurations_).cast<float>().cast<double>();
   buildQueryCopies();
   checksum_ = computeChecksum();
 }

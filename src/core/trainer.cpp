@@ -22,6 +22,13 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
   }
 }
 
+// Training features are rounded to float once, when points are added (queries compute features in
+// float too; a model rebuilt from its configurations rounds them alike), and kept twice: as
+// doubles, and as floats for the Gram columns of many features, half the bytes streamed per
+// column (gram_columns_impl.h). A float widens to double exactly, so either copy gives the same
+// column.
+constexpr double kMaxTrainingFeature = 1e30;
+
 // Gram columns are double: F is compared against 0 (Claim 1) and the revert safeguard counts
 // signs, and float kernel values (rounded to 1e-7 relative) move F by up to 1e-4 when weights
 // reach beta = 500 over a few thousand support points, more than the smallest margins training
@@ -31,9 +38,9 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 
 /// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()), on the active SIMD path
 /// (gram_columns_impl.h).
-void gramColumn(const Eigen::MatrixXd& x, Eigen::Index i, Eigen::Index from, const Kernel& kernel,
-                double* k) {
-  detail::activeGramPasses().column(x.data(), static_cast<std::size_t>(x.rows()),
+void gramColumn(const Eigen::MatrixXd& x, const Eigen::MatrixXf& xf, Eigen::Index i,
+                Eigen::Index from, const Kernel& kernel, double* k) {
+  detail::activeGramPasses().column(x.data(), xf.data(), static_cast<std::size_t>(x.rows()),
                                     static_cast<std::size_t>(x.cols()), static_cast<std::size_t>(i),
                                     static_cast<std::size_t>(from), kernel.type, kernel.gamma, k);
 }
@@ -97,7 +104,7 @@ Trainer::Trainer(FeatureMap features, TrainParams params)
 }
 
 void Trainer::computeColumn(Eigen::Index i) {
-  gramColumn(x_, i, 0, params_.kernel, column_.data());
+  gramColumn(x_, xf_, i, 0, params_.kernel, column_.data());
   ++columnsComputed_;
 }
 
@@ -108,13 +115,20 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   }
   checkLabels(labels, "new point");
   const Eigen::MatrixXd input = features_.map(q);  // checks the column count and finiteness
+  if (input.size() > 0 && !(input.cwiseAbs().maxCoeff() <= kMaxTrainingFeature)) {
+    throw InvalidArgument(
+        "features of the new points must be at most 1e30 in magnitude (training "
+        "and queries compute them in float)");
+  }
 
   const Eigen::Index oldN = x_.rows();
   const Eigen::Index added = q.rows();
   q_.conservativeResize(oldN + added, Eigen::NoChange);
   q_.bottomRows(added) = q;
+  xf_.conservativeResize(oldN + added, input.cols());
+  xf_.bottomRows(added) = input.cast<float>();
   x_.conservativeResize(oldN + added, Eigen::NoChange);
-  x_.bottomRows(added) = input;
+  x_.bottomRows(added) = xf_.bottomRows(added).cast<double>();
   y_.conservativeResize(oldN + added);
   for (Eigen::Index i = 0; i < added; ++i) y_[oldN + i] = labels[static_cast<std::size_t>(i)];
   alpha_.conservativeResize(oldN + added);
@@ -126,7 +140,7 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   f_.tail(added).setZero();
   for (Eigen::Index s = 0; s < oldN; ++s) {
     if (alpha_[s] == 0) continue;
-    gramColumn(x_, s, oldN, params_.kernel, column_.data());
+    gramColumn(x_, xf_, s, oldN, params_.kernel, column_.data());
     f_.tail(added) += alpha_[s] * Eigen::Map<const Eigen::VectorXd>(column_.data(), added);
   }
 }
@@ -239,6 +253,7 @@ void Trainer::removeNonSupportPoints() {
   const auto n = static_cast<Eigen::Index>(keep.size());
   q_ = q_(keep, Eigen::all).eval();
   x_ = x_(keep, Eigen::all).eval();
+  xf_ = xf_(keep, Eigen::all).eval();
   y_ = y_(keep).eval();
   alpha_ = alpha_(keep).eval();
   f_ = f_(keep).eval();

@@ -3,6 +3,7 @@
 
 #include "fastron/core/trainer.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "fastron/core/active_learning.h"
@@ -10,6 +11,7 @@
 #include "fastron/core/reference_trainer.h"
 #include "fastron/core/simd.h"
 #include "simd_path_guard.h"
+#include "temp_dir.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -237,7 +239,10 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
           .label(q.leftCols(static_cast<Eigen::Index>(ballDim)));
   TrainParams p = uncapped(c.gamma, c.beta);
   p.maxSupportPoints = c.cap;
-  const ReferenceTraining reference = trainReference(q, y, p);
+  // On the features as a Trainer stores them: rounded to float (trainer.cpp).
+  const Eigen::MatrixXd features =
+      FeatureMap::jointScaling(JointLimits::unitBox(c.dim)).map(q).cast<float>().cast<double>();
+  const ReferenceTraining reference = trainReference(features, y, p);
   // Algorithm 1's passes run on the active SIMD path (gram_columns_impl.h): each must match.
   const test::SimdPathGuard guard;
   for (const SimdPath path : supportedSimdPaths()) {
@@ -313,6 +318,24 @@ TEST(Trainer, JointLimitsScaleIntoInputSpace) {
   EXPECT_NEAR(trainer.points()(1, 1), 0.5, 1e-12);
 }
 
+TEST(Trainer, StoresFeaturesRoundedToFloatAsARebuiltModelDoes) {
+  const Configurations q = test::uniformPoints(300, 3, 95);
+  Trainer trainer(JointLimits(Eigen::Vector3d(-3, -2, -1), Eigen::Vector3d(3.1, 2.2, 1.3)),
+                  uncapped(10, 1));
+  trainer.addPoints(q, test::BallWorld::random(3, 3, 0.5, 96).label(q));
+  trainer.update();
+  EXPECT_EQ(trainer.points(), trainer.points().cast<float>().cast<double>());
+  const auto trained = trainer.model();
+  // A model rebuilt from its configurations (as a model file is loaded) has the same features, so
+  // the same scores bit for bit.
+  const Model rebuilt(trained->features(), trained->kernel(), trained->supportConfigurations(),
+                      trained->weights());
+  EXPECT_EQ(rebuilt.supportFeatures(), trained->supportFeatures());
+  for (Eigen::Index i = 0; i < 20; ++i) {
+    EXPECT_EQ(rebuilt.scoreExact(q.row(i).data()), trained->scoreExact(q.row(i).data()));
+  }
+}
+
 TEST(Trainer, RejectsBadInput) {
   EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.beta = 0.5}), InvalidArgument);
   EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.kernel = {KernelType::Gaussian, -1}}),
@@ -327,6 +350,12 @@ TEST(Trainer, RejectsBadInput) {
   EXPECT_THROW(trainer.addPoints(Configurations::Zero(2, 3), Labels{1, -1}), InvalidArgument);
   q(1, 1) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(trainer.addPoints(q, Labels{1, -1}), InvalidArgument);
+  // Beyond float range: training and queries compute features in float.
+  q(1, 1) = 1e31;
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] {
+                trainer.addPoints(q, Labels{1, -1});
+              }),
+              ::testing::HasSubstr("at most 1e30 in magnitude"));
   EXPECT_EQ(trainer.size(), 0u);  // a refused call changes nothing
   EXPECT_THROW(trainer.relabel(Labels{1}), InvalidArgument);
 }

@@ -114,9 +114,10 @@ class Trainer {
 
   FeatureMap features_;
   TrainParams params_;
-  Configurations q_;   // N x dim(), joint values
-  Eigen::MatrixXd x_;  // N x featureDim(), features of q_
-  Eigen::VectorXd y_;  // +1 / -1
+  Configurations q_;    // N x dim(), joint values
+  Eigen::MatrixXd x_;   // N x featureDim(), features of q_ rounded to float
+  Eigen::MatrixXf xf_;  // the same, as floats: what the Gram columns read (trainer.cpp)
+  Eigen::VectorXd y_;   // +1 / -1
   Eigen::VectorXd alpha_;
   Eigen::VectorXd f_;
   std::size_t supportCount_ = 0;
