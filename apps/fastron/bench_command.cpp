@@ -138,6 +138,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--al-variance", o->settings.variance,
                   "changing: active-learning spread sigma^2 in scaled joint space")
       ->check(numberAbove(0));
+  cmd->add_option("--active-samples", o->settings.activeSamples,
+                  "changing: A_max, the active-learning configurations of each update of the "
+                  "models on --features (default 500, the paper's)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--prune-samples", o->settings.pruneSamples,
                   "changing: also a row 'Fastron (FCL, pruned)': each model without the support "
                   "points that no answer on this many fresh uniform configurations needs");

@@ -42,6 +42,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
       if (o.beta > 0) params.train.beta = o.beta;
       params.activeLearning.variance = o.variance;
+      if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
           inJoints(fcl, limits, withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
       fromFcl.initialize(initial);
@@ -159,6 +160,7 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
      << (o.gamma > 0 ? ", gamma " + cell(o.gamma) : "")
      << (o.beta > 0 ? ", beta " + cell(o.beta) : "")
      << (o.variance > 0 ? ", active-learning variance " + cell(o.variance) : "")
+     << (o.activeSamples > 0 ? ", A_max " + std::to_string(o.activeSamples) : "")
      << (o.pruneSamples > 0 ? "; 'pruned': pruneSupport on " + std::to_string(o.pruneSamples) +
                                   " fresh uniform configurations per update"
                             : "")

@@ -101,7 +101,8 @@ std::vector<Experiment> makeRegistry() {
                  }});
   all.push_back({"changing",
                  "Baxter among moving boxes: accuracy and update time per step",
-                 {"features", "gamma", "beta", "al-variance", "prune-samples", "merge-radius"},
+                 {"features", "gamma", "beta", "al-variance", "active-samples", "prune-samples",
+                  "merge-radius"},
                  [](const ExperimentSettings& s, const Progress& progress) {
                    ChangingOptions o;
                    o.trials = trialsOr(s, 3);
@@ -110,6 +111,7 @@ std::vector<Experiment> makeRegistry() {
                    o.gamma = s.gamma;
                    o.beta = s.beta;
                    o.variance = s.variance;
+                   o.activeSamples = s.activeSamples;
                    o.pruneSamples = s.pruneSamples;
                    o.mergeRadius = s.mergeRadius;
                    if (s.quick) o.cases = {"4dof", "7dof-3boxes"};

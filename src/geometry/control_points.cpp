@@ -94,7 +94,6 @@ std::vector<Candidate> candidatePoints(const Robot& robot) {
   for (std::size_t l = 0; l < links.size(); ++l) {
     const Eigen::AlignedBox3d bounds = linkBounds(robot, static_cast<int>(l));
     if (bounds.isEmpty()) continue;
-    add(l, bounds.center());
     // A movable joint below the link: its parent is the link or one of the link's descendants.
     const bool hasMovingDescendant =
         std::any_of(robot.joints().begin(), robot.joints().end(), [&](const Joint& joint) {

@@ -25,6 +25,7 @@ struct ExperimentSettings {
   double timeLimit = 0, resolution = 0;      ///< planning experiments
   double simplifyTime = -1;                  ///< planning experiments; < 0: default
   double gamma = 0, beta = 0, variance = 0;  ///< changing
+  std::size_t activeSamples = 0;             ///< changing
   std::size_t pruneSamples = 0;              ///< changing
   double mergeRadius = 0;                    ///< changing
   // motion-bench
