@@ -45,13 +45,6 @@ inline Doubles load(const double* p) {
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
-/// kDoubles floats widened to a register of doubles (exactly: every float is a double).
-using HalfFloats = float __attribute__((vector_size(FASTRON_SIMD_WIDTH * 2)));
-inline Doubles loadWidened(const float* p) {
-  HalfFloats v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return __builtin_convertvector(v, Doubles);
-}
 
 /// value in every lane: one broadcast. (Written as Floats{} + value it would also add 0, which the
 /// compiler must keep, -0 + 0 being +0; written lane by lane it became sixteen inserts.)

@@ -27,8 +27,9 @@ struct ControlPointOptions {
   /// already chosen adds little and is skipped.
   double minSpacing = 0.1;
   /// At most this many points on one rigid body (links joined by fixed or held joints; 0 = no
-  /// limit): a third point on a body adds nothing a kernel over positions can use, and without
-  /// the limit a large hand took every point and left the forearm unseen.
+  /// limit): three fix the body's pose, so a fourth adds nothing a kernel over positions can use,
+  /// and without the limit the mesh Panda's large hand took every point and left the forearm
+  /// unseen.
   std::size_t maxPerBody = 3;
 };
 
@@ -39,7 +40,8 @@ struct ControlPointOptions {
 /// seeded random configurations; a candidate that stays within 1 mm of one place is dropped.
 /// The rest are taken in order of how much they move (standard deviation of the position, the
 /// points far down the chain first), skipping one closer than options.minSpacing on average to
-/// a point already taken, up to options.maxPoints. The result depends only on the robot.
+/// a point already taken or on a rigid body that has options.maxPerBody points already, up to
+/// options.maxPoints. The result depends only on the robot.
 std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
                                                const ControlPointOptions& options = {});
 
