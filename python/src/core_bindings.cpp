@@ -14,6 +14,7 @@
 #include "fastron/core/model.h"
 #include "fastron/core/model_file.h"
 #include "fastron/core/simd.h"
+#include "fastron/core/support_reduction.h"
 #include "fastron/core/trainer.h"
 #include "python_checker.h"
 
@@ -196,6 +197,26 @@ void bindCore(py::module_& m) {
         "Algorithm 1 on labelled configurations X (n, d) and labels y (n,) (+1 / -1 or bool). "
         "Features: `features`, else joint scaling by `limits`, else by the data's range. Returns "
         "(Model, UpdateReport). The GIL is released while it trains.");
+
+  m.def(
+      "prune_support",
+      [](const Model& model, py::handle x) {
+        const ConfigurationRows rows = configurations(x, model.dim(), "X", false);
+        py::gil_scoped_release released;
+        return std::const_pointer_cast<Model>(pruneSupport(model, Configurations(rows.matrix())));
+      },
+      py::arg("model"), py::arg("X"),
+      "A model without the support points that no answer on the configurations X (n, d) needs: "
+      "tried smallest |weight| first, dropped while every row of X keeps its answer. No labels "
+      "needed; X should be fresh configurations spread as the queries will be.");
+  m.def(
+      "merge_support",
+      [](const Model& model, double radius) {
+        return std::const_pointer_cast<Model>(mergeSupport(model, radius));
+      },
+      py::arg("model"), py::arg("radius"),
+      "A model whose support points of one sign closer than radius in feature space are merged "
+      "into the heaviest one near them (D-Fastron's clustering), which takes their weight.");
 
   py::class_<ConfusionCounts>(m, "ConfusionCounts",
                               "Predictions against labels, 'positive' meaning in collision.")

@@ -37,6 +37,23 @@ def test_batch_and_single_queries_agree():
     assert model.first_in_collision(x[:50]) == (hits[0] if hits.size else None)
 
 
+def test_pruned_and_merged_models_keep_their_answers():
+    x, y = disc_data()
+    model, _ = fastron.train(x, y, gamma=30, beta=5)
+    held_out, _ = disc_data(3000, seed=11)
+    pruned = fastron.prune_support(model, held_out)
+    assert pruned.support_count <= model.support_count
+    assert np.array_equal(pruned.in_collision(held_out), model.in_collision(held_out))
+    assert fastron.merge_support(model, 0.0).support_count == model.support_count
+    merged = fastron.merge_support(model, 0.5)
+    assert merged.support_count < model.support_count
+    assert np.isclose(merged.weights.sum(), model.weights.sum())
+    with pytest.raises(fastron.InvalidArgument, match="merge radius"):
+        fastron.merge_support(model, -1.0)
+    with pytest.raises(fastron.InvalidArgument):
+        fastron.prune_support(model, held_out[:, :1])
+
+
 def test_every_simd_path_gives_the_same_answers():
     x, y = disc_data()
     model, _ = fastron.train(x, y, gamma=30, beta=5)
