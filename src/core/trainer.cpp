@@ -26,7 +26,7 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 // float too; a model rebuilt from its configurations rounds them alike), and kept twice: as
 // doubles, and as floats for the Gram columns of many features, half the bytes streamed per
 // column (gram_columns_impl.h). A float widens to double exactly, so either copy gives the same
-// column.
+// column. Beyond this a feature would be infinite as a float (as in Model's query copies).
 constexpr double kMaxTrainingFeature = 1e30;
 
 // Gram columns are double: F is compared against 0 (Claim 1) and the revert safeguard counts
