@@ -164,15 +164,24 @@ void bindGeometry(py::module_& m) {
 
   m.def(
       "robot_features",
-      [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points) {
-        return robotFeatures(
-            robot, parseFeatureKind(kind),
-            points.empty() ? std::vector<ControlPoint>{} : namedControlPoints(robot, points));
+      [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points,
+         std::size_t maxPoints, double minSpacing, std::size_t maxPerBody) {
+        const FeatureKind parsed = parseFeatureKind(kind);
+        if (parsed == FeatureKind::JointScaling) return robotFeatures(robot, parsed);
+        return robotFeatures(robot, parsed,
+                             points.empty()
+                                 ? defaultControlPoints(robot, {maxPoints, minSpacing, maxPerBody})
+                                 : namedControlPoints(robot, points));
       },
       py::arg("robot"), py::arg("kind") = "fk",
-      py::arg("control_points") = std::vector<std::string>{},
+      py::arg("control_points") = std::vector<std::string>{}, py::kw_only(),
+      py::arg("max_points") = ControlPointOptions{}.maxPoints,
+      py::arg("min_spacing") = ControlPointOptions{}.minSpacing,
+      py::arg("max_per_body") = ControlPointOptions{}.maxPerBody,
       "The features a model of `robot` learns on: 'fk' (world positions of control points: "
-      "'LINK' or 'LINK@X:Y:Z'; default: chosen automatically) or 'joints' (joint scaling).");
+      "'LINK' or 'LINK@X:Y:Z'; default: chosen automatically, at most max_points of them, "
+      "min_spacing metres apart on average, max_per_body on one rigid body; 0 = no limit) or "
+      "'joints' (joint scaling).");
   m.def(
       "load_model",
       [](const std::filesystem::path& path, const std::optional<Robot>& robot) {

@@ -24,6 +24,20 @@ def test_robot_and_forward_kinematics(baxter):
     assert np.abs(moved - one).max() > 0.1
 
 
+def test_automatic_control_points_follow_their_limits(baxter):
+    assert fastron.robot_features(baxter).feature_dim == 12  # 4 points by default
+    assert fastron.robot_features(baxter, max_points=2).feature_dim == 6
+    assert fastron.robot_features(baxter, max_points=0).feature_dim > 12
+    assert fastron.robot_features(baxter, "joints", max_points=2).feature_dim == 7
+    mesh = fastron.load_robot("panda-mesh")
+    # Three points at most on the hand's rigid body; without the limit it takes all four.
+    a = fastron.robot_features(mesh).map(np.zeros(7))
+    b = fastron.robot_features(mesh, max_per_body=0).map(np.zeros(7))
+    assert a.shape == b.shape == (12,) and not np.array_equal(a, b)
+    with pytest.raises(fastron.InvalidArgument, match="spacing"):
+        fastron.robot_features(baxter, min_spacing=-1)
+
+
 def test_checkers_agree_with_the_command_labels(tmp_path, fastron_command, baxter, baxter_fcl):
     import subprocess
     data = tmp_path / "s.csv"
