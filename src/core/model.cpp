@@ -81,12 +81,9 @@ void Model::validateSupport() const {
 }
 
 void Model::buildQueryCopies() {
-  // The copies are float: a weight or feature beyond its range would be infinite there (and
-  // 0 * inf = NaN in the kernel sum). The margin leaves room for sums of many of them.
-  constexpr double kMaxQueryValue = 1e30;
-  if (weights_.size() > 0 && weights_.cwiseAbs().maxCoeff() > kMaxQueryValue)
+  if (weights_.size() > 0 && weights_.cwiseAbs().maxCoeff() > kMaxFloatValue)
     throw InvalidArgument("weights must be at most 1e30 in magnitude (queries sum in float)");
-  if (support_.size() > 0 && !(support_.cwiseAbs().maxCoeff() <= kMaxQueryValue)) {
+  if (support_.size() > 0 && !(support_.cwiseAbs().maxCoeff() <= kMaxFloatValue)) {
     throw InvalidArgument(
         "support features must be at most 1e30 in magnitude (a support configuration far outside "
         "the joint limits?)");

@@ -97,15 +97,17 @@ void useSimdPath(SimdPath path) {
 }
 
 SimdPath activeSimdPath() {
-  const int path = detail::activeSimdPathIndex.load(std::memory_order_acquire);
-  if (path >= 0) return static_cast<SimdPath>(path);
-  // First use: two threads may both get here; they choose the same path.
-  const SimdPath chosen = simdPathFor(std::getenv("FASTRON_SIMD"));
-  useSimdPath(chosen);
-  return chosen;
+  return detail::currentSimdPath();
 }
 
 namespace detail {
 std::atomic<int> activeSimdPathIndex{-1};
+
+SimdPath chooseSimdPath() {
+  // Two threads may both get here; they choose the same path.
+  const SimdPath chosen = simdPathFor(std::getenv("FASTRON_SIMD"));
+  useSimdPath(chosen);
+  return chosen;
+}
 }  // namespace detail
 }  // namespace fastron

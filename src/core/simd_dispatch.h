@@ -11,12 +11,15 @@ namespace fastron::detail {
 
 /// The path in use, as an int; -1 until the first query or useSimdPath chooses one (simd.cpp).
 extern std::atomic<int> activeSimdPathIndex;
+/// First use: the path FASTRON_SIMD asks for, else the widest this processor runs, made the
+/// path in use.
+SimdPath chooseSimdPath();
 
-/// The path in use: one atomic load on core's hot paths (activeSimdPath() chooses it on first
-/// use). Not for other layers: the atomic is not exported from the shared library.
+/// The path in use: one atomic load, inline on core's hot paths (activeSimdPath() is this, out of
+/// line). Not for other layers: the atomic is not exported from the shared library.
 inline SimdPath currentSimdPath() {
   const int path = activeSimdPathIndex.load(std::memory_order_acquire);
-  return path >= 0 ? static_cast<SimdPath>(path) : activeSimdPath();
+  return path >= 0 ? static_cast<SimdPath>(path) : chooseSimdPath();
 }
 
 /// The object of `path` among the three compiled per path.

@@ -39,19 +39,20 @@ std::shared_ptr<const Model> pruneSupport(const Model& model, const Configuratio
   const Eigen::MatrixXd& support = model.supportFeatures();
   const Eigen::VectorXd& weights = model.weights();
 
-  // Each support point's term at every held-out point, and their sum f.
-  Eigen::MatrixXd terms(x.rows(), support.rows());
-  for (Eigen::Index i = 0; i < support.rows(); ++i) {
+  // Support point i's term at every held-out point, computed when needed (twice per point)
+  // rather than kept: |S| x H of them would be hundreds of megabytes for large held-out sets.
+  const auto termOf = [&](Eigen::Index i) -> Eigen::VectorXd {
     const Eigen::VectorXd r2 = (x.rowwise() - support.row(i)).rowwise().squaredNorm();
-    terms.col(i) = weights[i] * r2.unaryExpr([&](double v) { return model.kernel()(v); });
-  }
-  Eigen::VectorXd f = terms.rowwise().sum();
+    return weights[i] * r2.unaryExpr([&](double v) { return model.kernel()(v); });
+  };
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(x.rows());
+  for (Eigen::Index i = 0; i < support.rows(); ++i) f += termOf(i);
   const Eigen::Array<bool, Eigen::Dynamic, 1> answers = f.array() > 0;
 
   std::vector<Eigen::Index> kept;
   Eigen::VectorXd without(f.size());
   for (const Eigen::Index i : byWeight(weights, true)) {
-    without = f - terms.col(i);
+    without = f - termOf(i);
     if (((without.array() > 0) == answers).all()) {
       f.swap(without);
     } else {

@@ -26,8 +26,7 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 // float too; a model rebuilt from its configurations rounds them alike), and kept twice: as
 // doubles, and as floats for the Gram columns of many features, half the bytes streamed per
 // column (gram_columns_impl.h). A float widens to double exactly, so either copy gives the same
-// column. Beyond this a feature would be infinite as a float (as in Model's query copies).
-constexpr double kMaxTrainingFeature = 1e30;
+// column.
 
 // Gram columns are double: F is compared against 0 (Claim 1) and the revert safeguard counts
 // signs, and float kernel values (rounded to 1e-7 relative) move F by up to 1e-4 when weights
@@ -115,7 +114,7 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   }
   checkLabels(labels, "new point");
   const Eigen::MatrixXd input = features_.map(q);  // checks the column count and finiteness
-  if (input.size() > 0 && !(input.cwiseAbs().maxCoeff() <= kMaxTrainingFeature)) {
+  if (input.size() > 0 && !(input.cwiseAbs().maxCoeff() <= kMaxFloatValue)) {
     throw InvalidArgument(
         "features of the new points must be at most 1e30 in magnitude (training "
         "and queries compute them in float)");

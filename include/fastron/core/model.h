@@ -31,6 +31,11 @@ struct CacheLineAllocator {
 };
 }  // namespace detail
 
+/// The largest magnitude of a feature or weight a model (and a Trainer) takes: queries sum in
+/// float, where a larger value would be infinite (and 0 * inf = NaN in the kernel sum); the margin
+/// below float's largest leaves room for sums of many of them.
+inline constexpr double kMaxFloatValue = 1e30;
+
 /// Immutable once built, so one instance can be queried from any number of threads; queries do
 /// not allocate. Queries take joint values; the model maps them to its features itself (joint
 /// scaling to [-1, 1]^d, or the world positions of control points: see feature_map.h).
