@@ -63,8 +63,8 @@ void columnByRow(const double* x, std::size_t rows, std::size_t features, std::s
 // Many features (more than kRowFeatures): rows go in blocks whose squared distances stay in L1
 // while every feature column adds to them (with 27 features, summing into the whole column
 // instead moved it through the cache 27 times). The features are read as floats, half the bytes:
-// N 8000 x 27 of them then stay in this machine's 1 MB L2 (d 18: 11.5 -> 9.1 ms, d 27: 22.2 ->
-// 14.8 ms for all of Algorithm 1). Widened to double, each value is the double the Trainer holds.
+// N 8000 x 27 of them then stay in this machine's 1 MB L2 (d 18: 11.5 -> 9.5 ms, d 27: 22.2 ->
+// 15.8 ms for all of Algorithm 1). Widened to double, each value is the double the Trainer holds.
 constexpr std::size_t kBlock = 256;
 
 void columnByFeature(const float* x, std::size_t rows, std::size_t features, std::size_t i,
@@ -100,7 +100,8 @@ void columnByFeature(const float* x, std::size_t rows, std::size_t features, std
 // against 3.63 ms, d 9 3.95 against 4.00 ms for all of Algorithm 1), beyond it a feature at a
 // time (d 18 10.3 against 10.7 ms, d 27 18.0 against 21.1 ms: more streams than the prefetchers
 // follow). Both compute every value alike. The register path reads doubles: up to 12 features the
-// points stay in L2 anyway, and widening floats cost it 3-7% (d 7 3.10 against 2.90 ms).
+// points stay in L2 anyway, and reading floats measured 2.90-3.10 ms at d 7 against 2.73-2.82 ms
+// with doubles (separate runs).
 constexpr std::size_t kRowFeatures = 12;
 
 void column(const double* x, const float* xf, std::size_t rows, std::size_t features, std::size_t i,
