@@ -7,6 +7,7 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/simd.h"
+#include "fastron/core/trainer.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
@@ -119,17 +120,20 @@ BENCHMARK(BM_ControlPointsBatch)
     ->ArgsProduct({{2, 4}, {4}, {2, 3, 4, 16, 64}})
     ->ArgNames({"robot", "points", "batch"});
 
-// A whole task-space query on Baxter (4 automatic control points, gamma 40): |S| random support
+// A whole task-space query on Baxter (4 automatic control points): |S| random support
 // configurations with random weights. batch 1: Model::score one configuration at a time;
 // batch 16: Model::scoreBatch (features for sixteen at once, kernel sums four per pass), the
-// path of edge checks. Time per configuration.
+// path of edge checks. terms 1: the default kernel for task space (a term per control point and
+// the whole vector's); terms 0: one term (gamma 40). Time per configuration.
 void BM_TaskSpaceQuery(benchmark::State& state) {
   const Robot robot = loadRobot("baxter");
   const auto support = static_cast<std::size_t>(state.range(0));
   const auto batch = static_cast<std::size_t>(state.range(1));
+  const bool pointTerms = state.range(2) != 0;
   Rng rng(13);
   const Model model(robotFeatures(robot, FeatureKind::Kinematic),
-                    {KernelType::RationalQuadratic, 40},
+                    pointTerms ? defaultTrainParams(FeatureKind::Kinematic).kernel
+                               : Kernel{KernelType::RationalQuadratic, 40},
                     uniformConfigurations(robot.limits(), support, rng),
                     Eigen::VectorXd::Random(static_cast<Eigen::Index>(support)));
   const Configurations q = queries(robot);
@@ -152,7 +156,7 @@ void BM_TaskSpaceQuery(benchmark::State& state) {
 
 // The same on one SIMD path of the kernel sums (simd: 0 portable, 1 AVX2, 2 AVX-512; simd.h).
 void BM_TaskSpaceQueryOnSimdPath(benchmark::State& state) {
-  const auto path = static_cast<SimdPath>(state.range(2));
+  const auto path = static_cast<SimdPath>(state.range(3));
   const std::vector<SimdPath> supported = supportedSimdPaths();
   if (std::find(supported.begin(), supported.end(), path) == supported.end()) {
     state.SkipWithError("this processor cannot run this SIMD path");
@@ -164,11 +168,11 @@ void BM_TaskSpaceQueryOnSimdPath(benchmark::State& state) {
   useSimdPath(saved);
 }
 BENCHMARK(BM_TaskSpaceQuery)
-    ->ArgsProduct({{100, 300, 400, 1000}, {1, 16}})
-    ->ArgNames({"S", "batch"});
+    ->ArgsProduct({{100, 250, 300, 450, 1000}, {1, 16}, {0, 1}})
+    ->ArgNames({"S", "batch", "terms"});
 BENCHMARK(BM_TaskSpaceQueryOnSimdPath)
-    ->ArgsProduct({{300, 1000}, {1, 16}, {0, 1, 2}})
-    ->ArgNames({"S", "batch", "simd"});
+    ->ArgsProduct({{300, 1000}, {1, 16}, {0, 1}, {0, 1, 2}})
+    ->ArgNames({"S", "batch", "terms", "simd"});
 
 template <class Checker>
 void BM_Check(benchmark::State& state) {

@@ -135,6 +135,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--beta", o->settings.beta,
                   "changing: conditional bias of the models on --features")
       ->check(numberAbove(1, true));
+  cmd->add_option("--kernel-block", o->settings.kernelBlock,
+                  "changing: features per kernel point term of the models on --features (0: "
+                  "one term over all features; 3: one per control point, the default for fk)");
+  cmd->add_option("--kernel-whole-share", o->settings.wholeShare,
+                  "changing: the whole feature vector's share of the kernel beside its point "
+                  "terms, in [0, 1]")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--al-variance", o->settings.variance,
                   "changing: active-learning spread sigma^2 in scaled joint space")
       ->check(numberAbove(0));

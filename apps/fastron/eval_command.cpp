@@ -73,7 +73,7 @@ int runEval(const EvalOptions& o) {
   std::cout << "model       " << o.model << ": dimension " << model.dim() << ", "
             << model.supportCount() << " support points, features " << model.features().summary()
             << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
-            << '\n';
+            << ", " << describeTerms(model.kernel(), model.featureDim()) << '\n';
   if (fcl) {
     std::cout << "data        " << data.size() << " uniform configurations of " << o.scene
               << " labelled by FCL (seed " << o.seed << "), "

@@ -27,6 +27,8 @@ struct TrainOptions {
   RobotOptions robot;
   FeatureOptions features;
   std::optional<double> gamma, beta;
+  std::optional<std::uint32_t> kernelBlock;
+  std::optional<double> wholeShare;
   std::optional<std::size_t> maxIterations, maxSupport;
   std::size_t samples = 8000, activeLearning = 0;
   double holdout = 0;
@@ -62,15 +64,18 @@ JointLimits parseLimits(const std::vector<std::string>& items, const Dataset& da
 TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
   defaults.kernel.type = parseKernelType(o.kernel);
   defaults.kernel.gamma = o.gamma.value_or(defaults.kernel.gamma);
+  defaults.kernel.block = o.kernelBlock.value_or(defaults.kernel.block);
+  defaults.kernel.wholeShare = o.wholeShare.value_or(defaults.kernel.wholeShare);
   defaults.beta = o.beta.value_or(defaults.beta);
   defaults.maxIterations = o.maxIterations.value_or(defaults.maxIterations);
   defaults.maxSupportPoints = o.maxSupport.value_or(defaults.maxSupportPoints);
   return defaults;
 }
 
-/// The feature kind's gamma and beta with the given iteration limit and a cap of 5000.
-TrainParams robotDefaults(FeatureKind kind, std::size_t maxIterations) {
-  TrainParams params = defaultTrainParams(kind);
+/// The feature kind's kernel and beta with the given iteration limit and a cap of 5000.
+TrainParams robotDefaults(FeatureKind kind, std::size_t maxIterations,
+                          bool selfCollisionLabels = false) {
+  TrainParams params = defaultTrainParams(kind, selfCollisionLabels);
   params.maxIterations = maxIterations;
   params.maxSupportPoints = 5000;
   return params;
@@ -90,7 +95,8 @@ void printParams(const TrainParams& params, const FeatureMap& features) {
     std::cout << '\n';
   }
   std::cout << "kernel        " << toString(params.kernel.type) << ", gamma " << params.kernel.gamma
-            << ", beta " << params.beta << '\n';
+            << ", " << describeTerms(params.kernel, features.featureDim()) << ", beta "
+            << params.beta << '\n';
 }
 
 void printReport(const UpdateReport& report) {
@@ -111,7 +117,7 @@ int trainOnScene(const TrainOptions& o) {
       std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
   const FeatureMap features = featuresFromOptions(o.features, robot);
   ProxyParams params;
-  params.train = withOptions(robotDefaults(features.kind(), 20000), o);
+  params.train = withOptions(robotDefaults(features.kind(), 20000, o.selfCollision), o);
   params.seed = o.seed;
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
             << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
@@ -217,13 +223,21 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
                 "with --scene: label self-collisions as collisions too");
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
   cmd->add_option("--gamma", o->gamma,
-                  "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
-                  "features, 5 for joints)");
+                  "kernel width (default: 10 for a dataset alone; with --robot 60 for fk "
+                  "features, 40 for fk with --self-collision, 5 for joints)");
   cmd->add_option("--kernel", o->kernel, "rq (rational quadratic) or gaussian")
       ->capture_default_str();
+  cmd->add_option("--kernel-block", o->kernelBlock,
+                  "features per kernel point term: 0 one term over all features, 3 one term per "
+                  "control point (default: 3 for fk features without --self-collision, 0 "
+                  "otherwise)");
+  cmd->add_option("--kernel-whole-share", o->wholeShare,
+                  "with point terms: the whole feature vector's share of the kernel, in [0, 1] "
+                  "(default 1/3)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--beta", o->beta,
-                  "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 10 for "
-                  "fk features, 500 for joints)");
+                  "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 30 for "
+                  "fk features, 10 for fk with --self-collision, 500 for joints)");
   cmd->add_option("--max-iter", o->maxIterations,
                   "iteration limit (default 5000; 20000 with --scene)");
   cmd->add_option("--max-support", o->maxSupport,

@@ -54,6 +54,8 @@ class Model:
     limits: JointLimits
     gamma: float
     kernel: str
+    kernel_block: int
+    kernel_whole_share: float
     support_points: npt.NDArray[np.float64]
     support_features: npt.NDArray[np.float64]
     weights: npt.NDArray[np.float64]
@@ -67,7 +69,9 @@ class Model:
 
 def train(X: ArrayLike, y: ArrayLike, *, features: Optional[FeatureMap] = None,
           limits: Optional[JointLimits] = None, gamma: Optional[float] = None,
-          beta: Optional[float] = None, kernel: str = "rq", max_iterations: Optional[int] = None,
+          beta: Optional[float] = None, kernel: str = "rq", kernel_block: Optional[int] = None,
+          kernel_whole_share: Optional[float] = None, self_collision_labels: bool = False,
+          max_iterations: Optional[int] = None,
           max_support_points: Optional[int] = None) -> tuple[Model, UpdateReport]: ...
 
 class ConfusionCounts:
@@ -173,9 +177,10 @@ class BackgroundHealth:
 class ProxyCollisionDetector:
     def __init__(self, oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],
                  features: FeatureMap, *, seed: int = 1, gamma: Optional[float] = None,
-                 beta: Optional[float] = None, max_support_points: int = 3000,
-                 active_samples: int = 500, label_threads: int = 0,
-                 calibration_samples: int = 1000) -> None: ...
+                 beta: Optional[float] = None, kernel_block: Optional[int] = None,
+                 kernel_whole_share: Optional[float] = None, self_collision_labels: bool = False,
+                 max_support_points: int = 3000, active_samples: int = 500,
+                 label_threads: int = 0, calibration_samples: int = 1000) -> None: ...
     def initialize(self, samples: int) -> StepReport: ...
     def step(self) -> StepReport: ...
     def train_static(self, samples: int, updates: int = 0) -> StepReport: ...

@@ -51,7 +51,9 @@ py::object inCollision(const Model& model, py::handle q) {
 py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
                 std::optional<JointLimits> limits, std::optional<double> gamma,
                 std::optional<double> beta, const std::string& kernel,
-                std::optional<std::size_t> maxIterations, std::optional<std::size_t> maxSupport) {
+                std::optional<std::uint32_t> kernelBlock, std::optional<double> wholeShare,
+                bool selfCollisionLabels, std::optional<std::size_t> maxIterations,
+                std::optional<std::size_t> maxSupport) {
   if (features && limits) throw InvalidArgument("give features= or limits=, not both");
   const std::size_t dim = features ? features->configurationDim() : limits ? limits->dim() : 0;
   const ConfigurationRows rows = configurations(x, dim, "X", false);
@@ -61,9 +63,12 @@ py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
           ? *features
           : FeatureMap::jointScaling(limits ? *limits : rangeOf(rows.matrix(), "give limits="));
   // With a robot's features, the settings tuned for them; on bare data, the paper's defaults.
-  TrainParams params = features ? defaultTrainParams(map.kind()) : TrainParams{};
+  TrainParams params =
+      features ? defaultTrainParams(map.kind(), selfCollisionLabels) : TrainParams{};
   params.kernel.type = parseKernelType(kernel);
   if (gamma) params.kernel.gamma = *gamma;
+  if (kernelBlock) params.kernel.block = *kernelBlock;
+  if (wholeShare) params.kernel.wholeShare = *wholeShare;
   if (beta) params.beta = *beta;
   if (maxIterations) params.maxIterations = *maxIterations;
   if (maxSupport) params.maxSupportPoints = *maxSupport;
@@ -147,6 +152,12 @@ void bindCore(py::module_& m) {
       .def_property_readonly(
           "kernel", [](const Model& model) { return std::string(toString(model.kernel().type)); })
       .def_property_readonly(
+          "kernel_block", [](const Model& model) { return model.kernel().block; },
+          "Features per point term of the kernel; 0: one term over all features.")
+      .def_property_readonly(
+          "kernel_whole_share", [](const Model& model) { return model.kernel().wholeShare; },
+          "With point terms: the whole feature vector's share of the kernel.")
+      .def_property_readonly(
           "support_points",
           [](py::handle self) {
             return readOnlyView(self.cast<const Model&>().supportConfigurations(), self);
@@ -193,10 +204,15 @@ void bindCore(py::module_& m) {
   m.def("train", &train, py::arg("X"), py::arg("y"), py::kw_only(),
         py::arg("features") = py::none(), py::arg("limits") = py::none(),
         py::arg("gamma") = py::none(), py::arg("beta") = py::none(), py::arg("kernel") = "rq",
-        py::arg("max_iterations") = py::none(), py::arg("max_support_points") = py::none(),
+        py::arg("kernel_block") = py::none(), py::arg("kernel_whole_share") = py::none(),
+        py::arg("self_collision_labels") = false, py::arg("max_iterations") = py::none(),
+        py::arg("max_support_points") = py::none(),
         "Algorithm 1 on labelled configurations X (n, d) and labels y (n,) (+1 / -1 or bool). "
-        "Features: `features`, else joint scaling by `limits`, else by the data's range. Returns "
-        "(Model, UpdateReport). The GIL is released while it trains.");
+        "Features: `features`, else joint scaling by `limits`, else by the data's range. With a "
+        "robot's features the kernel and beta default to those tuned for them (for labels that "
+        "include self-collisions when self_collision_labels=True); kernel_block (features per "
+        "point term, 0: one term) and kernel_whole_share override the kernel's point terms. "
+        "Returns (Model, UpdateReport). The GIL is released while it trains.");
 
   m.def(
       "prune_support",

@@ -37,14 +37,18 @@ using DetectorHolder = std::unique_ptr<ProxyCollisionDetector, ReleasingDelete>;
 
 DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::uint64_t seed,
                             std::optional<double> gamma, std::optional<double> beta,
+                            std::optional<std::uint32_t> kernelBlock,
+                            std::optional<double> wholeShare, bool selfCollisionLabels,
                             std::size_t maxSupport, std::size_t activeSamples,
                             unsigned labelThreads, std::size_t calibrationSamples) {
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
   ProxyParams params;
-  params.train = defaultTrainParams(features.kind());
+  params.train = defaultTrainParams(features.kind(), selfCollisionLabels);
   if (gamma) params.train.kernel.gamma = *gamma;
   if (beta) params.train.beta = *beta;
+  if (kernelBlock) params.train.kernel.block = *kernelBlock;
+  if (wholeShare) params.train.kernel.wholeShare = *wholeShare;
   params.train.maxSupportPoints = maxSupport;
   params.activeLearning.maxSamples = activeSamples;
   params.seed = seed;
@@ -93,10 +97,14 @@ void bindProxy(py::module_& m) {
       "with the GIL released) or a Python callable q -> bool (called from one thread at a time).")
       .def(py::init(&makeDetector), py::arg("oracle"), py::arg("features"), py::kw_only(),
            py::arg("seed") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
-           py::arg("max_support_points") = 3000, py::arg("active_samples") = 500,
-           py::arg("label_threads") = 0, py::arg("calibration_samples") = 1000,
+           py::arg("kernel_block") = py::none(), py::arg("kernel_whole_share") = py::none(),
+           py::arg("self_collision_labels") = false, py::arg("max_support_points") = 3000,
+           py::arg("active_samples") = 500, py::arg("label_threads") = 0,
+           py::arg("calibration_samples") = 1000,
            "features: a FeatureMap (robot_features(robot), or FeatureMap.joint_scaling(limits)); "
-           "gamma, beta default to the values tuned for the kind of features.")
+           "gamma, beta and the kernel's point terms (kernel_block, kernel_whole_share) default "
+           "to the values tuned for the kind of features; self_collision_labels=True (an oracle "
+           "that checks the robot against itself) selects those tuned for such labels.")
       .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),
            py::call_guard<py::gil_scoped_release>(),
            "Labels `samples` uniform configurations and trains the first model.")

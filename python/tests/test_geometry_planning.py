@@ -38,6 +38,22 @@ def test_automatic_control_points_follow_their_limits(baxter):
         fastron.robot_features(baxter, min_spacing=-1)
 
 
+def test_task_space_kernels_by_default_and_on_request(baxter, baxter_fcl):
+    features = fastron.robot_features(baxter)
+    x = np.random.default_rng(5).uniform(baxter.limits.lower, baxter.limits.upper, (600, 7))
+    y = baxter_fcl.in_collision(x)
+    model, _ = fastron.train(x, y, features=features)
+    assert (model.kernel_block, model.kernel_whole_share) == (3, pytest.approx(1 / 3))
+    assert model.gamma == 60
+    self_model, _ = fastron.train(x, y, features=features, self_collision_labels=True)
+    assert (self_model.kernel_block, self_model.gamma) == (0, 40)
+    chosen, _ = fastron.train(x, y, features=features, kernel_block=6, kernel_whole_share=0.5)
+    assert (chosen.kernel_block, chosen.kernel_whole_share) == (6, 0.5)
+    assert np.all(np.sign(chosen.score(x)) == np.where(y, 1, -1))  # Claim 1
+    with pytest.raises(fastron.InvalidArgument, match="kernel block 5 does not divide"):
+        fastron.train(x, y, features=features, kernel_block=5)
+
+
 def test_checkers_agree_with_the_command_labels(tmp_path, fastron_command, baxter, baxter_fcl):
     import subprocess
     data = tmp_path / "s.csv"

@@ -31,6 +31,10 @@ enum class Event {
 
 IncrementalSvm::IncrementalSvm(Kernel kernel, double C) : kernel_(kernel), C_(C) {
   validate(kernel_);
+  if (kernel_.block != 0) {
+    throw InvalidArgument("ISVM: the kernel must be of one term (block 0), got block " +
+                          std::to_string(kernel_.block));
+  }
   if (!std::isfinite(C_) || C_ <= 0)
     throw InvalidArgument("SVM regularisation C must be finite and positive");
 }

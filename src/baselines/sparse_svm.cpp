@@ -10,6 +10,10 @@ namespace fastron {
 SsvmClassifier::SsvmClassifier(JointLimits limits, Kernel kernel, SparseSvmParams params)
     : limits_(std::move(limits)), kernel_(kernel), params_(params) {
   validate(kernel_);
+  if (kernel_.block != 0) {
+    throw InvalidArgument("SSVM: the kernel must be of one term (block 0), got block " +
+                          std::to_string(kernel_.block));
+  }
   if (!(params_.C > 0)) throw InvalidArgument("SSVM: C must be positive");
   model_.terms =
       jointSpaceModel(limits_, kernel_, Eigen::MatrixXd(0, limits_.dim()), Eigen::VectorXd(0));

@@ -23,6 +23,11 @@ double defaultVariance(const Model& model) {
   return kTaskSpaceVariance;
 }
 
+std::size_t defaultSamplesPerSupportPoint(const Model& model) {
+  return model.features().kind() == FeatureKind::JointScaling ? 5
+                                                              : kTaskSpaceSamplesPerSupportPoint;
+}
+
 Configurations activeLearning(const Model& model, const ActiveLearningParams& params, Rng& rng) {
   validate(params);
   const JointLimits& limits = model.limits();
@@ -39,11 +44,14 @@ Configurations activeLearning(const Model& model, const ActiveLearningParams& pa
   // Exploitation: up to kappa Gaussian samples around each support point (Alg. 2, line 5).
   std::vector<Eigen::Index> order(static_cast<std::size_t>(support.rows()));
   std::iota(order.begin(), order.end(), Eigen::Index{0});
-  if (params.samplesPerSupportPoint * order.size() > params.maxSamples) {
+  const std::size_t kappa = params.samplesPerSupportPoint > 0
+                                ? params.samplesPerSupportPoint
+                                : defaultSamplesPerSupportPoint(model);
+  if (kappa * order.size() > params.maxSamples) {
     std::shuffle(order.begin(), order.end(), rng);
   }
   std::normal_distribution<double> gauss(0.0, std::sqrt(variance));
-  for (std::size_t k = 0; k < params.samplesPerSupportPoint && count < maxSamples; ++k) {
+  for (std::size_t k = 0; k < kappa && count < maxSamples; ++k) {
     for (const Eigen::Index s : order) {
       if (count == maxSamples) break;
       for (Eigen::Index j = 0; j < d; ++j) {

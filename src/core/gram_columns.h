@@ -15,13 +15,23 @@ namespace fastron::detail {
 /// trainer.cpp checks; this header stays free of Eigen for the files compiled per path).
 inline constexpr std::size_t kMaxGramFeatures = 192;
 
+/// The kernel as the passes read it: plain values, because the code compiled per path calls no
+/// inline function from outside (simd_lanes.h says why), Kernel's members included.
+struct GramKernel {
+  KernelType type = KernelType::RationalQuadratic;
+  double gamma = 1;
+  std::size_t block = 0;  ///< features per point term (Kernel::block); 0: one term
+  double wholeWeight = 1, pointWeight = 0;  ///< Kernel::wholeWeight(), pointWeight(features)
+};
+
 struct GramPasses {
   /// k[j - from] = K(x_i, x_j) for the rows j in [from, rows); x is column-major, rows x
   /// features, and xf the same values as floats (a Trainer's features are rounded to float):
   /// which one is read depends on the number of features (gram_columns_impl.h); each float is
-  /// widened to double before any arithmetic, so the column is the same either way.
+  /// widened to double before any arithmetic, so the column is the same either way. The kernel's
+  /// block divides `features` (validated by the Trainer).
   void (*column)(const double* x, const float* xf, std::size_t rows, std::size_t features,
-                 std::size_t i, std::size_t from, KernelType type, double gamma, double* k);
+                 std::size_t i, std::size_t from, const GramKernel& kernel, double* k);
   /// f += delta k over n values, then the most negative margin y_j f_j (returned) and its index
   /// (the first one on ties, in *worst).
   double (*addAndFindWorst)(double* f, const double* y, std::size_t n, const double* k,

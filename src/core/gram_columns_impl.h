@@ -17,47 +17,88 @@
 namespace fastron::detail {
 namespace {
 
+/// The kernel of one term from its squared distance (the formulas of kernelOfSquaredDistance).
+inline double termOf(double r2, bool rationalQuadratic, double gamma) {
+  if (rationalQuadratic) {
+    const double t = mulAdd(0.5 * gamma, r2, 1);
+    return 1 / (t * t);
+  }
+  return __builtin_exp(-gamma * r2);
+}
+
+/// K(x_i, x_j) of one row j in the order of Kernel::between, with multiply-adds: the scalar form
+/// of every path below.
+inline double entry(const double* x, std::size_t rows, std::size_t features, const double* xi,
+                    std::size_t j, const GramKernel& kernel) {
+  const bool rationalQuadratic = kernel.type == KernelType::RationalQuadratic;
+  const std::size_t block = kernel.block == 0 ? features : kernel.block;
+  double whole = 0, points = 0;
+  for (std::size_t g = 0; g < features; g += block) {
+    double r2 = 0;
+    for (std::size_t c = g; c < g + block; ++c) {
+      const double t = x[c * rows + j] - xi[c];
+      r2 = mulAdd(t, t, r2);
+    }
+    whole += r2;
+    if (kernel.block != 0) points += termOf(r2, rationalQuadratic, kernel.gamma);
+  }
+  if (kernel.block == 0) return termOf(whole, rationalQuadratic, kernel.gamma);
+  return kernel.wholeWeight * termOf(whole, rationalQuadratic, kernel.gamma) +
+         kernel.pointWeight * points;
+}
+
+/// The rational-quadratic term of a register of squared distances.
+inline Doubles termOf(Doubles r2, Doubles halfGammas) {
+  const Doubles t = mulAdd(r2, halfGammas, 1 - Doubles{});  // x - 0 is x exactly
+  return 1 / (t * t);
+}
+
 /// Few features: a register of rows at a time, every feature column adding to squared distances
-/// held in a register, then the kernel: one store per register of rows. (Summing one feature column
-/// at a time into a block of distances in L1 stored and reloaded them once per feature: perf showed
-/// those stores as the column's cost.) Each value is computed as the scalar tail computes it, so
-/// the result does not depend on where the registers start.
+/// held in a register, then the kernel: one store per register of rows. (Summing one feature
+/// column at a time into a block of distances in L1 stored and reloaded them once per feature:
+/// perf showed those stores as the column's cost.) Each value is computed as `entry` computes
+/// it, so the result does not depend on where the registers start. A Gaussian kernel with point
+/// terms goes row by row (an exponential per term; no planner uses it).
 void columnByRow(const double* x, std::size_t rows, std::size_t features, std::size_t i,
-                 std::size_t from, KernelType type, double gamma, double* k) {
+                 std::size_t from, const GramKernel& kernel, double* k) {
   const std::size_t n = rows - from;
   double xi[kMaxGramFeatures];
   for (std::size_t c = 0; c < features; ++c) xi[c] = x[c * rows + i];
-  const double halfGamma = 0.5 * gamma;
-  const bool rationalQuadratic = type == KernelType::RationalQuadratic;
-  const Doubles halfGammas = halfGamma - Doubles{}, ones = 1 - Doubles{};  // x - 0 is x exactly
+  const bool rationalQuadratic = kernel.type == KernelType::RationalQuadratic;
+  const Doubles halfGammas = 0.5 * kernel.gamma - Doubles{};
   std::size_t j = 0;
-  for (; j + kDoubles <= n; j += kDoubles) {
-    Doubles r2 = {};
-    for (std::size_t c = 0; c < features; ++c) {
-      const Doubles t = load(x + c * rows + from + j) - xi[c];
-      r2 = mulAdd(t, t, r2);
+  if (kernel.block == 0) {
+    for (; j + kDoubles <= n; j += kDoubles) {
+      Doubles r2 = {};
+      for (std::size_t c = 0; c < features; ++c) {
+        const Doubles t = load(x + c * rows + from + j) - xi[c];
+        r2 = mulAdd(t, t, r2);
+      }
+      if (rationalQuadratic) r2 = termOf(r2, halfGammas);
+      __builtin_memcpy(k + j, &r2, sizeof r2);
     }
-    if (rationalQuadratic) {  // the formula of kernelOfSquaredDistance
-      const Doubles t = mulAdd(r2, halfGammas, ones);
-      r2 = 1 / (t * t);
+    if (!rationalQuadratic) {  // the exponentials of the squared distances
+      for (std::size_t m = 0; m < j; ++m) k[m] = __builtin_exp(-kernel.gamma * k[m]);
     }
-    __builtin_memcpy(k + j, &r2, sizeof r2);
+  } else if (rationalQuadratic) {
+    const Doubles wholeWeights = kernel.wholeWeight - Doubles{},
+                  pointWeights = kernel.pointWeight - Doubles{};
+    for (; j + kDoubles <= n; j += kDoubles) {
+      Doubles whole = {}, points = {};
+      for (std::size_t g = 0; g < features; g += kernel.block) {
+        Doubles r2 = {};
+        for (std::size_t c = g; c < g + kernel.block; ++c) {
+          const Doubles t = load(x + c * rows + from + j) - xi[c];
+          r2 = mulAdd(t, t, r2);
+        }
+        whole += r2;
+        points += termOf(r2, halfGammas);
+      }
+      const Doubles value = wholeWeights * termOf(whole, halfGammas) + pointWeights * points;
+      __builtin_memcpy(k + j, &value, sizeof value);
+    }
   }
-  for (; j < n; ++j) {
-    double r2 = 0;
-    for (std::size_t c = 0; c < features; ++c) {
-      const double t = x[c * rows + from + j] - xi[c];
-      r2 = mulAdd(t, t, r2);
-    }
-    if (rationalQuadratic) {
-      const double t = mulAdd(halfGamma, r2, 1);
-      r2 = 1 / (t * t);
-    }
-    k[j] = r2;
-  }
-  if (!rationalQuadratic) {
-    for (std::size_t m = 0; m < n; ++m) k[m] = __builtin_exp(-gamma * k[m]);
-  }
+  for (; j < n; ++j) k[j] = entry(x, rows, features, xi, from + j, kernel);
 }
 
 // Many features (more than kRowFeatures): rows go in blocks whose squared distances stay in L1
@@ -67,31 +108,52 @@ void columnByRow(const double* x, std::size_t rows, std::size_t features, std::s
 // 15.8 ms for all of Algorithm 1). Widened to double, each value is the double the Trainer holds.
 constexpr std::size_t kBlock = 256;
 
+/// The term of each of `size` squared distances, in place (one loop per kernel type, the formulas
+/// of kernelOfSquaredDistance: a branch inside would stop the loop vectorising).
+void termsInPlace(double* r2, std::size_t size, KernelType type, double gamma) {
+  if (type == KernelType::RationalQuadratic) {
+    const double halfGamma = 0.5 * gamma;
+    for (std::size_t j = 0; j < size; ++j) {
+      const double t = mulAdd(halfGamma, r2[j], 1);
+      r2[j] = 1 / (t * t);
+    }
+  } else {
+    for (std::size_t j = 0; j < size; ++j) r2[j] = __builtin_exp(-gamma * r2[j]);
+  }
+}
+
 void columnByFeature(const float* x, std::size_t rows, std::size_t features, std::size_t i,
-                     std::size_t from, KernelType type, double gamma, double* k) {
+                     std::size_t from, const GramKernel& kernel, double* k) {
   const std::size_t n = rows - from;
+  const std::size_t block = kernel.block == 0 ? features : kernel.block;
   for (std::size_t begin = 0; begin < n; begin += kBlock) {
     const std::size_t size = n - begin < kBlock ? n - begin : kBlock;
-    double* r2 = k + begin;
-    for (std::size_t j = 0; j < size; ++j) r2[j] = 0;
-    for (std::size_t c = 0; c < features; ++c) {
-      const float* values = x + c * rows + from + begin;
-      const double xi = x[c * rows + i];
-      for (std::size_t j = 0; j < size; ++j) {
-        const double t = double(values[j]) - xi;
-        r2[j] = mulAdd(t, t, r2[j]);
+    double whole[kBlock], points[kBlock], r2[kBlock];
+    for (std::size_t j = 0; j < size; ++j) whole[j] = points[j] = 0;
+    for (std::size_t g = 0; g < features; g += block) {
+      for (std::size_t j = 0; j < size; ++j) r2[j] = 0;
+      for (std::size_t c = g; c < g + block; ++c) {
+        const float* values = x + c * rows + from + begin;
+        const double xi = x[c * rows + i];
+        for (std::size_t j = 0; j < size; ++j) {
+          const double t = double(values[j]) - xi;
+          r2[j] = mulAdd(t, t, r2[j]);
+        }
+      }
+      for (std::size_t j = 0; j < size; ++j) whole[j] += r2[j];
+      if (kernel.block != 0) {
+        termsInPlace(r2, size, kernel.type, kernel.gamma);
+        for (std::size_t j = 0; j < size; ++j) points[j] += r2[j];
       }
     }
-    // One loop per kernel type (the formulas of kernelOfSquaredDistance): a branch inside would
-    // stop the loop vectorising.
-    if (type == KernelType::RationalQuadratic) {
-      const double halfGamma = 0.5 * gamma;
-      for (std::size_t j = 0; j < size; ++j) {
-        const double t = mulAdd(halfGamma, r2[j], 1);
-        r2[j] = 1 / (t * t);
-      }
+    termsInPlace(whole, size, kernel.type, kernel.gamma);
+    double* out = k + begin;
+    if (kernel.block == 0) {
+      for (std::size_t j = 0; j < size; ++j) out[j] = whole[j];
     } else {
-      for (std::size_t j = 0; j < size; ++j) r2[j] = __builtin_exp(-gamma * r2[j]);
+      const double wholeWeight = kernel.wholeWeight, pointWeight = kernel.pointWeight;
+      for (std::size_t j = 0; j < size; ++j)
+        out[j] = wholeWeight * whole[j] + pointWeight * points[j];
     }
   }
 }
@@ -105,11 +167,11 @@ void columnByFeature(const float* x, std::size_t rows, std::size_t features, std
 constexpr std::size_t kRowFeatures = 12;
 
 void column(const double* x, const float* xf, std::size_t rows, std::size_t features, std::size_t i,
-            std::size_t from, KernelType type, double gamma, double* k) {
+            std::size_t from, const GramKernel& kernel, double* k) {
   if (features <= kRowFeatures) {
-    columnByRow(x, rows, features, i, from, type, gamma, k);
+    columnByRow(x, rows, features, i, from, kernel, k);
   } else {
-    columnByFeature(xf, rows, features, i, from, type, gamma, k);
+    columnByFeature(xf, rows, features, i, from, kernel, k);
   }
 }
 

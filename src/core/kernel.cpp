@@ -19,6 +19,26 @@ void validate(const Kernel& kernel) {
   }
 }
 
+void validate(const Kernel& kernel, std::size_t featureDim) {
+  validate(kernel);
+  if (kernel.block != 0 && featureDim % kernel.block != 0) {
+    throw InvalidArgument("kernel block " + std::to_string(kernel.block) +
+                          " does not divide the feature dimension " + std::to_string(featureDim));
+  }
+  if (!(kernel.wholeShare >= 0 && kernel.wholeShare <= 1)) {
+    throw InvalidArgument("the kernel's whole-vector share must be between 0 and 1, got " +
+                          std::to_string(kernel.wholeShare));
+  }
+}
+
+std::string describeTerms(const Kernel& kernel, std::size_t featureDim) {
+  if (kernel.block == 0) return "one term";
+  char share[32];
+  std::snprintf(share, sizeof share, "%g", kernel.wholeShare);
+  return "a term per " + std::to_string(kernel.block) + " features (" +
+         std::to_string(kernel.pointTerms(featureDim)) + ") and the whole vector's, share " + share;
+}
+
 std::string_view toString(KernelType type) {
   return type == KernelType::Gaussian ? "gaussian" : "rq";
 }

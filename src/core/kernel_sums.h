@@ -19,6 +19,10 @@ struct SupportView {
   std::size_t dim = 0;
   float gamma = 1;
   KernelType type = KernelType::RationalQuadratic;
+  /// Point terms (Kernel::block): features per term, 0 for the one-term kernel; the weights of
+  /// the whole term and of the point terms' sum (Kernel::wholeWeight, pointWeight).
+  std::size_t block = 0;
+  float wholeWeight = 1, pointWeight = 0;
 };
 
 /// Support points summed per step: one AVX-512 register, two AVX2 or four SSE2 registers.

@@ -100,6 +100,75 @@ void sumFour(const SupportView& s, const float* xs, float* out) {
   for (std::size_t q = 0; q < kQ; ++q) out[q] = laneSum(sums[q]);
 }
 
+/// The kernel sum for one query when the kernel has point terms (B = 3: a control point each;
+/// 0: s.block at run time; D as in sumOne): the blocks of a register of support points are
+/// independent chains. Two sums are kept, of w k(whole) and of w (sum of the point terms), and
+/// weighted once at the end.
+template <KernelType type, std::size_t D, std::size_t B>
+float sumOneOfPoints(const SupportView& s, const float* x) {
+  const std::size_t dim = D != 0 ? D : s.dim;
+  const std::size_t block = B != 0 ? B : s.block;
+  Floats wholeSum = {}, pointSum = {};
+  for (std::size_t b = 0; b < s.padded; b += kWidth) {
+    Floats whole = {}, points = {};
+    for (std::size_t g = 0; g < dim; g += block) {
+      Floats r2 = {};
+      for (std::size_t c = g; c < g + block; ++c) {
+        const Floats d = load(s.soa + c * s.padded + b) - x[c];
+        r2 = mulAdd(d, d, r2);
+      }
+      whole += r2;
+      points += kernelOf<type>(r2, s.gamma);
+    }
+    const Floats w = load(s.weights + b);
+    wholeSum = mulAdd(w, kernelOf<type>(whole, s.gamma), wholeSum);
+    pointSum = mulAdd(w, points, pointSum);
+  }
+  return s.wholeWeight * laneSum(wholeSum) + s.pointWeight * laneSum(pointSum);
+}
+
+/// sumFour for a kernel with point terms: each score equals sumOneOfPoints of the same vector.
+template <KernelType type>
+void sumFourOfPoints(const SupportView& s, const float* xs, float* out) {
+  constexpr std::size_t kQ = kQueriesPerPass;
+  const std::size_t dim = s.dim, block = s.block;
+  Floats wholeSums[kQ] = {}, pointSums[kQ] = {};
+  for (std::size_t b = 0; b < s.padded; b += kWidth) {
+    Floats whole[kQ] = {}, points[kQ] = {};
+    for (std::size_t g = 0; g < dim; g += block) {
+      Floats r2[kQ] = {};
+      for (std::size_t c = g; c < g + block; ++c) {
+        const Floats coordinate = load(s.soa + c * s.padded + b);
+        for (std::size_t q = 0; q < kQ; ++q) {
+          const Floats d = coordinate - xs[q * dim + c];
+          r2[q] = mulAdd(d, d, r2[q]);
+        }
+      }
+      for (std::size_t q = 0; q < kQ; ++q) {
+        whole[q] += r2[q];
+        points[q] += kernelOf<type>(r2[q], s.gamma);
+      }
+    }
+    const Floats w = load(s.weights + b);
+    for (std::size_t q = 0; q < kQ; ++q) {
+      wholeSums[q] = mulAdd(w, kernelOf<type>(whole[q], s.gamma), wholeSums[q]);
+      pointSums[q] = mulAdd(w, points[q], pointSums[q]);
+    }
+  }
+  for (std::size_t q = 0; q < kQ; ++q) {
+    out[q] = s.wholeWeight * laneSum(wholeSums[q]) + s.pointWeight * laneSum(pointSums[q]);
+  }
+}
+
+template <KernelType type>
+float oneOfPoints(const SupportView& s, const float* x) {
+  // Three and four control points.
+  if (s.block == 3 && s.dim == 9) return sumOneOfPoints<type, 9, 3>(s, x);
+  if (s.block == 3 && s.dim == 12) return sumOneOfPoints<type, 12, 3>(s, x);
+  if (s.block == 3) return sumOneOfPoints<type, 0, 3>(s, x);
+  return sumOneOfPoints<type, 0, 0>(s, x);
+}
+
 template <KernelType type, bool paired>
 float oneOfShape(const SupportView& s, const float* x) {
   // The feature dimensions of planar tests, 6- and 7-joint arms and 3- and 4-point task spaces.
@@ -121,6 +190,7 @@ float oneOfShape(const SupportView& s, const float* x) {
 
 template <KernelType type>
 float oneOfKernel(const SupportView& s, const float* x) {
+  if (s.block != 0) return oneOfPoints<type>(s, x);
   return s.dim >= kPairedFrom ? oneOfShape<type, true>(s, x) : oneOfShape<type, false>(s, x);
 }
 
@@ -131,7 +201,9 @@ float one(const SupportView& s, const float* x) {
 
 template <KernelType type>
 void fourOfKernel(const SupportView& s, const float* xs, float* out) {
-  if (s.dim >= kPairedFrom) {
+  if (s.block != 0) {
+    sumFourOfPoints<type>(s, xs, out);
+  } else if (s.dim >= kPairedFrom) {
     sumFour<type, true>(s, xs, out);
   } else {
     sumFour<type, false>(s, xs, out);

@@ -63,7 +63,7 @@ std::uint64_t Model::computeChecksum() const {
 }
 
 void Model::validateSupport() const {
-  validate(kernel_);
+  validate(kernel_, featureDim());
   const std::size_t d = dim();
   if (d == 0 || d > kMaxDimension) {
     throw InvalidArgument("model dimension must be between 1 and " + std::to_string(kMaxDimension) +
@@ -121,7 +121,10 @@ detail::SupportView Model::supportView() const {
           paddedCount_,
           featureDim(),
           static_cast<float>(kernel_.gamma),
-          kernel_.type};
+          kernel_.type,
+          kernel_.block,
+          static_cast<float>(kernel_.wholeWeight()),
+          static_cast<float>(kernel_.pointWeight(featureDim()))};
 }
 
 float Model::scoreInputFloat(const float* x) const {
@@ -146,7 +149,8 @@ double Model::scoreExact(const double* q) const {
   features_.map(q, x.data());
   double f = 0;
   for (Eigen::Index i = 0; i < support_.rows(); ++i) {
-    f += weights_[i] * kernel_((support_.row(i).transpose() - x).squaredNorm());
+    const Eigen::VectorXd s = support_.row(i).transpose();
+    f += weights_[i] * kernel_.between(s.data(), x.data(), featureDim());
   }
   return f;
 }

@@ -183,7 +183,8 @@ Contents readVersion1(std::string_view bytes, Contents c, const std::string& fil
   return c;
 }
 
-Contents readVersion2(std::string_view bytes, Contents c, const std::string& file) {
+/// Versions 2 and 3 (which adds the kernel block).
+Contents readVersion2or3(std::string_view bytes, Contents c, const std::string& file) {
   constexpr std::size_t kFixed = kVersionEnd + 8;
   if (bytes.size() < kFixed + 4) {
     throw FileError(file + ": truncated model file (" + std::to_string(bytes.size()) +
@@ -203,6 +204,10 @@ Contents readVersion2(std::string_view bytes, Contents c, const std::string& fil
   }
   c.header.features = static_cast<FeatureKind>(featureKind);
   c.kernel = readKernel(r, kernelType, file);
+  if (c.header.version >= 3) {
+    c.kernel.block = r.get<std::uint32_t>("kernel block");
+    c.kernel.wholeShare = r.getFinite("kernel whole-vector share");
+  }
   readLimits(r, c);
   if (c.header.features == FeatureKind::Kinematic) {
     KinematicsDescription& k = c.header.kinematics;
@@ -242,16 +247,16 @@ Contents readContents(std::string_view bytes, const std::string& file) {
   std::uint32_t dim = 0;
   std::memcpy(&c.header.version, bytes.data() + 8, 4);
   std::memcpy(&dim, bytes.data() + 12, 4);
-  if (c.header.version != 1 && c.header.version != 2) {
+  if (c.header.version < 1 || c.header.version > 3) {
     throw FileError(file + ": unsupported model file version " + std::to_string(c.header.version) +
-                    " (this build reads versions 1 and 2)");
+                    " (this build reads versions 1 to 3)");
   }
   if (dim == 0 || dim > kMaxDimension) {
     throw FileError(file + ": invalid dimension " + std::to_string(dim));
   }
   c.header.dim = dim;
   return c.header.version == 1 ? readVersion1(bytes, std::move(c), file)
-                               : readVersion2(bytes, std::move(c), file);
+                               : readVersion2or3(bytes, std::move(c), file);
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -306,6 +311,8 @@ void saveModel(const Model& model, const std::filesystem::path& path) {
   w.put<std::uint32_t>(static_cast<std::uint32_t>(model.kernel().type));
   w.put<std::uint32_t>(static_cast<std::uint32_t>(features.kind()));
   w.put<double>(model.kernel().gamma);
+  w.put<std::uint32_t>(model.kernel().block);
+  w.put<double>(model.kernel().wholeShare);
   for (std::size_t j = 0; j < d; ++j)
     w.put<double>(model.limits().lower()[static_cast<Eigen::Index>(j)]);
   for (std::size_t j = 0; j < d; ++j)

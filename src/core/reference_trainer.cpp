@@ -20,6 +20,7 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
   validate(params);
   const auto n = static_cast<std::size_t>(x.rows());
   const auto d = static_cast<std::size_t>(x.cols());
+  validate(params.kernel, d);
   if (y.size() != n) {
     throw InvalidArgument("trainReference: " + std::to_string(n) + " points but " +
                           std::to_string(y.size()) + " labels");
@@ -35,15 +36,11 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
   alpha.assign(n, 0.0);
   f.assign(n, 0.0);
   std::vector<double> column(n);
+  const Eigen::MatrixXd rows = x.transpose();  // each point's features contiguous
   const auto addColumn = [&](std::size_t i, double delta) {
     for (std::size_t j = 0; j < n; ++j) {
-      double r2 = 0;
-      for (std::size_t c = 0; c < d; ++c) {
-        const double t = x(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(c)) -
-                         x(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c));
-        r2 += t * t;
-      }
-      f[j] += delta * params.kernel(r2);
+      f[j] += delta * params.kernel.between(rows.col(static_cast<Eigen::Index>(j)).data(),
+                                            rows.col(static_cast<Eigen::Index>(i)).data(), d);
     }
   };
   const auto margin = [&](std::size_t j) { return static_cast<double>(y[j]) * f[j]; };

@@ -41,9 +41,15 @@ std::shared_ptr<const Model> pruneSupport(const Model& model, const Configuratio
 
   // Support point i's term at every held-out point, computed when needed (twice per point)
   // rather than kept: |S| x H of them would be hundreds of megabytes for large held-out sets.
+  const Eigen::MatrixXd points = x.transpose();  // each point's features contiguous
   const auto termOf = [&](Eigen::Index i) -> Eigen::VectorXd {
-    const Eigen::VectorXd r2 = (x.rowwise() - support.row(i)).rowwise().squaredNorm();
-    return weights[i] * r2.unaryExpr([&](double v) { return model.kernel()(v); });
+    const Eigen::VectorXd s = support.row(i).transpose();
+    Eigen::VectorXd term(points.cols());
+    for (Eigen::Index j = 0; j < points.cols(); ++j) {
+      term[j] = weights[i] * model.kernel().between(s.data(), points.col(j).data(),
+                                                    static_cast<std::size_t>(s.size()));
+    }
+    return term;
   };
   Eigen::VectorXd f = Eigen::VectorXd::Zero(x.rows());
   for (Eigen::Index i = 0; i < support.rows(); ++i) f += termOf(i);

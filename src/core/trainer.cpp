@@ -35,13 +35,19 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 // vectorised by the compiler (8 lanes with AVX-512): 8.5 us for 10000 x 7 on the project's
 // machine, against 113-225 us for Eigen expressions that allocated a fresh column each time.
 
+/// `kernel` as the per-path passes read it.
+detail::GramKernel gramKernel(const Kernel& kernel, Eigen::Index features) {
+  const auto d = static_cast<std::size_t>(features);
+  return {kernel.type, kernel.gamma, kernel.block, kernel.wholeWeight(), kernel.pointWeight(d)};
+}
+
 /// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()), on the active SIMD path
 /// (gram_columns_impl.h).
 void gramColumn(const Eigen::MatrixXd& x, const Eigen::MatrixXf& xf, Eigen::Index i,
                 Eigen::Index from, const Kernel& kernel, double* k) {
-  detail::activeGramPasses().column(x.data(), xf.data(), static_cast<std::size_t>(x.rows()),
-                                    static_cast<std::size_t>(x.cols()), static_cast<std::size_t>(i),
-                                    static_cast<std::size_t>(from), kernel.type, kernel.gamma, k);
+  detail::activeGramPasses().column(
+      x.data(), xf.data(), static_cast<std::size_t>(x.rows()), static_cast<std::size_t>(x.cols()),
+      static_cast<std::size_t>(i), static_cast<std::size_t>(from), gramKernel(kernel, x.cols()), k);
 }
 
 /// f += delta k, then the most negative margin y_j f_j and its index (the first one on ties).
@@ -67,11 +73,14 @@ void validate(const TrainParams& params) {
   }
 }
 
-TrainParams defaultTrainParams(FeatureKind kind) {
+TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels) {
   TrainParams params;
-  if (kind == FeatureKind::Kinematic) {
+  if (kind == FeatureKind::Kinematic && selfCollisionLabels) {
     params.kernel = {KernelType::RationalQuadratic, 40};
     params.beta = 10;
+  } else if (kind == FeatureKind::Kinematic) {
+    params.kernel = {KernelType::RationalQuadratic, 60, 3, 1.0 / 3};
+    params.beta = 30;
   } else {
     params.kernel = {KernelType::RationalQuadratic, 5};
     params.beta = 500;
@@ -94,6 +103,7 @@ std::string_view toString(StopReason reason) {
 Trainer::Trainer(FeatureMap features, TrainParams params)
     : features_(std::move(features)), params_(params) {
   validate(params_);
+  validate(params_.kernel, features_.featureDim());
   if (dim() == 0 || dim() > kMaxDimension) {
     throw InvalidArgument("trainer dimension must be between 1 and " +
                           std::to_string(kMaxDimension) + ", got " + std::to_string(dim()));

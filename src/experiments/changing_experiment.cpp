@@ -41,6 +41,8 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       ProxyParams params = withoutBand(proxyParams(c, seed, o.features));
       if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
       if (o.beta > 0) params.train.beta = o.beta;
+      if (o.kernelBlock) params.train.kernel.block = *o.kernelBlock;
+      if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
       params.activeLearning.variance = o.variance;
       if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
@@ -161,6 +163,8 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
      << (o.beta > 0 ? ", beta " + cell(o.beta) : "")
      << (o.variance > 0 ? ", active-learning variance " + cell(o.variance) : "")
      << (o.activeSamples > 0 ? ", A_max " + std::to_string(o.activeSamples) : "")
+     << (o.kernelBlock ? ", kernel block " + std::to_string(*o.kernelBlock) : "")
+     << (o.wholeShare ? ", whole-vector share " + cell(*o.wholeShare) : "")
      << (o.pruneSamples > 0 ? "; 'pruned': pruneSupport on " + std::to_string(o.pruneSamples) +
                                   " fresh uniform configurations per update"
                             : "")

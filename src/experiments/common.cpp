@@ -245,10 +245,13 @@ std::string simplificationSentence(double simplifyTime) {
 }
 
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
-                                  std::uint64_t seed) {
+                                  std::uint64_t seed, bool selfCollisionLabels) {
   if (kind == FeatureKind::JointScaling) return experimentProxyParams(jointGamma, jointBeta, seed);
-  const TrainParams defaults = defaultTrainParams(kind);
-  return experimentProxyParams(defaults.kernel.gamma, defaults.beta, seed);
+  ProxyParams p = experimentProxyParams(0, 0, seed);
+  const TrainParams defaults = defaultTrainParams(kind, selfCollisionLabels);
+  p.train.kernel = defaults.kernel;
+  p.train.beta = defaults.beta;
+  return p;
 }
 
 }  // namespace fastron::experiments

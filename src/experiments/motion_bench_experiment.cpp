@@ -141,7 +141,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
     const FclChecker audit(robot, scene, checking);
 
-    const ProxyParams params = experimentProxyParams(o.features, 5, 500, o.seed + p);
+    const ProxyParams params =
+        experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision);
     ProxyCollisionDetector proxy(fcl, features, params);
     const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
@@ -151,8 +152,9 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::shared_ptr<const CollisionChecker> split;
     double splitSupport = 0, splitTrain = 0;
     if (selfModel) {
-      ProxyCollisionDetector obstacles(std::make_shared<FclChecker>(robot, scene), features,
-                                       withoutBand(params));
+      ProxyCollisionDetector obstacles(
+          std::make_shared<FclChecker>(robot, scene), features,
+          withoutBand(experimentProxyParams(o.features, 5, 500, o.seed + p)));
       splitTrain = train(obstacles, samples, updates);
       splitSupport = static_cast<double>(obstacles.model()->supportCount());
       split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{

@@ -102,7 +102,7 @@ std::vector<Experiment> makeRegistry() {
   all.push_back({"changing",
                  "Baxter among moving boxes: accuracy and update time per step",
                  {"features", "gamma", "beta", "al-variance", "active-samples", "prune-samples",
-                  "merge-radius"},
+                  "merge-radius", "kernel-block", "kernel-whole-share"},
                  [](const ExperimentSettings& s, const Progress& progress) {
                    ChangingOptions o;
                    o.trials = trialsOr(s, 3);
@@ -114,6 +114,8 @@ std::vector<Experiment> makeRegistry() {
                    o.activeSamples = s.activeSamples;
                    o.pruneSamples = s.pruneSamples;
                    o.mergeRadius = s.mergeRadius;
+                   o.kernelBlock = s.kernelBlock;
+                   o.wholeShare = s.wholeShare;
                    if (s.quick) o.cases = {"4dof", "7dof-3boxes"};
                    return reported(runChanging(o, progress),
                                    [&](const Table& t) { return changingReport(t, o); });

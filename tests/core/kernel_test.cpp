@@ -3,12 +3,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+
 #include "fastron/core/error.h"
 #include "fastron/core/joint_limits.h"
+#include "temp_dir.h"
 
 namespace fastron {
 namespace {
 
+using test::messageOf;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
@@ -44,6 +49,37 @@ TEST(Kernel, NamesAndValidation) {
   EXPECT_THROW(parseKernelType("linear"), InvalidArgument);
   EXPECT_THROW(validate(Kernel{KernelType::RationalQuadratic, 0}), InvalidArgument);
   EXPECT_THROW(validate(Kernel{KernelType::RationalQuadratic, std::nan("")}), InvalidArgument);
+}
+
+TEST(Kernel, PointTermsAreTheWeightedMeanOfTheBlocksAndTheWholeVector) {
+  const std::array<double, 6> a{0, 0, 0, 1, 2, 2}, b{0.3, 0.4, 0, 1, 2, 1};
+  const Kernel one{KernelType::RationalQuadratic, 2};
+  const double whole = one(0.25 + 1.0);
+  EXPECT_DOUBLE_EQ(one.between(a.data(), b.data(), 6), whole);
+  const Kernel points{KernelType::RationalQuadratic, 2, 3, 0.2};
+  EXPECT_DOUBLE_EQ(points.between(a.data(), b.data(), 6),
+                   0.2 * whole + 0.8 / 2 * (one(0.25) + one(1.0)));
+  const Kernel gaussian{KernelType::Gaussian, 2, 2, 0};
+  EXPECT_DOUBLE_EQ(gaussian.between(a.data(), b.data(), 6),
+                   (std::exp(-2 * 0.25) + std::exp(-2 * 0.0) + std::exp(-2 * 1.0)) / 3);
+  for (const Kernel& k : {one, points, gaussian})
+    EXPECT_DOUBLE_EQ(k.between(a.data(), a.data(), 6), 1);
+  EXPECT_EQ(points.pointTerms(6), 2u);
+  EXPECT_EQ(describeTerms(one, 6), "one term");
+  EXPECT_EQ(describeTerms(points, 6),
+            "a term per 3 features (2) and the whole vector's, share 0.2");
+}
+
+TEST(Kernel, PointTermsMustDivideTheFeaturesAndShareIsAFraction) {
+  EXPECT_NO_THROW(validate(Kernel{KernelType::RationalQuadratic, 1, 3, 0.5}, 12));
+  EXPECT_THAT(messageOf<InvalidArgument>([] {
+                validate(Kernel{KernelType::RationalQuadratic, 1, 5, 0}, 12);
+              }),
+              HasSubstr("kernel block 5 does not divide the feature dimension 12"));
+  EXPECT_THAT(messageOf<InvalidArgument>([] {
+                validate(Kernel{KernelType::RationalQuadratic, 1, 3, 1.5}, 12);
+              }),
+              HasSubstr("whole-vector share must be between 0 and 1"));
 }
 
 TEST(JointLimits, MapsLimitsToMinusOneAndOne) {

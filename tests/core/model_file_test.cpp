@@ -130,10 +130,61 @@ TEST_F(ModelFile, VersionOneStillLoads) {
   const double expected = 1.5 - 0.25 / ((1 + 3.25) * (1 + 3.25));
   EXPECT_NEAR(model.scoreExact(q.data()), expected, 1e-12);
 
-  // Saved again, it becomes version 2 with the same contents.
-  saveModel(model, path("v2.fastron"));
+  // Saved again, it becomes version 3 with the same contents.
+  saveModel(model, path("v3.fastron"));
+  EXPECT_EQ(readModelHeader(path("v3.fastron")).version, 3u);
+  EXPECT_EQ(loadModel(path("v3.fastron")).scoreExact(q.data()), model.scoreExact(q.data()));
+}
+
+// Version 2 is version 3 without the kernel's point terms (block and share, 12 bytes after
+// gamma): made here from a version 3 file by removing them, it loads with a one-term kernel.
+TEST_F(ModelFile, VersionTwoStillLoads) {
+  const Model model = sampleModel();
+  saveModel(model, path("m.fastron"));
+  std::string bytes = read(path("m.fastron"));
+  constexpr std::size_t kGammaEnd = 8 + 4 + 4 + 8 + 4 + 4 + 8;
+  bytes.erase(kGammaEnd, 12);
+  bytes[8] = 2;
+  const std::uint64_t size = bytes.size();
+  bytes.replace(16, 8, reinterpret_cast<const char*>(&size), 8);
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - 4)));
+  bytes.replace(bytes.size() - 4, 4, reinterpret_cast<const char*>(&crc), 4);
+  write("v2.fastron", bytes);
+
   EXPECT_EQ(readModelHeader(path("v2.fastron")).version, 2u);
-  EXPECT_EQ(loadModel(path("v2.fastron")).scoreExact(q.data()), model.scoreExact(q.data()));
+  const Model loaded = loadModel(path("v2.fastron"), 3);
+  EXPECT_EQ(loaded.kernel().block, 0u);
+  EXPECT_EQ(loaded.weights(), model.weights());
+  const std::vector<double> q{0.3, 0.2, 1};
+  EXPECT_EQ(loaded.score(q), model.score(q));
+}
+
+TEST_F(ModelFile, KernelPointTermsRoundTripAndABadBlockIsRefused) {
+  // Six features, two blocks of three (any features may have point terms).
+  const Configurations q = test::uniformPoints(800, 6, 4);
+  const Kernel kernel{KernelType::RationalQuadratic, 20, 3, 0.25};
+  Trainer trainer(JointLimits::unitBox(6), TrainParams{.kernel = kernel, .beta = 2});
+  trainer.addPoints(q, test::randomLabels(800, 5));
+  trainer.update();
+  ASSERT_GT(trainer.supportCount(), 10u);
+  saveModel(*trainer.model(), path("k.fastron"));
+  const Model loaded = loadModel(path("k.fastron"), 6);
+  EXPECT_EQ(loaded.kernel().block, 3u);
+  EXPECT_EQ(loaded.kernel().wholeShare, 0.25);
+  const std::vector<double> x{0.3, -0.2, 0.6, 0.1, 0, -0.9};
+  EXPECT_EQ(loaded.score(x), trainer.model()->score(x));
+
+  // A block of 4 does not divide 6 features: the file is invalid, and says why.
+  std::string bytes = read(path("k.fastron"));
+  constexpr std::size_t kBlockAt = 8 + 4 + 4 + 8 + 4 + 4 + 8;
+  bytes[kBlockAt] = 4;
+  const auto crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - 4)));
+  bytes.replace(bytes.size() - 4, 4, reinterpret_cast<const char*>(&crc), 4);
+  write("b.fastron", bytes);
+  EXPECT_THAT(messageOf<FileError>([&] { loadModel(path("b.fastron")); }),
+              HasSubstr("kernel block 4 does not divide the feature dimension 6"));
 }
 
 TEST_F(ModelFile, UnwritablePathIsNamed) {

@@ -12,10 +12,11 @@ namespace fastron {
 namespace {
 
 std::shared_ptr<const Model> trainedModel(std::size_t dim, std::size_t n, KernelType type,
-                                          double gamma, double beta) {
+                                          double gamma, double beta, std::uint32_t block = 0,
+                                          double wholeShare = 0) {
   const Configurations q = test::uniformPoints(n, dim, 101);
   TrainParams p;
-  p.kernel = {type, gamma};
+  p.kernel = {type, gamma, block, wholeShare};
   p.beta = beta;
   p.maxIterations = 1'000'000;
   p.maxSupportPoints = n;
@@ -33,6 +34,8 @@ struct AgreementCase {
   std::size_t dim;
   KernelType type;
   double gamma, beta;
+  std::uint32_t block = 0;
+  double wholeShare = 0;
 };
 
 class FloatPath : public ::testing::TestWithParam<AgreementCase> {};
@@ -40,7 +43,7 @@ class FloatPath : public ::testing::TestWithParam<AgreementCase> {};
 // The vectorised float path must give the double path's sign on at least 99.99% of queries.
 TEST_P(FloatPath, AgreesInSignWithTheDoublePath) {
   const auto c = GetParam();
-  const auto model = trainedModel(c.dim, 3000, c.type, c.gamma, c.beta);
+  const auto model = trainedModel(c.dim, 3000, c.type, c.gamma, c.beta, c.block, c.wholeShare);
   ASSERT_GT(model->supportCount(), 50u);
   const std::size_t queries = 100'000;
   const Configurations q = test::uniformPoints(queries, c.dim, 103);
@@ -62,11 +65,15 @@ INSTANTIATE_TEST_SUITE_P(Kernels, FloatPath,
                                            AgreementCase{4, KernelType::RationalQuadratic, 10, 100},
                                            AgreementCase{7, KernelType::RationalQuadratic, 5, 500},
                                            AgreementCase{4, KernelType::Gaussian, 10, 1},
-                                           AgreementCase{19, KernelType::RationalQuadratic, 3, 1}),
+                                           AgreementCase{19, KernelType::RationalQuadratic, 3, 1},
+                                           AgreementCase{12, KernelType::RationalQuadratic, 10, 10,
+                                                         3, 0.2},
+                                           AgreementCase{6, KernelType::Gaussian, 10, 1, 3, 0}),
                          [](const auto& info) {
                            return std::to_string(info.param.dim) + "d_" +
                                   std::string(toString(info.param.type)) + "_beta" +
-                                  std::to_string(static_cast<int>(info.param.beta));
+                                  std::to_string(static_cast<int>(info.param.beta)) +
+                                  (info.param.block ? "_points" : "");
                          });
 
 TEST(Model, ScoreIsTheWeightedKernelSumInInputSpace) {
@@ -91,20 +98,28 @@ TEST(Model, BatchScoresEqualSingleScores) {
 }
 
 // The single query unrolls its loop over features for the usual dimensions and loops for the
-// others; each must equal the double sum to float rounding and the batch path exactly.
+// others, with one term or with point terms; each must equal the double sum to float rounding and
+// the batch path exactly.
 TEST(Model, EveryDimensionScoresAlikeOnEveryPath) {
-  for (std::size_t dim = 1; dim <= 14; ++dim) {
+  for (std::size_t dim = 1; dim <= 15; ++dim) {
     for (const KernelType type : {KernelType::RationalQuadratic, KernelType::Gaussian}) {
-      const Configurations s = test::uniformPoints(37, dim, 200 + dim);  // 37: a padded block
-      const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(37, -1.0, 0.8);
-      const Model model(FeatureMap::jointScaling(JointLimits::unitBox(dim)), {type, 3}, s, w);
-      const Configurations q = test::uniformPoints(9, dim, 300 + dim);
-      const Eigen::VectorXd batch = model.scoreBatch(q);
-      for (Eigen::Index i = 0; i < q.rows(); ++i) {
-        const double single = model.score(q.row(i).data());
-        EXPECT_NEAR(single, model.scoreExact(q.row(i).data()), 1e-5)
-            << "d " << dim << " " << toString(type) << " row " << i;
-        EXPECT_EQ(batch[i], single) << "d " << dim << " " << toString(type) << " row " << i;
+      std::vector<Kernel> kernels{{type, 3}};
+      if (dim % 3 == 0) kernels.push_back({type, 3, 3, 0.3});
+      if (dim % 2 == 0) kernels.push_back({type, 3, 2, 0});
+      for (const Kernel& kernel : kernels) {
+        const Configurations s = test::uniformPoints(37, dim, 200 + dim);  // 37: a padded block
+        const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(37, -1.0, 0.8);
+        const Model model(FeatureMap::jointScaling(JointLimits::unitBox(dim)), kernel, s, w);
+        const Configurations q = test::uniformPoints(9, dim, 300 + dim);
+        const Eigen::VectorXd batch = model.scoreBatch(q);
+        for (Eigen::Index i = 0; i < q.rows(); ++i) {
+          const std::string where = "d " + std::to_string(dim) + " " + std::string(toString(type)) +
+                                    " block " + std::to_string(kernel.block) + " row " +
+                                    std::to_string(i);
+          const double single = model.score(q.row(i).data());
+          EXPECT_NEAR(single, model.scoreExact(q.row(i).data()), 1e-5) << where;
+          EXPECT_EQ(batch[i], single) << where;
+        }
       }
     }
   }

@@ -18,10 +18,12 @@ namespace fastron {
 namespace {
 
 Eigen::MatrixXd fullGram(const Eigen::MatrixXd& x, const Kernel& kernel) {
+  const Eigen::MatrixXd points = x.transpose();  // each point's features contiguous
+  const auto d = static_cast<std::size_t>(x.cols());
   Eigen::MatrixXd k(x.rows(), x.rows());
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
     for (Eigen::Index j = 0; j < x.rows(); ++j)
-      k(i, j) = kernel((x.row(i) - x.row(j)).squaredNorm());
+      k(i, j) = kernel.between(points.col(i).data(), points.col(j).data(), d);
   }
   return k;
 }
@@ -43,9 +45,12 @@ std::size_t nonPositiveMargins(const Model& model, const Configurations& q, cons
   return count;
 }
 
-TrainParams uncapped(double gamma, double beta = 1) {
+TrainParams uncapped(double gamma, double beta = 1, std::uint32_t block = 0,
+                     double wholeShare = 0) {
   TrainParams p;
   p.kernel.gamma = gamma;
+  p.kernel.block = block;
+  p.kernel.wholeShare = wholeShare;
   p.beta = beta;
   p.maxIterations = 10'000'000;
   p.maxSupportPoints = 1'000'000;
@@ -56,6 +61,8 @@ struct ConvergenceCase {
   std::size_t dim, n;
   double gamma, beta;
   bool randomLabels;
+  std::uint32_t block = 0;  ///< point terms of the kernel (Kernel::block)
+  double wholeShare = 0;
 };
 
 class Convergence : public ::testing::TestWithParam<ConvergenceCase> {};
@@ -66,7 +73,7 @@ TEST_P(Convergence, EveryTrainingPointEndsWithPositiveMargin) {
   const Labels y = c.randomLabels
                        ? test::randomLabels(c.n, 8)
                        : test::BallWorld::random(c.dim, 4, 0.3 * std::sqrt(c.dim), 9).label(q);
-  Trainer trainer(JointLimits::unitBox(c.dim), uncapped(c.gamma, c.beta));
+  Trainer trainer(JointLimits::unitBox(c.dim), uncapped(c.gamma, c.beta, c.block, c.wholeShare));
   trainer.addPoints(q, y);
   const UpdateReport report = trainer.update();
 
@@ -88,12 +95,15 @@ INSTANTIATE_TEST_SUITE_P(Claim1, Convergence,
                                            ConvergenceCase{2, 2000, 30, 1, false},
                                            ConvergenceCase{4, 4000, 10, 1, false},
                                            ConvergenceCase{4, 2000, 10, 50, false},
-                                           ConvergenceCase{7, 1000, 5, 500, true}),
+                                           ConvergenceCase{7, 1000, 5, 500, true},
+                                           ConvergenceCase{6, 2000, 20, 10, false, 3, 0.2},
+                                           ConvergenceCase{12, 1000, 10, 1, true, 3, 0}),
                          [](const auto& info) {
                            const auto& c = info.param;
                            return std::to_string(c.dim) + "d_n" + std::to_string(c.n) + "_beta" +
                                   std::to_string(static_cast<int>(c.beta)) +
-                                  (c.randomLabels ? "_randomLabels" : "_balls");
+                                  (c.randomLabels ? "_randomLabels" : "_balls") +
+                                  (c.block ? "_pointTerms" : "");
                          });
 
 TEST(Trainer, ConditionalBiasWeighsCollisionPointsMore) {
@@ -224,6 +234,8 @@ struct ReferenceCase {
   std::size_t dim, n;
   double gamma, beta;
   std::size_t cap;
+  std::uint32_t block = 0;  ///< point terms of the kernel (Kernel::block)
+  double wholeShare = 0;
 };
 
 class AgainstReference : public ::testing::TestWithParam<ReferenceCase> {};
@@ -237,7 +249,7 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
   const Labels y =
       test::BallWorld::random(ballDim, 4, 0.3 * std::sqrt(static_cast<double>(ballDim)), 92)
           .label(q.leftCols(static_cast<Eigen::Index>(ballDim)));
-  TrainParams p = uncapped(c.gamma, c.beta);
+  TrainParams p = uncapped(c.gamma, c.beta, c.block, c.wholeShare);
   p.maxSupportPoints = c.cap;
   // On the features as a Trainer stores them: rounded to float (trainer.cpp).
   const Eigen::MatrixXd features =
@@ -273,17 +285,18 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Seeded, AgainstReference,
-                         ::testing::Values(ReferenceCase{2, 1500, 30, 1, 100000},
-                                           ReferenceCase{7, 3000, 5, 500, 100000},
-                                           ReferenceCase{7, 3000, 5, 500, 60},
-                                           ReferenceCase{12, 2000, 3, 10, 100000}),
-                         [](const auto& info) {
-                           const ReferenceCase& c = info.param;
-                           return std::to_string(c.dim) + "d_beta" +
-                                  std::to_string(static_cast<int>(c.beta)) +
-                                  (c.cap < 100000 ? "_capped" : "");
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Seeded, AgainstReference,
+    ::testing::Values(ReferenceCase{2, 1500, 30, 1, 100000}, ReferenceCase{7, 3000, 5, 500, 100000},
+                      ReferenceCase{7, 3000, 5, 500, 60}, ReferenceCase{12, 2000, 3, 10, 100000},
+                      // Point terms, on the register and feature paths.
+                      ReferenceCase{12, 2000, 10, 10, 100000, 3, 0.2},
+                      ReferenceCase{18, 1500, 10, 10, 100000, 3, 0}),
+    [](const auto& info) {
+      const ReferenceCase& c = info.param;
+      return std::to_string(c.dim) + "d_beta" + std::to_string(static_cast<int>(c.beta)) +
+             (c.cap < 100000 ? "_capped" : "") + (c.block ? "_pointTerms" : "");
+    });
 
 TEST(Trainer, ContradictoryDuplicatesEndAtTheIterationLimit) {
   Configurations q(2, 2);

@@ -213,7 +213,7 @@ TEST_F(TaskSpaceModelFile, RoundTripWithTheRobot) {
   ASSERT_GT(model.supportCount(), 5u);
   saveModel(model, path("m.fastron"));
   const ModelFileHeader header = readModelHeader(path("m.fastron"));
-  EXPECT_EQ(header.version, 2u);
+  EXPECT_EQ(header.version, kModelFileVersion);
   EXPECT_EQ(header.features, FeatureKind::Kinematic);
   EXPECT_EQ(header.kinematics, model.features().kinematics()->description());
 

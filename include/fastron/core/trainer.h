@@ -27,11 +27,15 @@ struct TrainParams {
 /// Throws InvalidArgument naming the field that is out of range.
 void validate(const TrainParams& params);
 
-/// The rational-quadratic kernel's gamma and the conditional bias beta that suit each kind of
-/// features on a 7-joint arm, chosen by the sweep in docs/algorithms.md: joint scaling gamma 5,
-/// beta 500 (the paper's 7-DOF settings, Sec. IV-B); task-space features (metres) gamma 40,
-/// beta 10.
-TrainParams defaultTrainParams(FeatureKind kind);
+/// The rational-quadratic kernel and the conditional bias beta that suit each kind of features on
+/// a 7-joint arm, chosen by the sweeps in docs/algorithms.md: joint scaling gamma 5, beta 500
+/// (the paper's 7-DOF settings, Sec. IV-B); task-space features (metres) a term per control point
+/// beside the whole vector's (share 1/3), gamma 60, beta 30. A task-space model whose labels
+/// include the robot's collisions with itself (`selfCollisionLabels`) gets one term, gamma 40,
+/// beta 10: a self-collision is a relation between two links, which terms of single points do not
+/// describe (a mesh Panda model of obstacles and self-collisions needed as many support points
+/// with point terms, each costing 1.7 times as much to query).
+TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels = false);
 
 enum class StopReason {
   Converged,       ///< every training point has positive margin and no support point is redundant

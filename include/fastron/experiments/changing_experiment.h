@@ -5,6 +5,7 @@
 // FK + GJK and FK + FCL (Figs. 9 and 11 and the tables of Figs. 8 and 10); and the obstacle
 // sweep: query times against 1 to 100 obstacles and the share of C-space in collision (Fig. 12).
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct ChangingOptions {
   std::size_t pruneSamples = 0;
   /// When > 0, a row "Fastron (FCL, merged)": the same model reduced by mergeSupport(radius).
   double mergeRadius = 0;
+  /// The kernel's point terms (Kernel::block, wholeShare) of the models on options.features;
+  /// unset keeps defaultTrainParams'.
+  std::optional<std::uint32_t> kernelBlock;
+  std::optional<double> wholeShare;
   std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
 };
 

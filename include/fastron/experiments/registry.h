@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -28,6 +29,8 @@ struct ExperimentSettings {
   std::size_t activeSamples = 0;             ///< changing
   std::size_t pruneSamples = 0;              ///< changing
   double mergeRadius = 0;                    ///< changing
+  std::optional<std::uint32_t> kernelBlock;  ///< changing
+  std::optional<double> wholeShare;          ///< changing
   // motion-bench
   std::filesystem::path problems;
   std::string robot = "panda";
