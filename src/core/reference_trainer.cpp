@@ -36,11 +36,15 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
   alpha.assign(n, 0.0);
   f.assign(n, 0.0);
   std::vector<double> column(n);
-  const Eigen::MatrixXd rows = x.transpose();  // each point's features contiguous
   const auto addColumn = [&](std::size_t i, double delta) {
+    const auto xi = [&](std::size_t c) {
+      return x(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c));
+    };
     for (std::size_t j = 0; j < n; ++j) {
-      f[j] += delta * params.kernel.between(rows.col(static_cast<Eigen::Index>(j)).data(),
-                                            rows.col(static_cast<Eigen::Index>(i)).data(), d);
+      const auto xj = [&](std::size_t c) {
+        return x(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(c));
+      };
+      f[j] += delta * params.kernel.betweenOf<double>(xj, xi, d);
     }
   };
   const auto margin = [&](std::size_t j) { return static_cast<double>(y[j]) * f[j]; };

@@ -75,15 +75,23 @@ struct Kernel {
   /// it in this order.
   template <class T>
   T between(const T* a, const T* b, std::size_t dim) const {
+    return betweenOf<T>([a](std::size_t c) { return a[c]; }, [b](std::size_t c) { return b[c]; },
+                        dim);
+  }
+  /// The same for vectors read feature by feature, a(c) and b(c) (e.g. rows of a matrix stored
+  /// column by column).
+  template <class T, class A, class B>
+  T betweenOf(const A& a, const B& b, std::size_t dim) const {
+    const auto squared = [&](std::size_t c) { return (a(c) - b(c)) * (a(c) - b(c)); };
     if (block == 0) {
       T r2 = 0;
-      for (std::size_t c = 0; c < dim; ++c) r2 += (a[c] - b[c]) * (a[c] - b[c]);
+      for (std::size_t c = 0; c < dim; ++c) r2 += squared(c);
       return (*this)(r2);
     }
     T whole = 0, points = 0;
     for (std::size_t g = 0; g < dim; g += block) {
       T r2 = 0;
-      for (std::size_t c = g; c < g + block; ++c) r2 += (a[c] - b[c]) * (a[c] - b[c]);
+      for (std::size_t c = g; c < g + block; ++c) r2 += squared(c);
       whole += r2;
       points += (*this)(r2);
     }
