@@ -223,8 +223,8 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
                 "with --scene: label self-collisions as collisions too");
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
   cmd->add_option("--gamma", o->gamma,
-                  "kernel width (default: 10 for a dataset alone; with --robot 60 for fk "
-                  "features, 40 for fk with --self-collision, 5 for joints)");
+                  "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
+                  "features, 5 for joints)");
   cmd->add_option("--kernel", o->kernel, "rq (rational quadratic) or gaussian")
       ->capture_default_str();
   cmd->add_option("--kernel-block", o->kernelBlock,
@@ -233,7 +233,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
                   "otherwise)");
   cmd->add_option("--kernel-whole-share", o->wholeShare,
                   "with point terms: the whole feature vector's share of the kernel, in [0, 1] "
-                  "(default 1/3)")
+                  "(default 0.5)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--beta", o->beta,
                   "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 30 for "

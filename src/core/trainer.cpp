@@ -79,7 +79,7 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels) {
     params.kernel = {KernelType::RationalQuadratic, 40};
     params.beta = 10;
   } else if (kind == FeatureKind::Kinematic) {
-    params.kernel = {KernelType::RationalQuadratic, 60, 3, 1.0 / 3};
+    params.kernel = {KernelType::RationalQuadratic, 40, 3, 0.5};
     params.beta = 30;
   } else {
     params.kernel = {KernelType::RationalQuadratic, 5};

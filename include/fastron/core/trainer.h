@@ -30,7 +30,7 @@ void validate(const TrainParams& params);
 /// The rational-quadratic kernel and the conditional bias beta that suit each kind of features on
 /// a 7-joint arm, chosen by the sweeps in docs/algorithms.md: joint scaling gamma 5, beta 500
 /// (the paper's 7-DOF settings, Sec. IV-B); task-space features (metres) a term per control point
-/// beside the whole vector's (share 1/3), gamma 60, beta 30. A task-space model whose labels
+/// beside the whole vector's (share 0.5), gamma 40, beta 30. A task-space model whose labels
 /// include the robot's collisions with itself (`selfCollisionLabels`) gets one term, gamma 40,
 /// beta 10: a self-collision is a relation between two links, which terms of single points do not
 /// describe (a mesh Panda model of obstacles and self-collisions needed as many support points
