@@ -132,8 +132,9 @@ void columnByFeature(const float* x, std::size_t rows, std::size_t features, std
     for (std::size_t j = 0; j < size; ++j) whole[j] = points[j] = 0;
     for (std::size_t g = 0; g < features; g += block) {
       if (block == 3 && kernel.type == KernelType::RationalQuadratic) {
-        // A control point's term in one pass over its three coordinates: N 8000, d 18, all of
-        // Algorithm 1 in 13.2 ms against 20.5 ms in separate passes (d 27: 18.8 against 31.3).
+        // A control point's term in one pass over its three coordinates: N 8000, d 18, share 1/3,
+        // all of Algorithm 1 in 13.2 ms against 20.5 ms in separate passes (d 27: 18.8 against
+        // 31.3).
         const float* v0 = x + g * rows + from + begin;
         const float* v1 = v0 + rows;
         const float* v2 = v1 + rows;

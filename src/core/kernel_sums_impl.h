@@ -162,7 +162,8 @@ void sumFourOfPoints(const SupportView& s, const float* xs, float* out) {
 
 template <KernelType type>
 float oneOfPoints(const SupportView& s, const float* x) {
-  // Three and four control points.
+  // Three and four control points, unrolled (Baxter, |S| 250: 182-186 ns a query against
+  // 223-230 ns with the loops' bounds at run time).
   if (s.block == 3 && s.dim == 9) return sumOneOfPoints<type, 9, 3>(s, x);
   if (s.block == 3 && s.dim == 12) return sumOneOfPoints<type, 12, 3>(s, x);
   if (s.block == 3) return sumOneOfPoints<type, 0, 3>(s, x);

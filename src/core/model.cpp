@@ -149,8 +149,9 @@ double Model::scoreExact(const double* q) const {
   features_.map(q, x.data());
   double f = 0;
   for (Eigen::Index i = 0; i < support_.rows(); ++i) {
-    const Eigen::VectorXd s = support_.row(i).transpose();
-    f += weights_[i] * kernel_.between(s.data(), x.data(), featureDim());
+    const auto s = [&](std::size_t c) { return support_(i, static_cast<Eigen::Index>(c)); };
+    const auto xc = [&](std::size_t c) { return x[static_cast<Eigen::Index>(c)]; };
+    f += weights_[i] * kernel_.between<double>(s, xc, featureDim());
   }
   return f;
 }

@@ -44,7 +44,7 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
       const auto xj = [&](std::size_t c) {
         return x(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(c));
       };
-      f[j] += delta * params.kernel.betweenOf<double>(xj, xi, d);
+      f[j] += delta * params.kernel.between<double>(xj, xi, d);
     }
   };
   const auto margin = [&](std::size_t j) { return static_cast<double>(y[j]) * f[j]; };

@@ -41,13 +41,13 @@ std::shared_ptr<const Model> pruneSupport(const Model& model, const Configuratio
 
   // Support point i's term at every held-out point, computed when needed (twice per point)
   // rather than kept: |S| x H of them would be hundreds of megabytes for large held-out sets.
-  const Eigen::MatrixXd points = x.transpose();  // each point's features contiguous
+  const auto d = static_cast<std::size_t>(x.cols());
   const auto termOf = [&](Eigen::Index i) -> Eigen::VectorXd {
-    const Eigen::VectorXd s = support.row(i).transpose();
-    Eigen::VectorXd term(points.cols());
-    for (Eigen::Index j = 0; j < points.cols(); ++j) {
-      term[j] = weights[i] * model.kernel().between(s.data(), points.col(j).data(),
-                                                    static_cast<std::size_t>(s.size()));
+    const auto s = [&](std::size_t c) { return support(i, static_cast<Eigen::Index>(c)); };
+    Eigen::VectorXd term(x.rows());
+    for (Eigen::Index j = 0; j < x.rows(); ++j) {
+      const auto xj = [&](std::size_t c) { return x(j, static_cast<Eigen::Index>(c)); };
+      term[j] = weights[i] * model.kernel().between<double>(s, xj, d);
     }
     return term;
   };

@@ -247,10 +247,9 @@ std::string simplificationSentence(double simplifyTime) {
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
                                   std::uint64_t seed, bool selfCollisionLabels) {
   if (kind == FeatureKind::JointScaling) return experimentProxyParams(jointGamma, jointBeta, seed);
-  ProxyParams p = experimentProxyParams(0, 0, seed);
   const TrainParams defaults = defaultTrainParams(kind, selfCollisionLabels);
-  p.train.kernel = defaults.kernel;
-  p.train.beta = defaults.beta;
+  ProxyParams p = experimentProxyParams(defaults.kernel.gamma, defaults.beta, seed);
+  p.train.kernel = defaults.kernel;  // with its point terms
   return p;
 }
 

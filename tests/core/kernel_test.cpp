@@ -53,17 +53,20 @@ TEST(Kernel, NamesAndValidation) {
 
 TEST(Kernel, PointTermsAreTheWeightedMeanOfTheBlocksAndTheWholeVector) {
   const std::array<double, 6> a{0, 0, 0, 1, 2, 2}, b{0.3, 0.4, 0, 1, 2, 1};
+  const auto of = [](const std::array<double, 6>& v) {
+    return [&v](std::size_t c) { return v[c]; };
+  };
   const Kernel one{KernelType::RationalQuadratic, 2};
   const double whole = one(0.25 + 1.0);
-  EXPECT_DOUBLE_EQ(one.between(a.data(), b.data(), 6), whole);
+  EXPECT_DOUBLE_EQ(one.between<double>(of(a), of(b), 6), whole);
   const Kernel points{KernelType::RationalQuadratic, 2, 3, 0.2};
-  EXPECT_DOUBLE_EQ(points.between(a.data(), b.data(), 6),
+  EXPECT_DOUBLE_EQ(points.between<double>(of(a), of(b), 6),
                    0.2 * whole + 0.8 / 2 * (one(0.25) + one(1.0)));
   const Kernel gaussian{KernelType::Gaussian, 2, 2, 0};
-  EXPECT_DOUBLE_EQ(gaussian.between(a.data(), b.data(), 6),
+  EXPECT_DOUBLE_EQ(gaussian.between<double>(of(a), of(b), 6),
                    (std::exp(-2 * 0.25) + std::exp(-2 * 0.0) + std::exp(-2 * 1.0)) / 3);
   for (const Kernel& k : {one, points, gaussian})
-    EXPECT_DOUBLE_EQ(k.between(a.data(), a.data(), 6), 1);
+    EXPECT_DOUBLE_EQ(k.between<double>(of(a), of(a), 6), 1);
   EXPECT_EQ(points.pointTerms(6), 2u);
   EXPECT_EQ(describeTerms(one, 6), "one term");
   EXPECT_EQ(describeTerms(points, 6),

@@ -18,12 +18,14 @@ namespace fastron {
 namespace {
 
 Eigen::MatrixXd fullGram(const Eigen::MatrixXd& x, const Kernel& kernel) {
-  const Eigen::MatrixXd points = x.transpose();  // each point's features contiguous
   const auto d = static_cast<std::size_t>(x.cols());
   Eigen::MatrixXd k(x.rows(), x.rows());
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    for (Eigen::Index j = 0; j < x.rows(); ++j)
-      k(i, j) = kernel.between(points.col(i).data(), points.col(j).data(), d);
+    for (Eigen::Index j = 0; j < x.rows(); ++j) {
+      const auto xi = [&](std::size_t c) { return x(i, static_cast<Eigen::Index>(c)); };
+      const auto xj = [&](std::size_t c) { return x(j, static_cast<Eigen::Index>(c)); };
+      k(i, j) = kernel.between<double>(xi, xj, d);
+    }
   }
   return k;
 }

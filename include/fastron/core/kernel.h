@@ -66,22 +66,16 @@ struct Kernel {
   /// else (s, (1 - s) / m).
   double wholeWeight() const { return block == 0 ? 1.0 : wholeShare; }
   double pointWeight(std::size_t dim) const {
-    return block == 0 ? 0.0 : (1.0 - wholeShare) / static_cast<double>(dim / block);
+    return block == 0 ? 0.0 : (1.0 - wholeShare) / static_cast<double>(pointTerms(dim));
   }
 
-  /// k(a, b) of two vectors of `dim` features. With point terms: r2 of each block in order, its
-  /// term, the whole r2 as the sum of the blocks' r2 in order, then wholeWeight k(whole) +
+  /// k(a, b) of two vectors of `dim` features read feature by feature, a(c) and b(c) (a row of a
+  /// matrix stored column by column reads in place). With point terms: r2 of each block in order,
+  /// its term, the whole r2 as the sum of the blocks' r2 in order, then wholeWeight k(whole) +
   /// pointWeight (sum of the point terms): every path of Algorithm 1 and of the queries computes
   /// it in this order.
-  template <class T>
-  T between(const T* a, const T* b, std::size_t dim) const {
-    return betweenOf<T>([a](std::size_t c) { return a[c]; }, [b](std::size_t c) { return b[c]; },
-                        dim);
-  }
-  /// The same for vectors read feature by feature, a(c) and b(c) (e.g. rows of a matrix stored
-  /// column by column).
   template <class T, class A, class B>
-  T betweenOf(const A& a, const B& b, std::size_t dim) const {
+  T between(const A& a, const B& b, std::size_t dim) const {
     const auto squared = [&](std::size_t c) { return (a(c) - b(c)) * (a(c) - b(c)); };
     if (block == 0) {
       T r2 = 0;
