@@ -8,6 +8,7 @@
 #include <zlib.h>
 
 #include <cstring>
+#include <numbers>
 #include <set>
 
 #include "fastron/core/active_learning.h"
@@ -114,6 +115,36 @@ TEST(ControlPoints, EverySimdPathPlacesThePointsLikeForwardKinematics) {
               << name << ", " << toString(path) << ", row " << i << ", coordinate " << k;
         }
       }
+    }
+  }
+}
+
+// Single float queries compute their own sine and cosine (a polynomial after reduction by pi/4,
+// control_points.cpp): at the reduction's octant boundaries, on either side of zero, many turns
+// out and beyond the range it reduces (where the C library takes over), the points stay where the
+// double path (the C library's sine and cosine) puts them.
+TEST(ControlPoints, FloatPositionsHoldAtOctantBoundariesAndLargeAngles) {
+  const Robot robot = loadRobot("baxter");
+  const RobotPointKinematics kinematics(robot, defaultControlPoints(robot));
+  const std::size_t stride = 3 * kinematics.pointCount();
+  std::vector<double> angles;
+  for (int octant = -16; octant <= 16; ++octant) {
+    const double boundary = octant * std::numbers::pi / 4;
+    for (const double nudge : {-1e-6, 0.0, 1e-6}) angles.push_back(boundary + nudge);
+  }
+  // Exactly representable in float, so both paths see the same angle.
+  for (const double large : {100.0, -257.5, 8191.0, 8193.0, -16384.0, 1.0e6}) {
+    angles.push_back(large);
+  }
+  std::vector<double> exact(stride);
+  std::vector<float> fast(stride);
+  for (const double angle : angles) {
+    std::vector<double> q(kinematics.dof());
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = j % 2 == 0 ? angle : -angle;
+    kinematics.positions(q.data(), exact.data());
+    kinematics.positions(q.data(), fast.data());
+    for (std::size_t k = 0; k < stride; ++k) {
+      EXPECT_NEAR(fast[k], exact[k], 2e-5) << "angle " << angle << ", coordinate " << k;
     }
   }
 }
