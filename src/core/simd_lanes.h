@@ -17,6 +17,8 @@
 
 #include <cstddef>
 #include <utility>
+
+#include "cephes_sin_cos.h"
 #if defined(__x86_64__)
 #include <immintrin.h>  // its functions are inline-only (GCC) or static (Clang): nothing shared
 #endif
@@ -146,17 +148,11 @@ inline Floats expOfNonPositive(Floats x) {
 inline void sinCos(Floats x, Floats& sine, Floats& cosine) {
   constexpr int kSignBit = -2147483647 - 1;
   const Ints signOfX = reinterpret_cast<Ints>(x) & kSignBit;
-  Floats a = reinterpret_cast<Floats>(reinterpret_cast<Ints>(x) & ~kSignBit);  // |x|
-  Ints octant = __builtin_convertvector(a * 1.27323954473516f, Ints);          // |x| / (pi/4)
+  const Floats a = reinterpret_cast<Floats>(reinterpret_cast<Ints>(x) & ~kSignBit);  // |x|
+  Ints octant = __builtin_convertvector(a * kFourOverPi, Ints);                      // |x| / (pi/4)
   octant = (octant + 1) & ~1;
-  const Floats y = __builtin_convertvector(octant, Floats);
-  a = ((a - y * 0.78515625f) - y * 2.4187564849853515625e-4f) - y * 3.77489497744594108e-8f;
-  const Floats z = a * a;
-  const Floats cosOfA =
-      ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z -
-      0.5f * z + 1.0f;
-  const Floats sinOfA =
-      ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * a + a;
+  Floats sinOfA, cosOfA;
+  reducedSinCos(a, __builtin_convertvector(octant, Floats), sinOfA, cosOfA);
   const Ints swap = (octant & 2) != 0;  // the octants where sine follows the cosine's curve
   const Floats s = swap ? cosOfA : sinOfA, c = swap ? sinOfA : cosOfA;
   const Ints sinSign = (((octant & 4) != 0) & kSignBit) ^ signOfX;

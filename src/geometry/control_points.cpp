@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "../core/cephes_sin_cos.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/model_file.h"
@@ -179,34 +180,28 @@ void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
   }
 }
 
-/// Float features: the Cephes polynomials of the lanes' sinCos (simd_lanes.h), one angle at a
-/// time and without a branch. The C library's sinf and cosf branch on the angle's range, which a
-/// sampling planner's random configurations mispredict: Baxter's 4 points on 20000 uniform
-/// configurations took 95 ns with them and 65 ns with these (61 and 65 ns on one configuration
-/// repeated, as a micro-benchmark measures). Beyond |x| = 8192 the reduction by pi/4 in float
-/// loses digits, and those angles go to the C library.
+/// Float features: the Cephes polynomials of the lanes' sinCos (core/cephes_sin_cos.h), one
+/// angle at a time and without a branch. The C library's sinf and cosf branch on the angle's range,
+/// which a sampling planner's random configurations mispredict: Baxter's 4 points on 20000 uniform
+/// configurations (a loop over FeatureMap::map) took 95 ns with them and 65 ns with these; one
+/// configuration repeated, as BM_ControlPoints does, took 61 and 65 ns and hid the difference.
+/// Beyond |x| = 8192 the reduction by pi/4 in float loses digits, and those angles go to the C
+/// library.
 template <>
 void cosSin(const float* angles, std::size_t count, float* cosines, float* sines) {
   constexpr float kReducible = 8192.0f;
   constexpr std::uint32_t kSignBit = 0x80000000u;
   for (std::size_t k = 0; k < count; ++k) {
     const float x = angles[k];
-    float a = std::fabs(x);
+    const float a = std::fabs(x);
     if (!(a <= kReducible)) {
       cosines[k] = std::cos(x);
       sines[k] = std::sin(x);
       continue;
     }
-    const auto octant =
-        (static_cast<std::uint32_t>(a * 1.27323954473516f) + 1u) & ~1u;  // |x|/(pi/4)
-    const auto y = static_cast<float>(octant);
-    a = ((a - y * 0.78515625f) - y * 2.4187564849853515625e-4f) - y * 3.77489497744594108e-8f;
-    const float z = a * a;
-    const float cosOfA =
-        ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z -
-        0.5f * z + 1.0f;
-    const float sinOfA =
-        ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * a + a;
+    const auto octant = (static_cast<std::uint32_t>(a * detail::kFourOverPi) + 1u) & ~1u;
+    float sinOfA = 0, cosOfA = 0;
+    detail::reducedSinCos(a, static_cast<float>(octant), sinOfA, cosOfA);
     // Select and flip signs with bit operations: with ?: GCC emitted jumps, and the same
     // configurations took 124 ns.
     const std::uint32_t swap = 0u - ((octant >> 1) & 1u);  // all ones where sine follows cosine
