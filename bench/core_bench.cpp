@@ -11,6 +11,7 @@
 #include "fastron/core/model.h"
 #include "fastron/core/reference_trainer.h"
 #include "fastron/core/trainer.h"
+#include "fastron/proxy/parallel_chunks.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -82,6 +83,40 @@ BENCHMARK(BM_Train)
     ->Args({5000, 6, 0})
     ->ArgNames({"N", "d", "terms"})
     ->Unit(benchmark::kMillisecond);
+
+// An update's new points (Trainer::addPoints: their features, and F from the current weights)
+// after Algorithm 1 trained on N = range(0) points in d = range(1) features with point terms: the
+// 2000 active-learning points of an update, on threads = range(2) threads (forEachChunk, as
+// ProxyCollisionDetector spreads them).
+void BM_AddPoints(benchmark::State& state) {
+  TrainingCase c = trainingCase(state);
+  c.params.kernel.gamma = 100;  // the narrow kernel of bench changing's accurate setting
+  c.params.kernel.block = 3;
+  c.params.kernel.wholeShare = 0.5;
+  c.params.beta = 10;
+  Trainer trained(JointLimits::unitBox(c.d), c.params);
+  trained.addPoints(c.q, c.y);
+  trained.update();
+  const Configurations fresh = test::uniformPoints(2000, c.d, 3);
+  const Labels labels = ballLabels(fresh, c.d);
+  const auto threads = static_cast<unsigned>(state.range(2));
+  const ChunkRunner onThreads = [threads](std::size_t n, std::size_t chunk, const auto& body) {
+    forEachChunk(n, chunk, threads, body);
+  };
+  for (auto _ : state) {
+    state.PauseTiming();
+    Trainer trainer = trained;
+    state.ResumeTiming();
+    trainer.addPoints(fresh, labels, onThreads);
+    benchmark::DoNotOptimize(trainer.hypothesis().data());
+  }
+  state.counters["support"] = static_cast<double>(trained.supportCount());
+}
+BENCHMARK(BM_AddPoints)
+    ->ArgsProduct({{3000}, {12}, {1, 2}})
+    ->ArgNames({"N", "d", "threads"})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 
 // The same training with the plain scalar Algorithm 1 (reference_trainer.h): the baseline of
 // BM_Train, measured in the same run. d = 9-27 stands for task-space features (3 coordinates of

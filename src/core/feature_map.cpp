@@ -79,20 +79,29 @@ void PointKinematics::positionsBatch(const double* q, std::size_t n, float* out)
   for (std::size_t i = 0; i < n; ++i) positions(q + i * dofs, out + i * coordinates);
 }
 
-Eigen::MatrixXd FeatureMap::map(const Configurations& q) const {
+void FeatureMap::check(const Configurations& q) const {
   if (static_cast<std::size_t>(q.cols()) != configurationDim()) {
     throw InvalidArgument("configurations have " + std::to_string(q.cols()) +
                           " columns, expected " + std::to_string(configurationDim()));
   }
   if (!q.allFinite()) throw InvalidArgument("configurations must be finite (found NaN or inf)");
+}
+
+Eigen::MatrixXd FeatureMap::map(const Configurations& q) const {
+  check(q);
+  Eigen::MatrixXd x(q.rows(), static_cast<Eigen::Index>(featureDim()));
+  mapRows(q, 0, q.rows(), x);
+  return x;
+}
+
+void FeatureMap::mapRows(const Configurations& q, Eigen::Index begin, Eigen::Index end,
+                         Eigen::MatrixXd& x) const {
   const auto d = static_cast<Eigen::Index>(featureDim());
-  Eigen::MatrixXd x(q.rows(), d);
   std::array<double, kMaxFeatureDimension> row{};
-  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+  for (Eigen::Index i = begin; i < end; ++i) {
     map(q.row(i).data(), row.data());
     x.row(i) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), d);
   }
-  return x;
 }
 
 std::string FeatureMap::summary() const {

@@ -32,6 +32,13 @@ struct GramPasses {
   /// block divides `features` (validated by the Trainer).
   void (*column)(const double* x, const float* xf, std::size_t rows, std::size_t features,
                  std::size_t i, std::size_t from, const GramKernel& kernel, double* k);
+  /// f[j - from] += sum_s weights[s] K(support_s, x_j) for the rows j in [from, to) of x
+  /// (column-major, rows x features) and the `count` rows of `support` (row-major, count x
+  /// features): the hypothesis of new training points from the current weights, summed in the
+  /// order of s.
+  void (*addSums)(const double* support, const double* weights, std::size_t count, const double* x,
+                  std::size_t rows, std::size_t features, std::size_t from, std::size_t to,
+                  const GramKernel& kernel, double* f);
   /// f += delta k over n values, then the most negative margin y_j f_j (returned) and its index
   /// (the first one on ties, in *worst).
   double (*addAndFindWorst)(double* f, const double* y, std::size_t n, const double* k,

@@ -7,6 +7,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/proxy/labelling.h"
+#include "fastron/proxy/parallel_chunks.h"
 
 namespace fastron {
 
@@ -71,7 +72,7 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   report.added = n;
   trainer_ = Trainer(features_, params_.train);
   const auto learned = static_cast<Eigen::Index>(n);
-  trainer_.addPoints(q.topRows(learned), {labels.data(), n});
+  trainer_.addPoints(q.topRows(learned), {labels.data(), n}, onLabelThreads());
   report.update = trainer_.update();
   return finish(report, start, q.bottomRows(static_cast<Eigen::Index>(calibration)),
                 Labels(labels.begin() + learned, labels.end()));
@@ -129,7 +130,7 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
 
   Trainer before = trainer_;  // restored when the held-out labelling fails
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
-  trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()));
+  trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
   report.update = trainer_.update();
   Labels heldOutLabels;
@@ -145,6 +146,16 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   return finish(report, start, calibration, heldOutLabels);
 }
 
+ChunkRunner ProxyCollisionDetector::onLabelThreads() const {
+  // The new points' features and F, spread like the labelling (2000 points, |S| 540, 12
+  // features: 0.9 ms on one core).
+  return
+      [threads = params_.labelThreads](std::size_t n, std::size_t chunk,
+                                       const std::function<void(std::size_t, std::size_t)>& body) {
+        forEachChunk(n, chunk, threads, body);
+      };
+}
+
 std::size_t ProxyCollisionDetector::learnPendingObservations() {
   std::vector<double> values;
   Labels labels;
@@ -157,7 +168,7 @@ std::size_t ProxyCollisionDetector::learnPendingObservations() {
   trainer_.addPoints(
       Eigen::Map<const Configurations>(values.data(), static_cast<Eigen::Index>(labels.size()),
                                        static_cast<Eigen::Index>(features_.configurationDim())),
-      labels);
+      labels, onLabelThreads());
   return labels.size();
 }
 

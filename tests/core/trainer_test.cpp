@@ -3,6 +3,10 @@
 
 #include "fastron/core/trainer.h"
 
+#include <functional>
+#include <thread>
+#include <vector>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -191,6 +195,49 @@ TEST(Trainer, HypothesisEqualsGramTimesWeightsThroughAnyHistory) {
     const Configurations fresh = activeLearning(*trainer.model(), {200, 3, 0}, rng);
     trainer.addPoints(fresh, world.label(fresh));
     EXPECT_LT(hypothesisError(trainer), 1e-9) << "after adding points, round " << round;
+  }
+}
+
+// F of new points (addSums of gram_columns_impl.h) for every kernel form and SIMD path, the row
+// count not a multiple of a register: equal to the Gram matrix times the weights, and the same
+// whether the rows go in one chunk or in chunks run out of order on other threads.
+TEST(Trainer, NewPointsGetTheHypothesisOfTheCurrentWeightsInAnyChunks) {
+  const std::size_t d = 6;
+  test::BallWorld world = test::BallWorld::random(d, 3, 0.6, 41);
+  const Configurations first = test::uniformPoints(600, d, 42);
+  const Configurations fresh = test::uniformPoints(333, d, 43);
+  const ChunkRunner backwardsOnThreads =
+      [](std::size_t n, std::size_t chunk,
+         const std::function<void(std::size_t, std::size_t)>& body) {
+        std::vector<std::thread> threads;
+        for (std::size_t begin = (n - 1) / chunk * chunk;; begin -= chunk) {
+          threads.emplace_back(
+              [&body, begin, n, chunk] { body(begin, std::min(n, begin + chunk)); });
+          if (begin == 0) break;
+        }
+        for (std::thread& t : threads) t.join();
+      };
+  const test::SimdPathGuard guard;
+  for (const SimdPath path : supportedSimdPaths()) {
+    useSimdPath(path);
+    for (const KernelType type : {KernelType::RationalQuadratic, KernelType::Gaussian}) {
+      for (const std::uint32_t block : {0u, 3u}) {
+        SCOPED_TRACE(std::string(toString(path)) +
+                     (type == KernelType::Gaussian ? " Gaussian" : " RQ") + " block " +
+                     std::to_string(block));
+        TrainParams p = uncapped(20, 10, block, 0.3);
+        p.kernel.type = type;
+        Trainer serial(JointLimits::unitBox(d), p);
+        serial.addPoints(first, world.label(first));
+        serial.update();
+        ASSERT_GT(serial.supportCount(), 20u);
+        Trainer chunked = serial;
+        serial.addPoints(fresh, world.label(fresh));
+        chunked.addPoints(fresh, world.label(fresh), backwardsOnThreads);
+        EXPECT_LT(hypothesisError(serial), 1e-9);
+        EXPECT_EQ(chunked.hypothesis(), serial.hypothesis());
+      }
+    }
   }
 }
 

@@ -97,8 +97,14 @@ class FeatureMap {
   void map(const double* q, float* x) const;
   /// Float features of n configurations, q and x row by row (not checked: the hot path).
   void mapBatch(const double* q, std::size_t n, float* x) const;
-  /// Features of every row; throws InvalidArgument on a wrong column count or a non-finite value.
+  /// Throws InvalidArgument on a wrong column count or a non-finite value.
+  void check(const Configurations& q) const;
+  /// Features of every row, check()ed.
   Eigen::MatrixXd map(const Configurations& q) const;
+  /// Features of the rows [begin, end) of q (not checked) into the same rows of x (featureDim()
+  /// columns).
+  void mapRows(const Configurations& q, Eigen::Index begin, Eigen::Index end,
+               Eigen::MatrixXd& x) const;
 
   /// "joints" or "fk (N points)": for reports.
   std::string summary() const;

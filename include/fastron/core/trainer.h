@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string_view>
@@ -60,6 +61,12 @@ struct UpdateReport {
   std::chrono::nanoseconds elapsed{0};
 };
 
+/// Calls body(begin, end) once for each chunk [0, chunk), [chunk, 2 chunk), ... of [0, n), in
+/// any order and on any threads (e.g. proxy's forEachChunk); bodies write to disjoint memory and
+/// do not throw unless their input is invalid, and the first exception is rethrown to the caller.
+using ChunkRunner = std::function<void(std::size_t n, std::size_t chunk,
+                                       const std::function<void(std::size_t, std::size_t)>& body)>;
+
 /// Owns the training set (each configuration beside its features X), labels y, weights alpha,
 /// hypothesis F = K alpha and the lazily evaluated Gram matrix. Between updates only support points
 /// are kept, so memory is O(N |S|) during an update and O(|S|^2) after it; a dense N x N matrix is
@@ -75,8 +82,11 @@ class Trainer {
   /// Appends configurations (joint values, one per row) with labels +1 / -1, keeping each
   /// configuration beside its features (nothing converts back). Their weights start
   /// at 0 and their F is computed from the current weights: the kernel between each support
-  /// point and the new rows (paper, "Dynamic Data Structures").
-  void addPoints(const Configurations& q, std::span<const std::int8_t> labels);
+  /// point and the new rows (paper, "Dynamic Data Structures"). The features and F of the new
+  /// rows are computed in chunks given to `run` (e.g. spread over the cores); by default on the
+  /// calling thread. Nothing changes if a configuration is invalid (InvalidArgument).
+  void addPoints(const Configurations& q, std::span<const std::int8_t> labels,
+                 const ChunkRunner& run = {});
 
   /// Replaces the labels of the current points (same order as `configurations()`), e.g. after the
   /// obstacles moved. A support point whose weight sign disagrees with its new label gets weight

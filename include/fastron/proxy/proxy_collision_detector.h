@@ -28,8 +28,10 @@ namespace FASTRON_API fastron {
 struct ProxyParams {
   TrainParams train{};
   ActiveLearningParams activeLearning{};
-  std::uint64_t seed = 1;     ///< every random choice of the pipeline derives from it
-  unsigned labelThreads = 0;  ///< threads labelling with the oracle; 0 = every hardware thread
+  std::uint64_t seed = 1;  ///< every random choice of the pipeline derives from it
+  /// threads labelling with the oracle (and computing the new points' features and F); 0 = every
+  /// hardware thread
+  unsigned labelThreads = 0;
   /// Observations (addObservations) kept for the next step at most; later ones are dropped and
   /// counted, so a caller that outpaces the updates cannot grow memory without bound.
   std::size_t maxPendingObservations = 20000;
@@ -166,6 +168,8 @@ class ProxyCollisionDetector {
   /// Adds the waiting observations to the trainer (stepMutex_ held); returns how many. They keep
   /// waiting until dropLearnedObservations: a step that fails after this leaves them to the next.
   std::size_t learnPendingObservations();
+  /// Runs Trainer::addPoints' chunks on params_.labelThreads threads (forEachChunk).
+  ChunkRunner onLabelThreads() const;
   /// Forgets the first `count` waiting observations (learned by a step that succeeded).
   void dropLearnedObservations(std::size_t count);
   /// Builds the trained model, calibrates its band on the held-out points and publishes both.
