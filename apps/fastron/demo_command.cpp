@@ -45,10 +45,11 @@ int runDemoCommand(DemoCommandOptions o) {
     const std::string error = runPlotScript("plot_demo.py", {dir.string()});
     if (!error.empty()) std::cerr << "fastron: warning: no plots drawn: " << error << '\n';
   }
-  std::cout << "results in " << dir.string()
-            << "/: report.md, ticks.csv, model.fastron (the last model), test_points.csv (its "
-               "last FCL-labelled test configurations)"
-            << (o.plot ? ", demo.png" : "") << '\n';
+  std::cout
+      << "results in " << dir.string()
+      << "/: report.md, ticks.csv, model.fastron (the model of the last tick), test_points.csv "
+         "(its FCL-labelled test configurations)"
+      << (o.plot ? ", demo.png" : "") << '\n';
   // The guarantee the demo shows: no final path collides under FCL.
   for (const PlanRow& row : results.ticks.rows) {
     if (row.outcome.collidesUnderAudit.value_or(false)) {

@@ -5,6 +5,8 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "baxter_cases.h"
 #include "fastron/core/active_learning.h"
@@ -50,6 +52,8 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::duration<double>(o.tickSeconds)));
   Rng rng(o.seed);
+  // The last tick's model and test points while every tick so far was blocked (no rows).
+  std::pair<std::shared_ptr<const Model>, Dataset> blocked;
   const auto began = std::chrono::steady_clock::now();
   for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
     // Obstacles move at the pace of sensing, not of planning, so the model can follow them.
@@ -61,16 +65,20 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     audit.setScene(scene);
     const CalibratedModel calibrated = proxy.calibratedModel();
     const auto& model = calibrated.model;
-    results.test.points = uniformConfigurations(limits, o.testPoints, rng);
-    results.test.labels = labelConfigurations(audit, results.test.points, 1);
-    const ConfusionCounts counts = evaluate(*model, results.test.points, results.test.labels);
+    Dataset test;
+    test.points = uniformConfigurations(limits, o.testPoints, rng);
+    test.labels = labelConfigurations(audit, test.points, 1);
+    const ConfusionCounts counts = evaluate(*model, test.points, test.labels);
     // The boxes can block one side of the workspace for a while: then this tick plans nothing.
     const auto ends = tryOppositeEnds(limits, *fcl, rng, 20000);
     if (!ends) {
       ++results.blockedTicks;
       if (progress) progress("tick " + std::to_string(tick) + ": no free start or goal, skipped");
+      if (!results.model) blocked = {model, std::move(test)};
       continue;
     }
+    results.model = model;  // with the test points its rows are scored on
+    results.test = std::move(test);
     const auto& [start, goal] = *ends;
     const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
     std::size_t updatesSoFar = 0;
@@ -108,7 +116,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   results.updates = updates;
   results.meanUpdateSeconds = updates ? updateSeconds / static_cast<double>(updates) : std::nan("");
-  results.model = proxy.model();
+  if (!results.model) std::tie(results.model, results.test) = std::move(blocked);
   const Model& model = *results.model;
   results.fastronQuerySeconds = meanSecondsPerCall(
       results.test.points, [&](const double* q) { return model.inCollision(q); }, 0.05);

@@ -39,8 +39,10 @@ struct DemoResults {
   /// One row per (tick, method), with the figures support, accuracy, tpr, tnr (the current
   /// model against FCL) and updates (background model updates so far).
   PlanRows ticks;
-  std::shared_ptr<const Model> model;  ///< the last model
-  Dataset test;                        ///< the last tick's test configurations, FCL labels
+  /// The model the last tick planned on and was scored with: `test` gives its last accuracy
+  /// again (a newer one may have been published after the tick, on the same scene).
+  std::shared_ptr<const Model> model;
+  Dataset test;  ///< the last tick's test configurations, FCL labels
   double fastronQuerySeconds = 0, gjkQuerySeconds = 0, fclQuerySeconds = 0;
   std::size_t updates = 0;  ///< background updates during the run
   /// Ticks with no query: the boxes left no free start or goal in 20000 samples on a side.
