@@ -204,9 +204,10 @@ def test_planning_verified_paths_never_collide(baxter):
             # resolution is free...
             assert fastron.check_path(fcl, plan.path, 0.05), plan
             # ...so at a finer resolution the path is free of the boxes shrunk by how far the
-            # robot moves within half a step. That bound is several cm for Baxter's arm; the
-            # corners simplified paths cut measured under 5 mm deep (2 of 160 paths cut one,
-            # none with 5 mm boxes shrunk), so 1 cm keeps the independent check strict.
+            # robot moves within half a step: in the worst case 0.025 rad times a lever of up to
+            # a metre per joint, centimetres. The corners simplified paths cut measured under
+            # 5 mm deep (2 of 160 paths cut one, none against boxes 5 mm smaller), so 1 cm keeps
+            # the independent check strict.
             assert fastron.check_path(shrunk, plan.path, 0.01), plan
             answers_x, answers_y = plan.exact_answers
             assert answers_x.shape[1] == 7 and answers_y.shape == (answers_x.shape[0],)

@@ -5,7 +5,6 @@
 #include <functional>
 #include <limits>
 #include <string>
-#include <vector>
 
 #include "fastron/core/error.h"
 #include "gram_columns.h"
@@ -127,18 +126,18 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   }
   checkLabels(labels, "new point");
   features_.check(q);
+  const Eigen::Index added = q.rows();
   // Features and F of the new rows in chunks of a few registers: F of 256 rows over |S| 540 in
   // 12 features takes about 0.15 ms, far more than handing a chunk to another thread.
-  const auto added = static_cast<std::size_t>(q.rows());
   const auto inChunks = [&](const std::function<void(std::size_t, std::size_t)>& body) {
     constexpr std::size_t kChunk = 256;
     if (run) {
-      run(added, kChunk, body);
+      run(static_cast<std::size_t>(added), kChunk, body);
     } else {
-      body(0, added);
+      body(0, static_cast<std::size_t>(added));
     }
   };
-  Eigen::MatrixXd input(q.rows(), static_cast<Eigen::Index>(features_.featureDim()));
+  Eigen::MatrixXd input(added, static_cast<Eigen::Index>(features_.featureDim()));
   inChunks([&](std::size_t begin, std::size_t end) {
     features_.mapRows(q, static_cast<Eigen::Index>(begin), static_cast<Eigen::Index>(end), input);
   });
@@ -149,42 +148,37 @@ void Trainer::addPoints(const Configurations& q, std::span<const std::int8_t> la
   }
 
   const Eigen::Index oldN = x_.rows();
-  const Eigen::Index newN = oldN + q.rows();
-  q_.conservativeResize(newN, Eigen::NoChange);
-  q_.bottomRows(q.rows()) = q;
-  xf_.conservativeResize(newN, input.cols());
-  xf_.bottomRows(q.rows()) = input.cast<float>();
-  x_.conservativeResize(newN, Eigen::NoChange);
-  x_.bottomRows(q.rows()) = xf_.bottomRows(q.rows()).cast<double>();
-  y_.conservativeResize(newN);
-  for (std::size_t i = 0; i < added; ++i) y_[oldN + static_cast<Eigen::Index>(i)] = labels[i];
-  alpha_.conservativeResize(newN);
-  alpha_.tail(q.rows()).setZero();
-  column_.resize(static_cast<std::size_t>(newN));
+  q_.conservativeResize(oldN + added, Eigen::NoChange);
+  q_.bottomRows(added) = q;
+  xf_.conservativeResize(oldN + added, input.cols());
+  xf_.bottomRows(added) = input.cast<float>();
+  x_.conservativeResize(oldN + added, Eigen::NoChange);
+  x_.bottomRows(added) = xf_.bottomRows(added).cast<double>();
+  y_.conservativeResize(oldN + added);
+  for (Eigen::Index i = 0; i < added; ++i) y_[oldN + i] = labels[static_cast<std::size_t>(i)];
+  alpha_.conservativeResize(oldN + added);
+  alpha_.tail(added).setZero();
+  column_.resize(static_cast<std::size_t>(oldN + added));
 
-  // F of the new points from the current weights: every support point's features side by side,
+  // F of the new points from the current weights: the support points' features side by side,
   // one pass over them per register of new rows (gram_columns_impl.h, addSums).
-  f_.conservativeResize(newN);
-  f_.tail(q.rows()).setZero();
-  std::vector<Eigen::Index> support;
-  for (Eigen::Index s = 0; s < oldN; ++s) {
-    if (alpha_[s] != 0) support.push_back(s);
-  }
-  if (support.empty()) return;
-  const auto count = static_cast<Eigen::Index>(support.size());
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> supportFeatures(count,
-                                                                                         x_.cols());
+  f_.conservativeResize(oldN + added);
+  f_.tail(added).setZero();
+  const auto count = static_cast<Eigen::Index>((alpha_.head(oldN).array() != 0).count());
+  if (count == 0) return;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> support(count, x_.cols());
   Eigen::VectorXd weights(count);
-  for (Eigen::Index k = 0; k < count; ++k) {
-    supportFeatures.row(k) = x_.row(support[static_cast<std::size_t>(k)]);
-    weights[k] = alpha_[support[static_cast<std::size_t>(k)]];
+  for (Eigen::Index s = 0, k = 0; s < oldN; ++s) {
+    if (alpha_[s] == 0) continue;
+    support.row(k) = x_.row(s);
+    weights[k++] = alpha_[s];
   }
   const detail::GramKernel kernel = gramKernel(params_.kernel, x_.cols());
   inChunks([&](std::size_t begin, std::size_t end) {
     const auto from = static_cast<std::size_t>(oldN) + begin;
     detail::activeGramPasses().addSums(
-        supportFeatures.data(), weights.data(), support.size(), x_.data(),
-        static_cast<std::size_t>(newN), static_cast<std::size_t>(x_.cols()), from,
+        support.data(), weights.data(), static_cast<std::size_t>(count), x_.data(),
+        static_cast<std::size_t>(x_.rows()), static_cast<std::size_t>(x_.cols()), from,
         static_cast<std::size_t>(oldN) + end, kernel, f_.data() + from);
   });
 }

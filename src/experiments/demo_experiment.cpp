@@ -5,7 +5,6 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
-#include <tuple>
 #include <utility>
 
 #include "baxter_cases.h"
@@ -52,8 +51,6 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::duration<double>(o.tickSeconds)));
   Rng rng(o.seed);
-  // The last tick's model and test points while every tick so far was blocked (no rows).
-  std::pair<std::shared_ptr<const Model>, Dataset> blocked;
   const auto began = std::chrono::steady_clock::now();
   for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
     // Obstacles move at the pace of sensing, not of planning, so the model can follow them.
@@ -71,14 +68,16 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     const ConfusionCounts counts = evaluate(*model, test.points, test.labels);
     // The boxes can block one side of the workspace for a while: then this tick plans nothing.
     const auto ends = tryOppositeEnds(limits, *fcl, rng, 20000);
+    // Kept: the model and test points of the last tick with rows (of this tick while none has).
+    if (ends || results.ticks.rows.empty()) {
+      results.model = model;
+      results.test = std::move(test);
+    }
     if (!ends) {
       ++results.blockedTicks;
       if (progress) progress("tick " + std::to_string(tick) + ": no free start or goal, skipped");
-      if (!results.model) blocked = {model, std::move(test)};
       continue;
     }
-    results.model = model;  // with the test points its rows are scored on
-    results.test = std::move(test);
     const auto& [start, goal] = *ends;
     const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
     std::size_t updatesSoFar = 0;
@@ -116,7 +115,6 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   results.updates = updates;
   results.meanUpdateSeconds = updates ? updateSeconds / static_cast<double>(updates) : std::nan("");
-  if (!results.model) std::tie(results.model, results.test) = std::move(blocked);
   const Model& model = *results.model;
   results.fastronQuerySeconds = meanSecondsPerCall(
       results.test.points, [&](const double* q) { return model.inCollision(q); }, 0.05);
