@@ -5,6 +5,8 @@
 #include <map>
 #include <sstream>
 
+#include "fastron/core/active_learning.h"
+#include "fastron/core/metrics.h"
 #include "fastron/core/model_checker.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
@@ -13,6 +15,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/urdf.h"
 #include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/labelling.h"
 #include "plan_rows.h"
 
 namespace fastron::experiments {
@@ -91,6 +94,11 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
   return note;
 }
 
+/// Fresh uniform configurations per scene on which the trained models are scored.
+std::size_t testPoints(const MotionBenchOptions& o) {
+  return o.quick ? 300 : 1000;
+}
+
 /// trainStatic; the seconds it took.
 double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {
   return inSeconds(trainStatic(proxy, samples, updates).total);
@@ -147,10 +155,17 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
     auto support = static_cast<double>(calibrated.model->supportCount());
+    // The models' accuracy beside their speed: fresh uniform configurations of this scene,
+    // labelled by the audit FCL (self-collision included when it is checked).
+    Rng testRng(o.seed * 104729 + p);
+    const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
+    const Labels truth = labelConfigurations(audit, test, 1);
+    const ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
     // The split source: this scene's obstacles (a model whose oracle ignores self-collision) and
     // the robot's self-collision model.
     std::shared_ptr<const CollisionChecker> split;
     double splitSupport = 0, splitTrain = 0;
+    ConfusionCounts splitQuality;
     if (selfModel) {
       ProxyCollisionDetector obstacles(
           std::make_shared<FclChecker>(robot, scene), features,
@@ -159,6 +174,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
       splitSupport = static_cast<double>(obstacles.model()->supportCount());
       split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
           std::make_shared<ModelChecker>(obstacles.model()), selfModel});
+      const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
+      splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
     }
 
     Rng rng(o.seed * 7919 + p);
@@ -182,13 +199,15 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
           {"problem", problem.id},
           {"query", std::to_string(query)},
           {"note", query == 0 ? note : ""}};
-      const auto addRow = [&](const MethodPlan& each, double modelSupport, double trainS,
-                              double learnS) {
+      const auto addRow = [&](const MethodPlan& each, double modelSupport,
+                              const ConfusionCounts& modelQuality, double trainS, double learnS) {
         results.rows.push_back({queryColumns,
                                 "RRTConnect",
                                 each.method,
                                 outcomeOf(each, audit, o.resolution),
                                 {{"support", modelSupport},
+                                 {"accuracy", modelQuality.accuracy()},
+                                 {"tpr", modelQuality.tpr()},
                                  {"train_s", trainS},
                                  {"self_train_s", selfTrainSeconds},
                                  {"learn_s", learnS}}});
@@ -198,11 +217,11 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         if (o.learnFromVerification && each.method == "Fastron") {
           proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
         }
-        addRow(each, support, trainSeconds, learnSeconds);
+        addRow(each, support, quality, trainSeconds, learnSeconds);
       }
       if (split) {
         addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
-               splitSupport, splitTrain, 0);
+               splitSupport, splitQuality, splitTrain, 0);
       }
     }
   }
@@ -266,18 +285,21 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           [](const PlanRow& row) { return row.outcome.totalSeconds; }, median);
     };
     const double share = train / static_cast<double>(o.queriesPerScene);
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "Training per scene: median %s (|S| median %.0f). End-to-end per query with %zu "
-                  "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
-                  "FCL %s (FCL / Fastron %.2fx).\n",
-                  durationText(train).c_str(),
-                  statistic(firstQueryOf("Fastron"), figure("support"), true), o.queriesPerScene,
-                  o.queriesPerScene == 1 ? "y" : "ies",
-                  durationText(total("Fastron", true) + share).c_str(),
-                  durationText(total("Hybrid", true) + share).c_str(),
-                  durationText(total("FCL", true)).c_str(),
-                  total("FCL", true) / (total("Fastron", true) + share));
+    char line[640];
+    std::snprintf(
+        line, sizeof line,
+        "Training per scene: median %s (|S| median %.0f; the trained model's accuracy "
+        "%.3f and TPR %.3f, means over scenes, against FCL on %zu fresh uniform "
+        "configurations per scene). End-to-end per query with %zu "
+        "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
+        "FCL %s (FCL / Fastron %.2fx).\n",
+        durationText(train).c_str(), statistic(firstQueryOf("Fastron"), figure("support"), true),
+        statistic(firstQueryOf("Fastron"), figure("accuracy"), false),
+        statistic(firstQueryOf("Fastron"), figure("tpr"), false), testPoints(o), o.queriesPerScene,
+        o.queriesPerScene == 1 ? "y" : "ies", durationText(total("Fastron", true) + share).c_str(),
+        durationText(total("Hybrid", true) + share).c_str(),
+        durationText(total("FCL", true)).c_str(),
+        total("FCL", true) / (total("Fastron", true) + share));
     out << '\n' << line;
     const RowFilter split = firstQueryOf("Fastron split");
     if (std::any_of(r.rows.begin(), r.rows.end(), split)) {
@@ -285,10 +307,13 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       const double splitTotal = total("Fastron split", true);
       const double endToEnd = splitTotal + splitTrain / static_cast<double>(o.queriesPerScene);
       std::snprintf(line, sizeof line,
-                    "Fastron split: obstacle model per scene median %s (|S| median %.0f), the "
-                    "robot's self-collision model %s once; end-to-end per query %s without the "
-                    "self-collision model (FCL / Fastron split %.2fx).\n",
+                    "Fastron split: obstacle model per scene median %s (|S| median %.0f; with "
+                    "the self-collision model, accuracy %.3f and TPR %.3f on the same "
+                    "configurations), the robot's self-collision model %s once; end-to-end per "
+                    "query %s without the self-collision model (FCL / Fastron split %.2fx).\n",
                     durationText(splitTrain).c_str(), statistic(split, figure("support"), true),
+                    statistic(split, figure("accuracy"), false),
+                    statistic(split, figure("tpr"), false),
                     durationText(statistic(split, figure("self_train_s"), true)).c_str(),
                     durationText(endToEnd).c_str(), total("FCL", true) / endToEnd);
       out << line;

@@ -161,6 +161,13 @@ def main():
         check_plans(rows, ["Fastron", "Hybrid", "FCL", "Fastron split"])
         if "Fastron split: obstacle model per scene" not in report:
             fail("report.md does not report the split model's training")
+        # Every model's accuracy and TPR beside its speed, scored against FCL per scene.
+        rate_columns([r for r in rows if r["method"] != "FCL"], ["accuracy", "tpr"])
+        for row in rows:
+            if row["method"] in ("Fastron", "Fastron split") and math.isnan(value(row, "accuracy")):
+                fail(f"no accuracy for a model: {row}")
+        if "the trained model's accuracy" not in report:
+            fail("report.md does not give the trained model's accuracy")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:
