@@ -160,7 +160,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     Rng testRng(o.seed * 104729 + p);
     const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
     const Labels truth = labelConfigurations(audit, test, 1);
-    const ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
+    ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
     // The split source: this scene's obstacles (a model whose oracle ignores self-collision) and
     // the robot's self-collision model.
     std::shared_ptr<const CollisionChecker> split;
@@ -193,6 +193,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         learnSeconds = std::chrono::duration<double>(proxy.learnObservations().total).count();
         calibrated = proxy.calibratedModel();
         support = static_cast<double>(calibrated.model->supportCount());
+        quality = evaluate(*calibrated.model, test, truth);  // each row scores the model it used
       }
       const std::vector<std::pair<std::string, std::string>> queryColumns{
           {"family", problem.family},
