@@ -1,8 +1,13 @@
 // fastron eval: a model against a labelled dataset, or against FCL on fresh samples of a scene.
 
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "fastron/core/active_learning.h"
@@ -31,6 +36,37 @@ struct EvalOptions {
 };
 
 constexpr double kTimingSeconds = 0.2;  // each timing repeats the configurations this long
+constexpr std::size_t kMissLinksShown = 5;
+
+/// "panda_link5 60, panda_hand 19, ...": the robot links of the collisions the model called free,
+/// by the first contact FCL reports (the link, or "self" for a self-collision), most first. Which
+/// links the model misses is what tells a user where a control point is lacking.
+std::string missesByLink(const Model& model, const FclChecker& fcl, const Dataset& data) {
+  std::map<std::string, std::size_t> counts;
+  for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
+    if (data.labels[static_cast<std::size_t>(i)] <= 0) continue;
+    const Eigen::VectorXd q = data.points.row(i).transpose();
+    if (model.inCollision(q.data())) continue;
+    const auto contact = fcl.firstContact({q.data(), static_cast<std::size_t>(q.size())});
+    if (!contact) continue;  // cannot happen: FCL labelled it colliding
+    ++counts[contact->selfCollision ? contact->robotLink + " (self)" : contact->robotLink];
+  }
+  std::vector<std::pair<std::string, std::size_t>> sorted(counts.begin(), counts.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (sorted.empty()) return "none";
+  std::string text;
+  for (std::size_t k = 0; k < sorted.size() && k < kMissLinksShown; ++k) {
+    if (k > 0) text += ", ";
+    text += sorted[k].first + " " + std::to_string(sorted[k].second);
+  }
+  if (sorted.size() > kMissLinksShown) {
+    std::size_t rest = 0;
+    for (std::size_t k = kMissLinksShown; k < sorted.size(); ++k) rest += sorted[k].second;
+    text += ", other links " + std::to_string(rest);
+  }
+  return text;
+}
 
 int runEval(const EvalOptions& o) {
   if (o.data.empty() == o.scene.empty()) {
@@ -87,6 +123,7 @@ int runEval(const EvalOptions& o) {
             << "\nTNR         " << rate(c.tnr()) << '\n';
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
+  if (fcl) std::cout << "FN by link  " << missesByLink(model, *fcl, data) << '\n';
   std::cout << "query time  " << durationText(query) << " per configuration (features "
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
