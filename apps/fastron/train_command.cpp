@@ -21,14 +21,6 @@
 namespace fastron::cli {
 namespace {
 
-// A scene learned at once from uniform samples (`train --scene`). Over 60 trainings of the mesh
-// Panda in MotionBenchMaker scenes the project never tuned on (20 scenes, 3 seeds), 16000 samples
-// and beta 60 met accuracy 0.97 and TPR 0.95 in 34, against 16 with the 8000 samples and beta 30
-// that suit updates under change, at |S| 570 against 325 (docs/algorithms.md, "Training on one
-// scene"). Uniform samples are 1-9% colliding, so the colliding class wants the larger bias.
-constexpr std::size_t kSceneSamples = 16000;
-constexpr double kSceneTaskSpaceBeta = 60;
-
 struct TrainOptions {
   std::string data, output, kernel = "rq", scene;
   std::vector<std::string> limits;
@@ -80,10 +72,8 @@ TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
   return defaults;
 }
 
-/// The feature kind's kernel and beta with the given iteration limit and a cap of 5000.
-TrainParams robotDefaults(FeatureKind kind, std::size_t maxIterations,
-                          bool selfCollisionLabels = false) {
-  TrainParams params = defaultTrainParams(kind, selfCollisionLabels);
+/// `params` with the given iteration limit and a cap of 5000.
+TrainParams forRobot(TrainParams params, std::size_t maxIterations) {
   params.maxIterations = maxIterations;
   params.maxSupportPoints = 5000;
   return params;
@@ -125,11 +115,8 @@ int trainOnScene(const TrainOptions& o) {
       std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
   const FeatureMap features = featuresFromOptions(o.features, robot);
   ProxyParams params;
-  TrainParams defaults = robotDefaults(features.kind(), 20000, o.selfCollision);
-  if (features.kind() == FeatureKind::Kinematic && !o.selfCollision) {
-    defaults.beta = kSceneTaskSpaceBeta;
-  }
-  params.train = withOptions(defaults, o);
+  params.train =
+      withOptions(forRobot(sceneTrainParams(features.kind(), o.selfCollision), 20000), o);
   params.seed = o.seed;
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
             << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
@@ -176,7 +163,7 @@ int runTrain(const TrainOptions& o) {
                                     : FeatureMap::jointScaling(parseLimits(o.limits, data));
   // A dataset without a robot keeps the settings of old (gamma 10, beta 1, cap 3000).
   const TrainParams params =
-      withOptions(robot ? robotDefaults(features.kind(), 5000) : TrainParams{}, o);
+      withOptions(robot ? forRobot(defaultTrainParams(features.kind()), 5000) : TrainParams{}, o);
 
   const auto [train, test] = splitHoldout(data, o.holdout, o.seed);
 

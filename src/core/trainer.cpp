@@ -89,6 +89,12 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels) {
   return params;
 }
 
+TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels) {
+  TrainParams params = defaultTrainParams(kind, selfCollisionLabels);
+  if (kind == FeatureKind::Kinematic && !selfCollisionLabels) params.beta = 60;
+  return params;
+}
+
 std::string_view toString(StopReason reason) {
   switch (reason) {
     case StopReason::Converged:

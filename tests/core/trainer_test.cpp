@@ -127,6 +127,20 @@ TEST(Trainer, ConditionalBiasWeighsCollisionPointsMore) {
   EXPECT_GT(positives(100), positives(1));
 }
 
+TEST(Trainer, SceneDefaultsBiasOnlyTaskSpaceObstacleModelsMore) {
+  // One scene learned at once from uniform samples: a larger beta for task-space obstacle models,
+  // the kernel unchanged; self-collision and joint-space models keep the defaults.
+  const TrainParams fk = defaultTrainParams(FeatureKind::Kinematic);
+  const TrainParams scene = sceneTrainParams(FeatureKind::Kinematic);
+  EXPECT_GT(scene.beta, fk.beta);
+  EXPECT_EQ(scene.kernel.gamma, fk.kernel.gamma);
+  EXPECT_EQ(scene.kernel.block, fk.kernel.block);
+  EXPECT_EQ(sceneTrainParams(FeatureKind::Kinematic, true).beta,
+            defaultTrainParams(FeatureKind::Kinematic, true).beta);
+  EXPECT_EQ(sceneTrainParams(FeatureKind::JointScaling).beta,
+            defaultTrainParams(FeatureKind::JointScaling).beta);
+}
+
 TEST(Trainer, SupportCapIsRespected) {
   const Configurations q = test::uniformPoints(1000, 2, 11);
   const Labels y = test::randomLabels(1000, 12);
