@@ -147,8 +147,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--active-samples", o->settings.activeSamples,
                   "changing: A_max, the active-learning configurations of each update of the "
-                  "models on --features (default 500, the paper's)")
+                  "models on --features (default 2500 for fk, 500 for joints, the paper's)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--warm-start", o->settings.warmStart,
+                "changing: the models on --features update from their last weights, as in the "
+                "paper (default for fk: from zero weights)");
   cmd->add_option("--prune-samples", o->settings.pruneSamples,
                   "changing: also a row 'Fastron (FCL, pruned)': each model without the support "
                   "points that no answer on this many fresh uniform configurations needs");

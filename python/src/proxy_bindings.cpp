@@ -39,18 +39,19 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
                             std::optional<double> gamma, std::optional<double> beta,
                             std::optional<std::uint32_t> kernelBlock,
                             std::optional<double> wholeShare, bool selfCollisionLabels,
-                            std::size_t maxSupport, std::size_t activeSamples,
-                            unsigned labelThreads, std::size_t calibrationSamples) {
+                            std::size_t maxSupport, std::optional<std::size_t> activeSamples,
+                            std::optional<bool> coldStart, unsigned labelThreads,
+                            std::size_t calibrationSamples) {
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
-  ProxyParams params;
-  params.train = defaultTrainParams(features.kind(), selfCollisionLabels);
+  ProxyParams params = defaultProxyParams(features.kind(), selfCollisionLabels);
   if (gamma) params.train.kernel.gamma = *gamma;
   if (beta) params.train.beta = *beta;
   if (kernelBlock) params.train.kernel.block = *kernelBlock;
   if (wholeShare) params.train.kernel.wholeShare = *wholeShare;
   params.train.maxSupportPoints = maxSupport;
-  params.activeLearning.maxSamples = activeSamples;
+  if (activeSamples) params.activeLearning.maxSamples = *activeSamples;
+  if (coldStart) params.coldStart = *coldStart;
   params.seed = seed;
   // A Python oracle answers one call at a time (the GIL): more threads only wait.
   params.labelThreads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : labelThreads;
@@ -99,12 +100,15 @@ void bindProxy(py::module_& m) {
            py::arg("seed") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
            py::arg("kernel_block") = py::none(), py::arg("kernel_whole_share") = py::none(),
            py::arg("self_collision_labels") = false, py::arg("max_support_points") = 3000,
-           py::arg("active_samples") = 500, py::arg("label_threads") = 0,
-           py::arg("calibration_samples") = 1000,
+           py::arg("active_samples") = py::none(), py::arg("cold_start") = py::none(),
+           py::arg("label_threads") = 0, py::arg("calibration_samples") = 1000,
            "features: a FeatureMap (robot_features(robot), or FeatureMap.joint_scaling(limits)); "
            "gamma, beta and the kernel's point terms (kernel_block, kernel_whole_share) default "
-           "to the values tuned for the kind of features; self_collision_labels=True (an oracle "
-           "that checks the robot against itself) selects those tuned for such labels.")
+           "to the values tuned for the kind of features, as do active_samples (new points per "
+           "update) and cold_start (Algorithm 1 from zero weights at every update): 2500 and "
+           "True for task-space features, 500 and False for joints; self_collision_labels=True "
+           "(an oracle that checks the robot against itself) selects those tuned for such "
+           "labels.")
       .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),
            py::call_guard<py::gil_scoped_release>(),
            "Labels `samples` uniform configurations and trains the first model.")

@@ -206,6 +206,12 @@ void Trainer::relabel(std::span<const std::int8_t> labels) {
   }
 }
 
+void Trainer::forgetWeights() {
+  alpha_.setZero();
+  f_.setZero();
+  supportCount_ = 0;
+}
+
 std::size_t Trainer::countMisclassified(const Eigen::VectorXd& f) const {
   return static_cast<std::size_t>((y_.array() * f.array() <= 0).count());
 }

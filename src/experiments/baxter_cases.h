@@ -15,8 +15,9 @@
 
 namespace fastron::experiments {
 
-// The paper's settings (Sec. IV-B): gamma 10 and beta 100 for 4 joints, 5 and 500 above;
-// 500 active-learning points per update.
+// The paper's settings (Sec. IV-B) for joint-space models: gamma 10 and beta 100 for 4 joints, 5
+// and 500 above; 500 active-learning points per update. Task-space models take
+// defaultProxyParams' (experimentProxyParams).
 struct Case {
   std::size_t joints;
   std::string scene;

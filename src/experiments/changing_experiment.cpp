@@ -45,6 +45,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
       params.activeLearning.variance = o.variance;
       if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
+      if (o.warmStart) params.coldStart = false;
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
           inJoints(fcl, limits, withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
       fromFcl.initialize(initial);
@@ -163,6 +164,7 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
      << (o.beta > 0 ? ", beta " + cell(o.beta) : "")
      << (o.variance > 0 ? ", active-learning variance " + cell(o.variance) : "")
      << (o.activeSamples > 0 ? ", A_max " + std::to_string(o.activeSamples) : "")
+     << (o.warmStart ? ", updates from the last weights (warm start)" : "")
      << (o.kernelBlock ? ", kernel block " + std::to_string(*o.kernelBlock) : "")
      << (o.wholeShare ? ", whole-vector share " + cell(*o.wholeShare) : "")
      << (o.pruneSamples > 0 ? "; 'pruned': pruneSupport on " + std::to_string(o.pruneSamples) +

@@ -247,9 +247,11 @@ std::string simplificationSentence(double simplifyTime) {
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
                                   std::uint64_t seed, bool selfCollisionLabels) {
   if (kind == FeatureKind::JointScaling) return experimentProxyParams(jointGamma, jointBeta, seed);
-  const TrainParams defaults = defaultTrainParams(kind, selfCollisionLabels);
-  ProxyParams p = experimentProxyParams(defaults.kernel.gamma, defaults.beta, seed);
-  p.train.kernel = defaults.kernel;  // with its point terms
+  const ProxyParams defaults = defaultProxyParams(kind, selfCollisionLabels);
+  ProxyParams p = experimentProxyParams(defaults.train.kernel.gamma, defaults.train.beta, seed);
+  p.train.kernel = defaults.train.kernel;  // with its point terms
+  p.activeLearning.maxSamples = defaults.activeLearning.maxSamples;
+  p.coldStart = defaults.coldStart;
   return p;
 }
 

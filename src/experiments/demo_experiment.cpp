@@ -133,12 +133,14 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
     }
     return summarize(values);
   };
+  const ProxyParams pipeline = proxyParams(caseFor("7dof-3boxes"), o.seed, o.features);
   std::ostringstream md;
   char line[256];
   md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"
      << featureSentence(o.features) << ' '
-     << "The model updates on a background thread from FCL labels (500 active-learning points per "
-        "update); at each of "
+     << "The model updates on a background thread from FCL labels ("
+     << pipeline.activeLearning.maxSamples << " active-learning points per update, Algorithm 1 "
+     << (pipeline.coldStart ? "from zero weights" : "from the last weights") << "); at each of "
      << o.ticks
      << " ticks the boxes move and RRT-Connect plans a fresh query (start and goal on opposite "
         "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "

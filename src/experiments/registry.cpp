@@ -101,8 +101,8 @@ std::vector<Experiment> makeRegistry() {
                  }});
   all.push_back({"changing",
                  "Baxter among moving boxes: accuracy and update time per step",
-                 {"features", "gamma", "beta", "al-variance", "active-samples", "prune-samples",
-                  "merge-radius", "kernel-block", "kernel-whole-share"},
+                 {"features", "gamma", "beta", "al-variance", "active-samples", "warm-start",
+                  "prune-samples", "merge-radius", "kernel-block", "kernel-whole-share"},
                  [](const ExperimentSettings& s, const Progress& progress) {
                    ChangingOptions o;
                    o.trials = trialsOr(s, 3);
@@ -112,6 +112,7 @@ std::vector<Experiment> makeRegistry() {
                    o.beta = s.beta;
                    o.variance = s.variance;
                    o.activeSamples = s.activeSamples;
+                   o.warmStart = s.warmStart;
                    o.pruneSamples = s.pruneSamples;
                    o.mergeRadius = s.mergeRadius;
                    o.kernelBlock = s.kernelBlock;

@@ -130,6 +130,7 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
 
   Trainer before = trainer_;  // restored when the held-out labelling fails
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
+  if (params_.coldStart) trainer_.forgetWeights();
   trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
   report.update = trainer_.update();
@@ -317,6 +318,16 @@ void ProxyCollisionDetector::stopBackground() {
   if (worker_.joinable()) worker_.join();
   worker_ = {};
   if (auto error = std::exchange(workerError_, nullptr)) std::rethrow_exception(error);
+}
+
+ProxyParams defaultProxyParams(FeatureKind kind, bool selfCollisionLabels) {
+  ProxyParams params;
+  params.train = defaultTrainParams(kind, selfCollisionLabels);
+  if (kind == FeatureKind::Kinematic) {
+    params.activeLearning.maxSamples = 2500;
+    params.coldStart = true;
+  }
+  return params;
 }
 
 StepReport trainStatic(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t updates) {

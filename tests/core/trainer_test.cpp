@@ -127,6 +127,30 @@ TEST(Trainer, ConditionalBiasWeighsCollisionPointsMore) {
   EXPECT_GT(positives(100), positives(1));
 }
 
+TEST(Trainer, ForgottenWeightsRetrainLikeAFreshTrainer) {
+  // After forgetWeights, an update is Algorithm 1 from scratch on the points the trainer holds.
+  const test::BallWorld world = test::BallWorld::random(3, 5, 0.3, 11);
+  const Configurations first = test::uniformPoints(800, 3, 12);
+  const Configurations second = test::uniformPoints(400, 3, 13);
+  Trainer trainer(JointLimits::unitBox(3), uncapped(20, 5));
+  trainer.addPoints(first, world.label(first));
+  trainer.update();
+  trainer.addPoints(second, world.label(second));
+  trainer.forgetWeights();
+  EXPECT_EQ(trainer.supportCount(), 0u);
+  EXPECT_TRUE(trainer.hypothesis().isZero());
+  const Configurations held = trainer.configurations();
+  Labels labels;
+  for (const double y : trainer.labels()) labels.push_back(y > 0 ? 1 : -1);
+  trainer.update();
+
+  Trainer fresh(JointLimits::unitBox(3), uncapped(20, 5));
+  fresh.addPoints(held, labels);
+  fresh.update();
+  EXPECT_EQ(trainer.configurations(), fresh.configurations());
+  EXPECT_EQ(trainer.weights(), fresh.weights());
+}
+
 TEST(Trainer, SceneDefaultsBiasOnlyTaskSpaceObstacleModelsMore) {
   // One scene learned at once from uniform samples: a larger beta for task-space obstacle models,
   // the kernel unchanged; self-collision and joint-space models keep the defaults.

@@ -106,6 +106,10 @@ class Trainer {
   /// 0, and F is corrected.
   void relabel(std::span<const std::int8_t> labels);
 
+  /// Sets every weight (and so F) to 0, keeping the points: the next update() runs Algorithm 1
+  /// from scratch on them instead of from the last weights.
+  void forgetWeights();
+
   /// Algorithm 1: greedy most-negative-margin updates with conditional bias, support-point cap,
   /// redundant support point removal once all margins are positive, the revert safeguard, and
   /// finally removal of the non-support points. Never prints.

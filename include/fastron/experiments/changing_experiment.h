@@ -25,8 +25,12 @@ struct ChangingOptions {
   /// them), for tuning; 0 keeps the default: the case's gamma and beta for joints,
   /// defaultTrainParams for task space, defaultVariance for the active-learning spread.
   double gamma = 0, beta = 0, variance = 0;
-  /// A_max of the models on options.features; 0 keeps the default (500, the paper's).
+  /// A_max of the models on options.features; 0 keeps the default (defaultProxyParams: 2500 for
+  /// task space, 500 for joints, the paper's).
   std::size_t activeSamples = 0;
+  /// The models on options.features update from their last weights (the paper's warm start)
+  /// even with task-space features, whose default is from zero weights (ProxyParams::coldStart).
+  bool warmStart = false;
   /// When > 0, a row "Fastron (FCL, pruned)": the Fastron (FCL) model of each update reduced by
   /// pruneSupport on this many fresh uniform configurations (support_reduction.h).
   std::size_t pruneSamples = 0;

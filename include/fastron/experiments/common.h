@@ -77,9 +77,10 @@ double meanSecondsPerCall(const Configurations& q, const std::function<bool(cons
 /// kernel of width `gamma`, conditional bias `beta`, 20000 iterations per update, at most 5000
 /// support points, 500 active-learning points per update (paper, Sec. IV-B).
 ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed);
-/// The same with the kernel and beta of `kind` (defaultTrainParams, given whether the labels
-/// include self-collisions) for task-space features, and `jointGamma`, `jointBeta` (the
-/// experiment's joint-space settings, e.g. the paper's) for joints.
+/// The same with the kernel, beta, active-learning points and cold start of `kind`
+/// (defaultProxyParams, given whether the labels include self-collisions) for task-space
+/// features, and `jointGamma`, `jointBeta` (the experiment's joint-space settings, e.g. the
+/// paper's) for joints.
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
                                   std::uint64_t seed, bool selfCollisionLabels = false);
 /// `params` with no calibration points (ProxyParams::calibrationSamples = 0): for a model that

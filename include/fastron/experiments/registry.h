@@ -27,6 +27,7 @@ struct ExperimentSettings {
   double simplifyTime = -1;                  ///< planning experiments; < 0: default
   double gamma = 0, beta = 0, variance = 0;  ///< changing
   std::size_t activeSamples = 0;             ///< changing
+  bool warmStart = false;                    ///< changing
   std::size_t pruneSamples = 0;              ///< changing
   double mergeRadius = 0;                    ///< changing
   std::optional<std::uint32_t> kernelBlock;  ///< changing
