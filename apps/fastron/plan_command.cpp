@@ -107,7 +107,8 @@ int runPlan(const PlanOptions& o) {
                 << " support points, features " << model.features().summary() << '\n';
     } else {
       const FeatureMap features = featuresFromOptions(o.features, robot);
-      ProxyParams params = experimentProxyParams(features.kind(), 5, 500, o.seed, o.selfCollision);
+      ProxyParams params =
+          forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed, o.selfCollision));
       if (o.gamma) params.train.kernel.gamma = *o.gamma;
       if (o.beta) params.train.beta = *o.beta;
       ProxyCollisionDetector proxy(fcl, features, params);

@@ -223,6 +223,12 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
   return p;
 }
 
+ProxyParams forStaticScene(ProxyParams params) {
+  params.activeLearning.maxSamples = 500;
+  params.coldStart = false;
+  return params;
+}
+
 ProxyParams withoutBand(ProxyParams params) {
   params.calibrationSamples = 0;
   return params;

@@ -150,7 +150,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     const FclChecker audit(robot, scene, checking);
 
     const ProxyParams params =
-        experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision);
+        forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision));
     ProxyCollisionDetector proxy(fcl, features, params);
     const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
@@ -169,7 +169,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     if (selfModel) {
       ProxyCollisionDetector obstacles(
           std::make_shared<FclChecker>(robot, scene), features,
-          withoutBand(experimentProxyParams(o.features, 5, 500, o.seed + p)));
+          withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))));
       splitTrain = train(obstacles, samples, updates);
       splitSupport = static_cast<double>(obstacles.model()->supportCount());
       split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{

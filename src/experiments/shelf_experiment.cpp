@@ -25,7 +25,7 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
   auto gjk = std::make_shared<GjkChecker>(ur3, scene);
   const FclChecker audit(ur3, scene);
   ProxyCollisionDetector proxy(fcl, robotFeatures(ur3, o.features, limits),
-                               experimentProxyParams(o.features, 10, 100, o.seed));
+                               forStaticScene(experimentProxyParams(o.features, 10, 100, o.seed)));
   if (progress) progress("shelf: training the model");
   trainStatic(proxy, o.quick ? 2000 : 8000, o.quick ? 2 : 5);
   const CalibratedModel calibrated = proxy.calibratedModel();
