@@ -150,8 +150,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "models on --features (default 2500 for fk, 500 for joints, the paper's)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--warm-start", o->settings.warmStart,
-                "changing: the models on --features update from their last weights, as in the "
-                "paper (default for fk: from zero weights)");
+                "changing: the models on --features update from their last weights with samples "
+                "around every support point, as in the paper (default for fk: from zero weights, "
+                "at most a fifth of the samples around support points)");
   cmd->add_option("--prune-samples", o->settings.pruneSamples,
                   "changing: also a row 'Fastron (FCL, pruned)': each model without the support "
                   "points that no answer on this many fresh uniform configurations needs");

@@ -51,7 +51,10 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   if (wholeShare) params.train.kernel.wholeShare = *wholeShare;
   params.train.maxSupportPoints = maxSupport;
   if (activeSamples) params.activeLearning.maxSamples = *activeSamples;
-  if (coldStart) params.coldStart = *coldStart;
+  if (coldStart) {
+    params.coldStart = *coldStart;
+    if (!*coldStart) params.activeLearning.exploitationShare = 1;  // the paper's update
+  }
   params.seed = seed;
   // A Python oracle answers one call at a time (the GIL): more threads only wait.
   params.labelThreads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : labelThreads;
@@ -105,8 +108,9 @@ void bindProxy(py::module_& m) {
            "features: a FeatureMap (robot_features(robot), or FeatureMap.joint_scaling(limits)); "
            "gamma, beta and the kernel's point terms (kernel_block, kernel_whole_share) default "
            "to the values tuned for the kind of features, as do active_samples (new points per "
-           "update) and cold_start (Algorithm 1 from zero weights at every update): 2500 and "
-           "True for task-space features, 500 and False for joints; self_collision_labels=True "
+           "update) and cold_start (Algorithm 1 from zero weights at every update, at most a "
+           "fifth of the new points around support points; False: the paper's update): 2500 "
+           "and True for task-space features, 500 and False for joints; self_collision_labels=True "
            "(an oracle that checks the robot against itself) selects those tuned for such "
            "labels.")
       .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),

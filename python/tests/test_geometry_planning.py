@@ -106,6 +106,29 @@ def test_python_oracle_and_gil(tmp_path):
         fastron.ProxyCollisionDetector(failing, features).initialize(10)
 
 
+def test_updates_from_zero_weights_or_the_last_ones():
+    # cold_start chooses how each step() runs Algorithm 1; both keep a disc that moves learnt.
+    centre = {"x": 0.0}
+
+    def disc(q):
+        return bool(np.hypot(q[0] - centre["x"], q[1]) < 0.5)
+
+    features = fastron.FeatureMap.joint_scaling(fastron.JointLimits([-2, -2], [2, 2]))
+    for cold in (True, False):
+        centre["x"] = 0.0
+        detector = fastron.ProxyCollisionDetector(disc, features, gamma=30, beta=5,
+                                                  active_samples=800, cold_start=cold,
+                                                  calibration_samples=0)
+        detector.initialize(1500)
+        for _ in range(5):
+            centre["x"] += 0.1
+            report = detector.step()
+            assert report.added == 800
+        model = detector.model()
+        assert model.in_collision(np.array([0.5, 0])), cold
+        assert not model.in_collision(np.array([-0.4, 0])), cold  # the disc left it
+
+
 def test_oracle_faults_keep_the_last_good_model():
     broken = {"on": False}
 

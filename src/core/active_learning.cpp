@@ -15,6 +15,10 @@ void validate(const ActiveLearningParams& params) {
         "active learning variance must be finite and >= 0 (0 = 1/(2 gamma)), got " +
         std::to_string(params.variance));
   }
+  if (!(params.exploitationShare >= 0 && params.exploitationShare <= 1)) {
+    throw InvalidArgument("active learning exploitation share must be in [0, 1], got " +
+                          std::to_string(params.exploitationShare));
+  }
 }
 
 double defaultVariance(const Model& model) {
@@ -41,19 +45,22 @@ Configurations activeLearning(const Model& model, const ActiveLearningParams& pa
   Configurations samples(maxSamples, d);  // scaled joint space
   Eigen::Index count = 0;
 
-  // Exploitation: up to kappa Gaussian samples around each support point (Alg. 2, line 5).
+  // Exploitation: up to kappa Gaussian samples around each support point (Alg. 2, line 5), at
+  // most exploitationShare of them all.
+  const auto exploitation = static_cast<Eigen::Index>(
+      std::floor(params.exploitationShare * static_cast<double>(params.maxSamples)));
   std::vector<Eigen::Index> order(static_cast<std::size_t>(support.rows()));
   std::iota(order.begin(), order.end(), Eigen::Index{0});
   const std::size_t kappa = params.samplesPerSupportPoint > 0
                                 ? params.samplesPerSupportPoint
                                 : defaultSamplesPerSupportPoint(model);
-  if (kappa * order.size() > params.maxSamples) {
+  if (kappa * order.size() > static_cast<std::size_t>(exploitation)) {
     std::shuffle(order.begin(), order.end(), rng);
   }
   std::normal_distribution<double> gauss(0.0, std::sqrt(variance));
-  for (std::size_t k = 0; k < kappa && count < maxSamples; ++k) {
+  for (std::size_t k = 0; k < kappa && count < exploitation; ++k) {
     for (const Eigen::Index s : order) {
-      if (count == maxSamples) break;
+      if (count == exploitation) break;
       for (Eigen::Index j = 0; j < d; ++j) {
         samples(count, j) = std::clamp(support(s, j) + gauss(rng), -1.0, 1.0);
       }

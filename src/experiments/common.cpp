@@ -225,6 +225,7 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
 
 ProxyParams forStaticScene(ProxyParams params) {
   params.activeLearning.maxSamples = 500;
+  params.activeLearning.exploitationShare = 1;
   params.coldStart = false;
   return params;
 }
@@ -256,7 +257,7 @@ ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jo
   const ProxyParams defaults = defaultProxyParams(kind, selfCollisionLabels);
   ProxyParams p = experimentProxyParams(defaults.train.kernel.gamma, defaults.train.beta, seed);
   p.train.kernel = defaults.train.kernel;  // with its point terms
-  p.activeLearning.maxSamples = defaults.activeLearning.maxSamples;
+  p.activeLearning = defaults.activeLearning;
   p.coldStart = defaults.coldStart;
   return p;
 }

@@ -139,9 +139,10 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
   md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"
      << featureSentence(o.features) << ' '
      << "The model updates on a background thread from FCL labels ("
-     << pipeline.activeLearning.maxSamples << " active-learning points per update, Algorithm 1 "
-     << (pipeline.coldStart ? "from zero weights" : "from the last weights") << "); at each of "
-     << o.ticks
+     << pipeline.activeLearning.maxSamples << " active-learning points per update, "
+     << (pipeline.activeLearning.exploitationShare < 1 ? "most of them uniform, " : "")
+     << "Algorithm 1 " << (pipeline.coldStart ? "from zero weights" : "from the last weights")
+     << "); at each of " << o.ticks
      << " ticks the boxes move and RRT-Connect plans a fresh query (start and goal on opposite "
         "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "
         "and invalid stretches replanned; edges are checked every "

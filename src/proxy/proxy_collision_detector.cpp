@@ -325,6 +325,7 @@ ProxyParams defaultProxyParams(FeatureKind kind, bool selfCollisionLabels) {
   params.train = defaultTrainParams(kind, selfCollisionLabels);
   if (kind == FeatureKind::Kinematic) {
     params.activeLearning.maxSamples = 2500;
+    params.activeLearning.exploitationShare = 0.2;
     params.coldStart = true;
   }
   return params;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "fastron/core/error.h"
@@ -63,6 +64,33 @@ TEST(ActiveLearning, ExploitsNearSupportPointsThenExplores) {
   EXPECT_GT(far, 60u);  // exploration is uniform, not near the support set
 }
 
+TEST(ActiveLearning, ExploitationShareCapsTheSamplesAroundSupportPoints) {
+  // 40 support points, kappa 3 would give 120 near them; a share of 0.2 of 100 allows 20, at
+  // most one per support point, and the other 80 are uniform.
+  const Eigen::MatrixXd support = Configurations(test::uniformPoints(40, 4, 5)) * 0.5;
+  const Model model = modelWithSupport(support);
+  Rng rng(6);
+  ActiveLearningParams params{100, 3, 1e-6};
+  params.exploitationShare = 0.2;
+  const Configurations x = activeLearning(model, params, rng);
+  ASSERT_EQ(x.rows(), 100);
+  std::set<Eigen::Index> visited;
+  for (Eigen::Index i = 0; i < 20; ++i) {
+    const auto [index, distance] = nearest(support, x.row(i));
+    EXPECT_LT(distance, 0.01);
+    visited.insert(index);
+  }
+  EXPECT_EQ(visited.size(), 20u);  // a random subset, each once
+  std::size_t far = 0;
+  for (Eigen::Index i = 20; i < 100; ++i) far += nearest(support, x.row(i)).second > 0.05;
+  EXPECT_GT(far, 70u);
+  params.exploitationShare = 0;
+  const Configurations none = activeLearning(model, params, rng);
+  far = 0;
+  for (Eigen::Index i = 0; i < 100; ++i) far += nearest(support, none.row(i)).second > 0.05;
+  EXPECT_GT(far, 90u);
+}
+
 TEST(ActiveLearning, DefaultVarianceIsOneOverTwoGamma) {
   const Eigen::MatrixXd support = Eigen::MatrixXd::Zero(1, 2);
   const double gamma = 50;
@@ -119,6 +147,11 @@ TEST(ActiveLearning, RejectsANegativeVariance) {
   const Model model = modelWithSupport(Eigen::MatrixXd::Zero(1, 2));
   Rng rng(12);
   EXPECT_THROW(activeLearning(model, {10, 1, -1}, rng), InvalidArgument);
+  ActiveLearningParams share{10, 1, 0};
+  share.exploitationShare = 1.5;
+  EXPECT_THROW(activeLearning(model, share, rng), InvalidArgument);
+  share.exploitationShare = std::nan("");
+  EXPECT_THROW(activeLearning(model, share, rng), InvalidArgument);
 }
 
 }  // namespace

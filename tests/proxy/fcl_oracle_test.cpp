@@ -69,10 +69,12 @@ TEST(FclOracle, TaskSpaceDefaultsUpdateFromZeroWeightsWithMoreSamples) {
   const ProxyParams fk = defaultProxyParams(FeatureKind::Kinematic);
   EXPECT_TRUE(fk.coldStart);
   EXPECT_EQ(fk.activeLearning.maxSamples, 2500u);
+  EXPECT_EQ(fk.activeLearning.exploitationShare, 0.2);
   EXPECT_EQ(fk.train.beta, defaultTrainParams(FeatureKind::Kinematic).beta);
   const ProxyParams joints = defaultProxyParams(FeatureKind::JointScaling);
   EXPECT_FALSE(joints.coldStart);  // the paper's pipeline
   EXPECT_EQ(joints.activeLearning.maxSamples, 500u);
+  EXPECT_EQ(joints.activeLearning.exploitationShare, 1.0);
 }
 
 TEST(FclOracle, UpdatesFromZeroWeightsKeepFindingCollisionsAsBoxesWander) {

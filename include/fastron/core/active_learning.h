@@ -16,6 +16,11 @@ struct ActiveLearningParams {
   /// sigma^2 of the exploitation Gaussians, in scaled joint space [-1, 1]^d; 0 means
   /// defaultVariance(model).
   double variance = 0;
+  /// At most this share of maxSamples is drawn around support points (exploitation), in [0, 1];
+  /// exploration fills the rest. 1 is the paper's Algorithm 2. Updates from zero weights
+  /// (ProxyParams::coldStart) take 0.2: when the support set grows in a cluttered scene, more
+  /// samples around it make the next model larger still (docs/algorithms.md).
+  double exploitationShare = 1;
 };
 
 /// sigma^2 of the exploitation Gaussians for kinematic features, in scaled joint space (a standard
@@ -30,11 +35,11 @@ inline constexpr double kTaskSpaceVariance = 0.01;
 /// kTaskSpaceVariance for kinematic features.
 double defaultVariance(const Model& model);
 
-/// kappa for a task-space model: one exploitation sample per support point, so that (with A_max
-/// 500 and a few hundred support points) uniform exploration fills a third to a half of the
-/// samples. A kernel with point terms (Kernel::block) answers far from its support points too,
-/// and needs the exploration: on Baxter among moving boxes, kappa 1 against 5 raised TPR by 0.01
-/// to 0.02 at equal accuracy (docs/algorithms.md).
+/// kappa for a task-space model: one exploitation sample per support point, so that (with a few
+/// hundred support points) uniform exploration fills a third to a half of A_max 500 and four
+/// fifths of the 2500 of defaultProxyParams. A kernel with point terms (Kernel::block) answers far
+/// from its support points too, and needs the exploration: on Baxter among moving boxes, kappa 1
+/// against 5 raised TPR by 0.01 to 0.02 at equal accuracy (docs/algorithms.md).
 inline constexpr std::size_t kTaskSpaceSamplesPerSupportPoint = 1;
 
 /// The paper's kappa = 5 for joint scaling; kTaskSpaceSamplesPerSupportPoint for kinematic

@@ -28,8 +28,9 @@ struct ChangingOptions {
   /// A_max of the models on options.features; 0 keeps the default (defaultProxyParams: 2500 for
   /// task space, 500 for joints, the paper's).
   std::size_t activeSamples = 0;
-  /// The models on options.features update from their last weights (the paper's warm start)
-  /// even with task-space features, whose default is from zero weights (ProxyParams::coldStart).
+  /// The models on options.features update as in the paper (from their last weights, Algorithm 2
+  /// sampling around every support point) even with task-space features, whose default is from
+  /// zero weights with most samples uniform (ProxyParams::coldStart).
   bool warmStart = false;
   /// When > 0, a row "Fastron (FCL, pruned)": the Fastron (FCL) model of each update reduced by
   /// pruneSupport on this many fresh uniform configurations (support_reduction.h).
