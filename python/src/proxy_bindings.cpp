@@ -51,10 +51,8 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   if (wholeShare) params.train.kernel.wholeShare = *wholeShare;
   params.train.maxSupportPoints = maxSupport;
   if (activeSamples) params.activeLearning.maxSamples = *activeSamples;
-  if (coldStart) {
-    params.coldStart = *coldStart;
-    if (!*coldStart) params.activeLearning.exploitationShare = 1;  // the paper's update
-  }
+  if (coldStart == false) params = withWarmStart(params);  // the paper's update
+  if (coldStart == true) params.coldStart = true;
   params.seed = seed;
   // A Python oracle answers one call at a time (the GIL): more threads only wait.
   params.labelThreads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : labelThreads;

@@ -45,10 +45,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
       params.activeLearning.variance = o.variance;
       if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
-      if (o.warmStart) {  // the paper's update
-        params.coldStart = false;
-        params.activeLearning.exploitationShare = 1;
-      }
+      if (o.warmStart) params = withWarmStart(params);
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
           inJoints(fcl, limits, withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
       fromFcl.initialize(initial);

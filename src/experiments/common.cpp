@@ -224,9 +224,8 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
 }
 
 ProxyParams forStaticScene(ProxyParams params) {
+  params = withWarmStart(params);
   params.activeLearning.maxSamples = 500;
-  params.activeLearning.exploitationShare = 1;
-  params.coldStart = false;
   return params;
 }
 

@@ -17,6 +17,17 @@
 #include "plan_rows.h"
 
 namespace fastron::experiments {
+namespace {
+
+/// The demo's pipeline: the 7dof-3boxes case's, labelling on one core (the other plans).
+ProxyParams demoProxyParams(const DemoOptions& o) {
+  ProxyParams params = proxyParams(caseFor("7dof-3boxes"), o.seed, o.features);
+  params.labelThreads = 1;
+  params.band = o.band;
+  return params;
+}
+
+}  // namespace
 
 DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   const auto c = caseFor("7dof-3boxes");
@@ -26,9 +37,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   auto fcl = std::make_shared<FclChecker>(robot, scene);
   auto gjk = std::make_shared<GjkChecker>(robot, scene);
   FclChecker audit(robot, scene);
-  ProxyParams params = proxyParams(c, o.seed, o.features);
-  params.labelThreads = 1;  // the other core plans
-  params.band = o.band;
+  const ProxyParams params = demoProxyParams(o);
   // Before the proxy: its thread updates these until it is joined.
   std::mutex updateMutex;
   std::size_t updates = 0;
@@ -133,7 +142,7 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
     }
     return summarize(values);
   };
-  const ProxyParams pipeline = proxyParams(caseFor("7dof-3boxes"), o.seed, o.features);
+  const ProxyParams pipeline = demoProxyParams(o);
   std::ostringstream md;
   char line[256];
   md << "# Fastron demo: Baxter's 7-joint arm among three moving boxes\n\n"

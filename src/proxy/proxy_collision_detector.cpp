@@ -129,8 +129,9 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   report.added = static_cast<std::size_t>(fresh.rows());
 
   Trainer before = trainer_;  // restored when the held-out labelling fails
-  trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
+  // Forgotten first, so that relabel has no weight to correct (a Gram column per flipped point).
   if (params_.coldStart) trainer_.forgetWeights();
+  trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
   report.update = trainer_.update();
@@ -328,6 +329,12 @@ ProxyParams defaultProxyParams(FeatureKind kind, bool selfCollisionLabels) {
     params.activeLearning.exploitationShare = 0.2;
     params.coldStart = true;
   }
+  return params;
+}
+
+ProxyParams withWarmStart(ProxyParams params) {
+  params.coldStart = false;
+  params.activeLearning.exploitationShare = 1;
   return params;
 }
 

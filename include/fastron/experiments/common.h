@@ -83,8 +83,8 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
 /// paper's) for joints.
 ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
                                   std::uint64_t seed, bool selfCollisionLabels = false);
-/// `params` for a scene that stands still (`fastron plan`, motion-bench, shelf): the paper's warm
-/// start and 500 active-learning points per update for every kind of features. Updates from zero
+/// `params` for a scene that stands still (`fastron plan`, motion-bench, shelf): the paper's update
+/// (withWarmStart) with 500 active-learning points for every kind of features. Updates from zero
 /// weights (defaultProxyParams) undo weights that a changing world made stale; where nothing goes
 /// stale they only grew the mesh Panda's models (motion-bench: |S| 1906 -> 3410, median 5.4x ->
 /// 4.6x FCL's; docs/algorithms.md).

@@ -67,12 +67,15 @@ struct ProxyParams {
 };
 
 /// The pipeline tuned for each kind of features: defaultTrainParams(kind, selfCollisionLabels);
-/// for task-space features updates from zero weights (coldStart) with 2500 new points each
-/// (ActiveLearningParams::maxSamples: one around each support point, uniform exploration for
-/// the rest), which on Baxter among three moving boxes reach accuracy 0.972 and TPR 0.953 at
-/// |S| 433 against 0.965, 0.917 and 250 for warm starts with 500 (`fastron bench changing`,
-/// docs/algorithms.md); for joint scaling the paper's warm start with 500.
+/// for task-space features updates from zero weights (coldStart) with 2500 new points each, at
+/// most a fifth of them around support points (ActiveLearningParams::exploitationShare) and the
+/// rest uniform, which on Baxter among three moving boxes reach accuracy 0.972 and TPR 0.950 at
+/// |S| 406 against 0.965, 0.917 and 250 for the paper's update with 500 (`fastron bench
+/// changing`, docs/algorithms.md); for joint scaling the paper's update with 500.
 ProxyParams defaultProxyParams(FeatureKind kind, bool selfCollisionLabels = false);
+/// `params` with the paper's update: Algorithm 1 from the last weights (coldStart false) and
+/// Algorithm 2 sampling around every support point first (exploitation share 1); A_max unchanged.
+ProxyParams withWarmStart(ProxyParams params);
 
 /// How the background updates are faring (ProxyCollisionDetector::backgroundHealth).
 struct BackgroundHealth {
