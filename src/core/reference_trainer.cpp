@@ -59,9 +59,9 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
     for (std::size_t j = 1; j < n; ++j) {
       if (margin(j) < margin(i)) i = j;
     }
-    if (margin(i) <= 0 && (support < params.maxSupportPoints || alpha[i] != 0)) {
-      const double target = y[i] > 0 ? params.beta : -1.0;
-      const double delta = target - f[i];
+    const double delta = (y[i] > 0 ? params.beta : -1.0) - f[i];
+    if (margin(i) <= 0 && (support < params.maxSupportPoints || alpha[i] != 0) &&
+        std::abs(alpha[i] + delta) <= params.maxWeightOverBeta * params.beta) {
       const bool wasSupport = alpha[i] != 0;
       addColumn(i, delta);
       alpha[i] += delta;
@@ -89,7 +89,10 @@ ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
       ++report.iterations;
       continue;
     }
-    report.stopReason = margin(i) <= 0 ? StopReason::SupportCap : StopReason::Converged;
+    report.stopReason = margin(i) > 0 ? StopReason::Converged
+                        : alpha[i] == 0 && support >= params.maxSupportPoints
+                            ? StopReason::SupportCap
+                            : StopReason::WeightLimit;
     stopped = true;
     break;
   }

@@ -69,6 +69,10 @@ void validate(const TrainParams& params) {
     throw InvalidArgument("beta (conditional bias) must be finite and >= 1, got " +
                           std::to_string(params.beta));
   }
+  if (!(params.maxWeightOverBeta >= 1)) {
+    throw InvalidArgument("maxWeightOverBeta must be >= 1 (or infinity), got " +
+                          std::to_string(params.maxWeightOverBeta));
+  }
   if (params.maxSupportPoints == 0) {
     throw InvalidArgument("maxSupportPoints must be at least 1");
   }
@@ -103,6 +107,8 @@ std::string_view toString(StopReason reason) {
       return "support cap";
     case StopReason::IterationLimit:
       return "iteration limit";
+    case StopReason::WeightLimit:
+      return "weight limit";
   }
   return "unknown";
 }
@@ -229,11 +235,12 @@ UpdateReport Trainer::update() {
   Eigen::Index i = 0;
   double worstMargin = n > 0 ? (y_.array() * f_.array()).minCoeff(&i) : 0;
   bool stopped = false;
+  const double maxWeight = params_.maxWeightOverBeta * params_.beta;
   while (report.iterations < params_.maxIterations && n > 0) {
-    if (worstMargin <= 0 && (supportCount_ < params_.maxSupportPoints || alpha_[i] != 0)) {
-      // Add or adjust a support point: Delta alpha = beta^(0.5 (y_i + 1)) y_i - F_i (Eq. 18).
-      const double target = y_[i] > 0 ? params_.beta : -1.0;
-      const double delta = target - f_[i];
+    // Add or adjust a support point: Delta alpha = beta^(0.5 (y_i + 1)) y_i - F_i (Eq. 18).
+    const double delta = (y_[i] > 0 ? params_.beta : -1.0) - f_[i];
+    if (worstMargin <= 0 && (supportCount_ < params_.maxSupportPoints || alpha_[i] != 0) &&
+        std::abs(alpha_[i] + delta) <= maxWeight) {
       const bool wasSupport = alpha_[i] != 0;
       computeColumn(i);
       alpha_[i] += delta;
@@ -266,7 +273,10 @@ UpdateReport Trainer::update() {
       ++report.iterations;
       continue;
     }
-    report.stopReason = worstMargin <= 0 ? StopReason::SupportCap : StopReason::Converged;
+    report.stopReason = worstMargin > 0 ? StopReason::Converged
+                        : alpha_[i] == 0 && supportCount_ >= params_.maxSupportPoints
+                            ? StopReason::SupportCap
+                            : StopReason::WeightLimit;
     stopped = true;
     break;
   }

@@ -3,7 +3,10 @@
 
 #include "fastron/core/trainer.h"
 
+#include <cmath>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -60,6 +63,7 @@ TrainParams uncapped(double gamma, double beta = 1, std::uint32_t block = 0,
   p.beta = beta;
   p.maxIterations = 10'000'000;
   p.maxSupportPoints = 1'000'000;
+  p.maxWeightOverBeta = std::numeric_limits<double>::infinity();
   return p;
 }
 
@@ -178,6 +182,31 @@ TEST(Trainer, SupportCapIsRespected) {
   EXPECT_LE(trainer.model()->supportCount(), 25u);
   EXPECT_GT(report.misclassified, 0u);
   EXPECT_LT(hypothesisError(trainer), 1e-9);
+}
+
+TEST(Trainer, WeightLimitStopsTheGrowthOfNearlyCoincidentOppositePoints) {
+  // Two points 0.003 apart with opposite labels: positive margins for both need weights of about
+  // 1 / (1 - k) = 1 / (gamma d^2) = 11000, which float queries could no longer sum.
+  Configurations q(3, 2);
+  q << 0.5, 0.5, 0.503, 0.5, -0.5, -0.5;
+  const Labels y{1, -1, -1};
+  const auto trained = [&](double maxWeightOverBeta) {
+    TrainParams p = uncapped(10);
+    p.maxWeightOverBeta = maxWeightOverBeta;
+    auto trainer = std::make_unique<Trainer>(JointLimits::unitBox(2), p);
+    trainer->addPoints(q, y);
+    const UpdateReport report = trainer->update();
+    return std::pair{report, trainer->weights().cwiseAbs().maxCoeff()};
+  };
+  const auto [unlimited, unlimitedWeight] = trained(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(unlimited.stopReason, StopReason::Converged);
+  EXPECT_GT(unlimitedWeight, 1000);
+
+  const auto [limited, limitedWeight] = trained(TrainParams{}.maxWeightOverBeta);
+  EXPECT_EQ(limited.stopReason, StopReason::WeightLimit);
+  EXPECT_LE(limitedWeight, 1000);
+  EXPECT_GT(limited.misclassified, 0u);
+  EXPECT_EQ(toString(limited.stopReason), "weight limit");
 }
 
 TEST(Trainer, IterationLimitStopsTraining) {
@@ -441,6 +470,10 @@ TEST(Trainer, RejectsBadInput) {
   EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.kernel = {KernelType::Gaussian, -1}}),
                InvalidArgument);
   EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.maxSupportPoints = 0}),
+               InvalidArgument);
+  EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.maxWeightOverBeta = 0.5}),
+               InvalidArgument);
+  EXPECT_THROW(Trainer(JointLimits::unitBox(2), TrainParams{.maxWeightOverBeta = std::nan("")}),
                InvalidArgument);
   Trainer trainer(JointLimits::unitBox(2), TrainParams{});
   Configurations q(2, 2);

@@ -23,6 +23,13 @@ struct TrainParams {
   double beta = 1;                      ///< conditional bias, >= 1 (paper, Sec. II-D)
   std::size_t maxIterations = 5000;     ///< iter_max of Algorithm 1, per update
   std::size_t maxSupportPoints = 3000;  ///< S_max, the support-point cap
+  /// A weight may grow to at most this many times beta (infinity: no limit, as in the paper).
+  /// Two points with nearly the same features and opposite labels need weights that grow as
+  /// 1 / (1 - k(x_a, x_b)) for both margins to be positive, and warm-started updates add to them
+  /// update after update: on the demo's world with 2500 new points per update they passed 1e30
+  /// (where float queries mean nothing, long before) at update 369. Weights stayed below 46 beta
+  /// in that run until then, and below 1000 beta in every model the experiments train.
+  double maxWeightOverBeta = 1000;
 };
 
 /// Throws InvalidArgument naming the field that is out of range.
@@ -56,6 +63,8 @@ enum class StopReason {
   SupportCap,      ///< a misclassified point needed a new support point, the cap was reached and
                    ///< no redundant support point could be removed
   IterationLimit,  ///< iter_max iterations were used
+  WeightLimit,     ///< a misclassified point needed a weight beyond maxWeightOverBeta beta and
+                   ///< no redundant support point could be removed
 };
 std::string_view toString(StopReason reason);
 
