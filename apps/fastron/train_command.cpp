@@ -1,6 +1,7 @@
 // fastron train: Algorithm 1 on a labelled dataset, written as a model file.
 
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -14,6 +15,7 @@
 #include "fastron/core/trainer.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
 #include "robot_options.h"
@@ -31,6 +33,7 @@ struct TrainOptions {
   std::optional<double> wholeShare;
   std::optional<std::size_t> maxIterations, maxSupport;
   std::size_t samples = kSceneSamples, activeLearning = 0;
+  HeldOutTargets heldOut;
   double holdout = 0;
   std::uint64_t seed = 1;
   bool selfCollision = false;
@@ -106,9 +109,25 @@ void printReport(const UpdateReport& report) {
             << " training points misclassified\n";
 }
 
-/// fastron train --robot R --scene S: FCL-labelled uniform samples, Algorithm 1, then K rounds
-/// of active learning (Algorithm 2).
+void printRounds(const std::vector<HeldOutRound>& rounds, std::size_t perRound) {
+  for (std::size_t r = 0; r < rounds.size(); ++r) {
+    const HeldOutRound& round = rounds[r];
+    std::cout << "held out      model of " << round.trainingSamples << " samples, |S| "
+              << round.supportCount << ", on " << perRound << " fresh configurations: accuracy "
+              << rate(round.heldOut.accuracy()) << ", TPR " << rate(round.heldOut.tpr()) << ", TNR "
+              << rate(round.heldOut.tnr())
+              << (r + 1 < rounds.size() ? "; below the targets, learned them" : "") << '\n';
+  }
+}
+
+/// fastron train --robot R --scene S: FCL-labelled uniform samples and Algorithm 1, then either
+/// rounds on fresh held-out configurations until the targets are met, or K rounds of active
+/// learning (Algorithm 2).
 int trainOnScene(const TrainOptions& o) {
+  if (o.activeLearning > 0 && o.heldOut.samplesPerRound > 0) {
+    throw InvalidArgument(
+        "--active-learning replaces the held-out rounds: give --held-out 0 with it");
+  }
   const Robot robot = loadRobotFromOptions(o.robot);
   const Scene scene = loadScene(o.scene);
   const auto fcl =
@@ -121,17 +140,35 @@ int trainOnScene(const TrainOptions& o) {
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
             << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
   printParams(params.train, features);
-  ProxyCollisionDetector proxy(fcl, features, params);
-  StepReport step = proxy.initialize(o.samples);
-  std::cout << "samples       " << o.samples << " labelled by FCL in "
-            << durationText(inSeconds(step.labelTime)) << '\n';
-  printReport(step.update);
-  for (std::size_t k = 0; k < o.activeLearning; ++k) {
-    step = proxy.step();
-    std::cout << "active        round " << (k + 1) << ": " << step.added << " new points, |S| "
-              << step.update.supportCount << ", " << durationText(inSeconds(step.total)) << '\n';
+  std::shared_ptr<const Model> model;
+  if (o.heldOut.samplesPerRound > 0) {
+    const auto start = std::chrono::steady_clock::now();
+    Rng rng(o.seed);
+    const HeldOutTraining trained =
+        trainToHeldOutTargets(*fcl, features, params.train, o.samples, o.heldOut, rng);
+    std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
+              << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
+              << ", TPR " << o.heldOut.truePositiveRate << ")\n";
+    printRounds(trained.rounds, o.heldOut.samplesPerRound);
+    printReport(trained.lastUpdate);
+    std::cout << "time          "
+              << durationText(inSeconds(std::chrono::steady_clock::now() - start))
+              << " for labelling and training\n";
+    model = trained.model;
+  } else {
+    ProxyCollisionDetector proxy(fcl, features, params);
+    StepReport step = proxy.initialize(o.samples);
+    std::cout << "samples       " << o.samples << " labelled by FCL in "
+              << durationText(inSeconds(step.labelTime)) << '\n';
+    printReport(step.update);
+    for (std::size_t k = 0; k < o.activeLearning; ++k) {
+      step = proxy.step();
+      std::cout << "active        round " << (k + 1) << ": " << step.added << " new points, |S| "
+                << step.update.supportCount << ", " << durationText(inSeconds(step.total)) << '\n';
+    }
+    model = proxy.model();
   }
-  saveModel(*proxy.model(), o.output);
+  saveModel(*model, o.output);
   std::cout << "model         " << o.output << '\n';
   return 0;
 }
@@ -217,6 +254,23 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--active-learning", o->activeLearning,
                   "with --scene: rounds of active learning (Algorithm 2) after the first update")
+      ->capture_default_str();
+  cmd->add_option("--held-out", o->heldOut.samplesPerRound,
+                  "with --scene: fresh FCL-labelled configurations per round on which the model "
+                  "is measured; below the targets it learns them and is measured on new ones "
+                  "(0: no rounds)")
+      ->capture_default_str();
+  cmd->add_option("--target-accuracy", o->heldOut.accuracy,
+                  "with --scene: held-out accuracy to reach")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--target-tpr", o->heldOut.truePositiveRate,
+                  "with --scene: held-out TPR to reach")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--max-samples", o->heldOut.maxTrainingSamples,
+                  "with --scene: no more held-out rounds once the model has learned this many "
+                  "labelled configurations")
       ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
                 "with --scene: label self-collisions as collisions too");

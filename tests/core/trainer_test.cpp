@@ -185,10 +185,10 @@ TEST(Trainer, SupportCapIsRespected) {
 }
 
 TEST(Trainer, WeightLimitStopsTheGrowthOfNearlyCoincidentOppositePoints) {
-  // Two points 0.003 apart with opposite labels: positive margins for both need weights of about
-  // 1 / (1 - k) = 1 / (gamma d^2) = 11000, which float queries could no longer sum.
+  // Two points 0.0003 apart with opposite labels: positive margins for both need weights of
+  // about 1 / (1 - k) = 1 / (gamma d^2) = 1.1e6.
   Configurations q(3, 2);
-  q << 0.5, 0.5, 0.503, 0.5, -0.5, -0.5;
+  q << 0.5, 0.5, 0.5003, 0.5, -0.5, -0.5;
   const Labels y{1, -1, -1};
   const auto trained = [&](double maxWeightOverBeta) {
     TrainParams p = uncapped(10);
@@ -200,11 +200,11 @@ TEST(Trainer, WeightLimitStopsTheGrowthOfNearlyCoincidentOppositePoints) {
   };
   const auto [unlimited, unlimitedWeight] = trained(std::numeric_limits<double>::infinity());
   EXPECT_EQ(unlimited.stopReason, StopReason::Converged);
-  EXPECT_GT(unlimitedWeight, 1000);
+  EXPECT_GT(unlimitedWeight, 1e5);
 
   const auto [limited, limitedWeight] = trained(TrainParams{}.maxWeightOverBeta);
   EXPECT_EQ(limited.stopReason, StopReason::WeightLimit);
-  EXPECT_LE(limitedWeight, 1000);
+  EXPECT_LE(limitedWeight, 1e5);
   EXPECT_GT(limited.misclassified, 0u);
   EXPECT_EQ(toString(limited.stopReason), "weight limit");
 }

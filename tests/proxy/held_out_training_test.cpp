@@ -1,0 +1,106 @@
+// Training a static scene's model until fresh configurations meet the targets.
+
+#include "fastron/proxy/held_out_training.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/core/error.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+constexpr std::size_t kDim = 3;
+
+TrainParams ballParams() {
+  TrainParams p;
+  p.kernel.gamma = 30;
+  p.beta = 5;
+  p.maxSupportPoints = 100000;
+  return p;
+}
+
+struct BallOracle {
+  test::BallWorld world = test::BallWorld::random(kDim, 8, 0.3, 5);
+  FunctionChecker checker{"balls", kDim, [this](const double* q) { return world.inCollision(q); }};
+};
+
+TEST(HeldOutTraining, StopsAtTheFirstRoundThatMeetsTheTargets) {
+  const BallOracle oracle;
+  Rng rng(1);
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(oracle.checker, FeatureMap::jointScaling(JointLimits::unitBox(kDim)),
+                            ballParams(), 1500, {.accuracy = 0.5, .truePositiveRate = 0.5}, rng);
+  ASSERT_EQ(trained.rounds.size(), 1u);
+  EXPECT_EQ(trained.trainingSamples, 1500u);
+  EXPECT_EQ(trained.rounds[0].supportCount, trained.model->supportCount());
+  EXPECT_EQ(trained.rounds[0].heldOut.total(), HeldOutTargets{}.samplesPerRound);
+}
+
+TEST(HeldOutTraining, LearnsEachRoundAndMeasuresTheFinalModelOnConfigurationsItNeverLearned) {
+  const BallOracle oracle;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  const HeldOutTargets unreachable{
+      .accuracy = 1, .truePositiveRate = 1, .samplesPerRound = 1000, .maxTrainingSamples = 2200};
+  Rng rng(2);
+  const Rng start = rng;
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(oracle.checker, features, ballParams(), 200, unreachable, rng);
+  // 200, then 1200, then 2200 learned: a fourth model would pass maxTrainingSamples.
+  ASSERT_EQ(trained.rounds.size(), 3u);
+  EXPECT_EQ(trained.rounds[0].trainingSamples, 200u);
+  EXPECT_EQ(trained.rounds[1].trainingSamples, 1200u);
+  EXPECT_EQ(trained.rounds[2].trainingSamples, 2200u);
+  EXPECT_EQ(trained.trainingSamples, 2200u);
+  // From 200 samples to 2200, the held-out accuracy of eight balls in 3-D rises clearly.
+  EXPECT_GT(trained.rounds[2].heldOut.accuracy(), trained.rounds[0].heldOut.accuracy() + 0.03)
+      << trained.rounds[0].heldOut.accuracy() << " " << trained.rounds[1].heldOut.accuracy();
+
+  // The same draws, independently: the final model is Algorithm 1 on the initial samples and the
+  // first two rounds' configurations, measured on the third round's.
+  Rng replay = start;
+  Configurations learned = uniformConfigurations(features.limits(), 200, replay);
+  for (int r = 0; r < 2; ++r) {
+    const Configurations fresh = uniformConfigurations(features.limits(), 1000, replay);
+    learned.conservativeResize(learned.rows() + fresh.rows(), Eigen::NoChange);
+    learned.bottomRows(fresh.rows()) = fresh;
+  }
+  const Configurations last = uniformConfigurations(features.limits(), 1000, replay);
+  Trainer trainer(features, ballParams());
+  trainer.addPoints(learned, oracle.world.label(learned));
+  trainer.update();
+  EXPECT_EQ(trainer.model()->weights(), trained.model->weights());
+  const ConfusionCounts measured = evaluate(*trained.model, last, oracle.world.label(last));
+  EXPECT_EQ(measured.truePositives, trained.rounds[2].heldOut.truePositives);
+  EXPECT_EQ(measured.falseNegatives, trained.rounds[2].heldOut.falseNegatives);
+  EXPECT_EQ(measured.falsePositives, trained.rounds[2].heldOut.falsePositives);
+}
+
+TEST(HeldOutTraining, ASceneWithoutCollisionsHasNoTprToMiss) {
+  const FunctionChecker free("free", kDim, [](const double*) { return false; });
+  Rng rng(3);
+  const HeldOutTraining trained = trainToHeldOutTargets(
+      free, FeatureMap::jointScaling(JointLimits::unitBox(kDim)), ballParams(), 500, {}, rng);
+  ASSERT_EQ(trained.rounds.size(), 1u);
+  EXPECT_EQ(trained.rounds[0].heldOut.accuracy(), 1.0);
+}
+
+TEST(HeldOutTraining, RejectsBadTargets) {
+  const BallOracle oracle;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  Rng rng(4);
+  const auto train = [&](HeldOutTargets targets, std::size_t initial = 100) {
+    return trainToHeldOutTargets(oracle.checker, features, ballParams(), initial, targets, rng);
+  };
+  EXPECT_THROW(train({.accuracy = 1.5}), InvalidArgument);
+  EXPECT_THROW(train({.truePositiveRate = -0.1}), InvalidArgument);
+  EXPECT_THROW(train({.accuracy = std::nan("")}), InvalidArgument);
+  EXPECT_THROW(train({.samplesPerRound = 0}), InvalidArgument);
+  EXPECT_THROW(train({}, 0), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace fastron
