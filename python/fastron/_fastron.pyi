@@ -174,6 +174,13 @@ class BackgroundHealth:
     last_fault: str
     model_version: int
 
+def train_scene(oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],
+                features: FeatureMap, samples: int = 16000, *, accuracy: float = 0.975,
+                tpr: float = 0.96, held_out: int = 8000, max_samples: int = 40000, seed: int = 1,
+                self_collision_labels: bool = False, gamma: Optional[float] = None,
+                beta: Optional[float] = None
+                ) -> tuple[Model, list[tuple[int, int, ConfusionCounts]]]: ...
+
 class ProxyCollisionDetector:
     def __init__(self, oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],
                  features: FeatureMap, *, seed: int = 1, gamma: Optional[float] = None,

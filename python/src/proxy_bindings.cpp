@@ -8,6 +8,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "fastron/core/error.h"
+#include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "python_checker.h"
 
@@ -60,9 +61,48 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
 }
 
+/// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts)]).
+py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t samples,
+                     double accuracy, double tpr, std::size_t heldOut, std::size_t maxSamples,
+                     std::uint64_t seed, bool selfCollisionLabels, std::optional<double> gamma,
+                     std::optional<double> beta) {
+  const std::shared_ptr<const CollisionChecker> checker =
+      oracleOf(oracle, features.configurationDim());
+  TrainParams params = sceneTrainParams(features.kind(), selfCollisionLabels);
+  params.maxIterations = 20000;
+  params.maxSupportPoints = 5000;
+  if (gamma) params.kernel.gamma = *gamma;
+  if (beta) params.beta = *beta;
+  const HeldOutTargets targets{accuracy, tpr, heldOut, maxSamples};
+  const unsigned threads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : 0;
+  HeldOutTraining trained;
+  {
+    py::gil_scoped_release released;
+    Rng rng(seed);
+    trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng, threads);
+  }
+  py::list rounds;
+  for (const HeldOutRound& round : trained.rounds) {
+    rounds.append(py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut));
+  }
+  return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds);
+}
+
 }  // namespace
 
 void bindProxy(py::module_& m) {
+  m.def("train_scene", &trainScene, py::arg("oracle"), py::arg("features"),
+        py::arg("samples") = kSceneSamples, py::kw_only(), py::arg("accuracy") = 0.975,
+        py::arg("tpr") = 0.96, py::arg("held_out") = 8000, py::arg("max_samples") = 40000,
+        py::arg("seed") = 1, py::arg("self_collision_labels") = false,
+        py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
+        "A model of a scene that stands still, as `fastron train --scene` trains it: Algorithm 1 "
+        "on `samples` uniform configurations labelled by the oracle, then rounds on `held_out` "
+        "fresh ones: while their accuracy or TPR is below the targets and fewer than "
+        "max_samples have been learned, learn them with all before and measure on new ones. "
+        "Returns (Model, rounds), each round (training samples, |S|, ConfusionCounts on "
+        "configurations the model had not learned); the last one measured the model returned. "
+        "The GIL is released while it trains (a Python oracle takes it for each call).");
   py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
       .def_readonly("update", &StepReport::update)
       .def_readonly("labelled", &StepReport::labelled, "Oracle calls made.")
