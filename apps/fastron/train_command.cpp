@@ -277,7 +277,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
   cmd->add_option("--gamma", o->gamma,
                   "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
-                  "features, 5 for joints)");
+                  "features, 60 for fk with --scene, 5 for joints)");
   cmd->add_option("--kernel", o->kernel, "rq (rational quadratic) or gaussian")
       ->capture_default_str();
   cmd->add_option("--kernel-block", o->kernelBlock,
@@ -290,7 +290,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--beta", o->beta,
                   "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 30 for "
-                  "fk features, 60 for fk with --scene, 10 for fk with --self-collision, 500 for "
+                  "fk features, 40 for fk with --scene, 10 for fk with --self-collision, 500 for "
                   "joints)");
   cmd->add_option("--max-iter", o->maxIterations,
                   "iteration limit (default 5000; 20000 with --scene)");

@@ -95,7 +95,10 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels) {
 
 TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels) {
   TrainParams params = defaultTrainParams(kind, selfCollisionLabels);
-  if (kind == FeatureKind::Kinematic && !selfCollisionLabels) params.beta = 60;
+  if (kind == FeatureKind::Kinematic && !selfCollisionLabels) {
+    params.kernel.gamma = 60;
+    params.beta = 40;
+  }
   return params;
 }
 

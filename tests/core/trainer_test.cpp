@@ -155,18 +155,22 @@ TEST(Trainer, ForgottenWeightsRetrainLikeAFreshTrainer) {
   EXPECT_EQ(trainer.weights(), fresh.weights());
 }
 
-TEST(Trainer, SceneDefaultsBiasOnlyTaskSpaceObstacleModelsMore) {
-  // One scene learned at once from uniform samples: a larger beta for task-space obstacle models,
-  // the kernel unchanged; self-collision and joint-space models keep the defaults.
+TEST(Trainer, SceneDefaultsChangeOnlyTaskSpaceObstacleModels) {
+  // One scene learned at once from uniform samples: a larger beta and a narrower kernel for
+  // task-space obstacle models, the same point terms; self-collision and joint-space models keep
+  // the defaults.
   const TrainParams fk = defaultTrainParams(FeatureKind::Kinematic);
   const TrainParams scene = sceneTrainParams(FeatureKind::Kinematic);
   EXPECT_GT(scene.beta, fk.beta);
-  EXPECT_EQ(scene.kernel.gamma, fk.kernel.gamma);
+  EXPECT_GT(scene.kernel.gamma, fk.kernel.gamma);
   EXPECT_EQ(scene.kernel.block, fk.kernel.block);
-  EXPECT_EQ(sceneTrainParams(FeatureKind::Kinematic, true).beta,
-            defaultTrainParams(FeatureKind::Kinematic, true).beta);
-  EXPECT_EQ(sceneTrainParams(FeatureKind::JointScaling).beta,
-            defaultTrainParams(FeatureKind::JointScaling).beta);
+  EXPECT_EQ(scene.kernel.wholeShare, fk.kernel.wholeShare);
+  for (const auto& [kind, self] :
+       {std::pair{FeatureKind::Kinematic, true}, std::pair{FeatureKind::JointScaling, false}}) {
+    EXPECT_EQ(sceneTrainParams(kind, self).beta, defaultTrainParams(kind, self).beta);
+    EXPECT_EQ(sceneTrainParams(kind, self).kernel.gamma,
+              defaultTrainParams(kind, self).kernel.gamma);
+  }
 }
 
 TEST(Trainer, SupportCapIsRespected) {

@@ -50,14 +50,16 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels = fals
 /// Uniform samples for a scene that stands still, learned at once (sceneTrainParams).
 inline constexpr std::size_t kSceneSamples = 16000;
 /// For the most accurate model of a scene that stands still, learned at once from kSceneSamples
-/// uniform samples (`fastron train --scene`): defaultTrainParams with beta 60 for task-space
-/// features without self-collision labels. Uniform samples of a scene are 1-9% colliding, and the
-/// colliding class needs the larger bias; updates under change keep beta 30 (Algorithm 2's samples
-/// lie near the boundary). The mesh Panda in the 20 sample MotionBenchMaker scenes, 3 seeds:
-/// accuracy 0.975 and TPR 0.954 on average, against 0.971 and 0.946 with 8000 samples and beta 30,
-/// at |S| 570 against 325 (docs/algorithms.md, "Training on one scene"). Planners that train per
-/// query (`fastron plan`, motion-bench) keep the smaller, cheaper models: there the larger ones
-/// planned slower, counting their training or not.
+/// uniform samples and held-out rounds (`fastron train --scene`, trainToHeldOutTargets):
+/// defaultTrainParams with gamma 60 and beta 40 for task-space features without self-collision
+/// labels. Uniform samples of a scene are 1-9% colliding, and the colliding class needs a larger
+/// bias than updates under change (whose Algorithm 2 samples lie near the boundary); the narrower
+/// kernel finds more of the thin colliding regions (shelves) once the rounds have supplied the
+/// samples it needs. The mesh Panda in the 20 sample MotionBenchMaker scenes, 3 seeds, with the
+/// rounds: accuracy 0.977 and TPR 0.961, both 0.97 and 0.95 in 50 of 60 trainings, against 44
+/// with gamma 40 and beta 60 and 34 without rounds (docs/algorithms.md, "Training on one
+/// scene"). Planners that train per query (`fastron plan`, motion-bench) keep the smaller,
+/// cheaper models: there larger ones planned slower, counting their training or not.
 TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels = false);
 
 enum class StopReason {
