@@ -109,14 +109,13 @@ void printReport(const UpdateReport& report) {
             << " training points misclassified\n";
 }
 
-void printRounds(const std::vector<HeldOutRound>& rounds, std::size_t perRound) {
-  for (std::size_t r = 0; r < rounds.size(); ++r) {
-    const HeldOutRound& round = rounds[r];
+void printRounds(const HeldOutTraining& trained, std::size_t perRound) {
+  for (std::size_t r = 0; r < trained.rounds.size(); ++r) {
+    const HeldOutRound& round = trained.rounds[r];
     std::cout << "held out      model of " << round.trainingSamples << " samples, |S| "
               << round.supportCount << ", on " << perRound << " fresh configurations: accuracy "
               << rate(round.heldOut.accuracy()) << ", TPR " << rate(round.heldOut.tpr()) << ", TNR "
-              << rate(round.heldOut.tnr())
-              << (r + 1 < rounds.size() ? "; below the targets, learned them" : "") << '\n';
+              << rate(round.heldOut.tnr()) << (r == trained.chosenRound ? " (kept)" : "") << '\n';
   }
 }
 
@@ -149,8 +148,8 @@ int trainOnScene(const TrainOptions& o) {
     std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
               << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
               << ", TPR " << o.heldOut.truePositiveRate << ")\n";
-    printRounds(trained.rounds, o.heldOut.samplesPerRound);
-    printReport(trained.lastUpdate);
+    printRounds(trained, o.heldOut.samplesPerRound);
+    printReport(trained.update);
     std::cout << "time          "
               << durationText(inSeconds(std::chrono::steady_clock::now() - start))
               << " for labelling and training\n";

@@ -179,7 +179,7 @@ def train_scene(oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64
                 tpr: float = 0.96, held_out: int = 8000, max_samples: int = 40000, seed: int = 1,
                 self_collision_labels: bool = False, gamma: Optional[float] = None,
                 beta: Optional[float] = None
-                ) -> tuple[Model, list[tuple[int, int, ConfusionCounts]]]: ...
+                ) -> tuple[Model, list[tuple[int, int, ConfusionCounts]], int]: ...
 
 class ProxyCollisionDetector:
     def __init__(self, oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],

@@ -61,7 +61,8 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
 }
 
-/// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts)]).
+/// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts)],
+/// index of the round kept).
 py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t samples,
                      double accuracy, double tpr, std::size_t heldOut, std::size_t maxSamples,
                      std::uint64_t seed, bool selfCollisionLabels, std::optional<double> gamma,
@@ -85,7 +86,7 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
   for (const HeldOutRound& round : trained.rounds) {
     rounds.append(py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut));
   }
-  return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds);
+  return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds, trained.chosenRound);
 }
 
 }  // namespace
@@ -100,8 +101,9 @@ void bindProxy(py::module_& m) {
         "on `samples` uniform configurations labelled by the oracle, then rounds on `held_out` "
         "fresh ones: while their accuracy or TPR is below the targets and fewer than "
         "max_samples have been learned, learn them with all before and measure on new ones. "
-        "Returns (Model, rounds), each round (training samples, |S|, ConfusionCounts on "
-        "configurations the model had not learned); the last one measured the model returned. "
+        "Returns (Model, rounds, kept): each round (training samples, |S|, ConfusionCounts on "
+        "configurations its model had not learned), and the index of the round whose model, "
+        "the closest to the targets, is returned. "
         "The GIL is released while it trains (a Python oracle takes it for each call).");
   py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
       .def_readonly("update", &StepReport::update)

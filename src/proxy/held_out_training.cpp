@@ -1,5 +1,6 @@
 #include "fastron/proxy/held_out_training.h"
 
+#include <algorithm>
 #include <string>
 
 #include "fastron/core/active_learning.h"
@@ -24,11 +25,12 @@ void validate(const HeldOutTargets& targets) {
 
 namespace {
 
-bool meets(const ConfusionCounts& counts, const HeldOutTargets& targets) {
+/// How far `counts` fall short of the targets: 0 when they meet them.
+double shortfall(const ConfusionCounts& counts, const HeldOutTargets& targets) {
   // A scene without colliding configurations has no TPR to miss.
-  const bool tprMet =
-      counts.truePositives + counts.falseNegatives == 0 || counts.tpr() >= targets.truePositiveRate;
-  return counts.accuracy() >= targets.accuracy && tprMet;
+  const bool noPositives = counts.truePositives + counts.falseNegatives == 0;
+  const double tprShort = noPositives ? 0 : std::max(0.0, targets.truePositiveRate - counts.tpr());
+  return std::max(0.0, targets.accuracy - counts.accuracy()) + tprShort;
 }
 
 }  // namespace
@@ -49,17 +51,27 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
   Labels labels = initial.labels;
 
   HeldOutTraining result;
+  double bestShortfall = 0;
   for (;;) {
     Trainer trainer(features, params);
     trainer.addPoints(learned, labels);
-    result.lastUpdate = trainer.update();
-    result.model = trainer.model();
-    result.trainingSamples = labels.size();
+    const UpdateReport update = trainer.update();
+    const std::shared_ptr<const Model> model = trainer.model();
 
     const Dataset fresh = labelled(targets.samplesPerRound);
-    const ConfusionCounts counts = evaluate(*result.model, fresh.points, fresh.labels);
-    result.rounds.push_back({labels.size(), result.model->supportCount(), counts});
-    if (meets(counts, targets) || labels.size() + fresh.size() > targets.maxTrainingSamples) {
+    const ConfusionCounts counts = evaluate(*model, fresh.points, fresh.labels);
+    result.rounds.push_back({labels.size(), model->supportCount(), counts});
+    const double missing = shortfall(counts, targets);
+    if (!result.model || missing < bestShortfall) {
+      result.model = model;
+      result.chosenRound = result.rounds.size() - 1;
+      result.trainingSamples = labels.size();
+      result.update = update;
+      bestShortfall = missing;
+    }
+    // A model at the support cap cannot take in what more samples would teach it.
+    if (missing == 0 || update.stopReason == StopReason::SupportCap ||
+        labels.size() + fresh.size() > targets.maxTrainingSamples) {
       return result;
     }
     learned.conservativeResize(learned.rows() + fresh.points.rows(), Eigen::NoChange);

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -40,7 +42,12 @@ TEST(HeldOutTraining, StopsAtTheFirstRoundThatMeetsTheTargets) {
   EXPECT_EQ(trained.rounds[0].heldOut.total(), HeldOutTargets{}.samplesPerRound);
 }
 
-TEST(HeldOutTraining, LearnsEachRoundAndMeasuresTheFinalModelOnConfigurationsItNeverLearned) {
+/// What a round's counts lack of the targets (the rule trainToHeldOutTargets keeps by).
+double lacking(const ConfusionCounts& c, const HeldOutTargets& t) {
+  return std::max(0.0, t.accuracy - c.accuracy()) + std::max(0.0, t.truePositiveRate - c.tpr());
+}
+
+TEST(HeldOutTraining, LearnsEachRoundAndMeasuresEveryModelOnConfigurationsItNeverLearned) {
   const BallOracle oracle;
   const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
   const HeldOutTargets unreachable{
@@ -54,12 +61,14 @@ TEST(HeldOutTraining, LearnsEachRoundAndMeasuresTheFinalModelOnConfigurationsItN
   EXPECT_EQ(trained.rounds[0].trainingSamples, 200u);
   EXPECT_EQ(trained.rounds[1].trainingSamples, 1200u);
   EXPECT_EQ(trained.rounds[2].trainingSamples, 2200u);
-  EXPECT_EQ(trained.trainingSamples, 2200u);
-  // From 200 samples to 2200, the held-out accuracy of eight balls in 3-D rises clearly.
+  // From 200 samples to 2200, the held-out accuracy of eight balls in 3-D rises clearly, and the
+  // model kept is the last one.
   EXPECT_GT(trained.rounds[2].heldOut.accuracy(), trained.rounds[0].heldOut.accuracy() + 0.03)
       << trained.rounds[0].heldOut.accuracy() << " " << trained.rounds[1].heldOut.accuracy();
+  ASSERT_EQ(trained.chosenRound, 2u);
+  EXPECT_EQ(trained.trainingSamples, 2200u);
 
-  // The same draws, independently: the final model is Algorithm 1 on the initial samples and the
+  // The same draws, independently: the kept model is Algorithm 1 on the initial samples and the
   // first two rounds' configurations, measured on the third round's.
   Rng replay = start;
   Configurations learned = uniformConfigurations(features.limits(), 200, replay);
@@ -77,6 +86,37 @@ TEST(HeldOutTraining, LearnsEachRoundAndMeasuresTheFinalModelOnConfigurationsItN
   EXPECT_EQ(measured.truePositives, trained.rounds[2].heldOut.truePositives);
   EXPECT_EQ(measured.falseNegatives, trained.rounds[2].heldOut.falseNegatives);
   EXPECT_EQ(measured.falsePositives, trained.rounds[2].heldOut.falsePositives);
+}
+
+TEST(HeldOutTraining, KeepsTheRoundClosestToTheTargets) {
+  // Labels without structure: no round learns anything that holds on fresh configurations, so
+  // which round comes closest is chance, and the one kept must be it.
+  const FunctionChecker noise("noise", kDim, [](const double* q) {
+    return std::hash<double>{}(q[0] * 7.3 + q[1] * 3.1 + q[2]) % 5 == 0;
+  });
+  const HeldOutTargets targets{.samplesPerRound = 500, .maxTrainingSamples = 2500};
+  Rng rng(6);
+  const HeldOutTraining trained = trainToHeldOutTargets(
+      noise, FeatureMap::jointScaling(JointLimits::unitBox(kDim)), ballParams(), 500, targets, rng);
+  ASSERT_EQ(trained.rounds.size(), 5u);
+  for (const HeldOutRound& round : trained.rounds) {
+    EXPECT_LE(lacking(trained.rounds[trained.chosenRound].heldOut, targets),
+              lacking(round.heldOut, targets));
+  }
+  EXPECT_EQ(trained.model->supportCount(), trained.rounds[trained.chosenRound].supportCount);
+  EXPECT_EQ(trained.trainingSamples, trained.rounds[trained.chosenRound].trainingSamples);
+}
+
+TEST(HeldOutTraining, StopsWhenTheModelIsAtItsSupportCap) {
+  const BallOracle oracle;
+  TrainParams capped = ballParams();
+  capped.maxSupportPoints = 20;
+  Rng rng(7);
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(oracle.checker, FeatureMap::jointScaling(JointLimits::unitBox(kDim)),
+                            capped, 2000, {.accuracy = 1, .truePositiveRate = 1}, rng);
+  ASSERT_EQ(trained.rounds.size(), 1u);
+  EXPECT_EQ(trained.update.stopReason, StopReason::SupportCap);
 }
 
 TEST(HeldOutTraining, ASceneWithoutCollisionsHasNoTprToMiss) {

@@ -56,7 +56,7 @@ inline constexpr std::size_t kSceneSamples = 16000;
 /// bias than updates under change (whose Algorithm 2 samples lie near the boundary); the narrower
 /// kernel finds more of the thin colliding regions (shelves) once the rounds have supplied the
 /// samples it needs. The mesh Panda in the 20 sample MotionBenchMaker scenes, 3 seeds, with the
-/// rounds: accuracy 0.977 and TPR 0.961, both 0.97 and 0.95 in 50 of 60 trainings, against 44
+/// rounds: accuracy 0.976 and TPR 0.962, both 0.97 and 0.95 in 49 of 60 trainings, against 44
 /// with gamma 40 and beta 60 and 34 without rounds (docs/algorithms.md, "Training on one
 /// scene"). Planners that train per query (`fastron plan`, motion-bench) keep the smaller,
 /// cheaper models: there larger ones planned slower, counting their training or not.
