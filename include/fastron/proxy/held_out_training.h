@@ -23,8 +23,7 @@ struct HeldOutTargets {
   /// ones varies by about 0.02, so a round that passes by luck still leaves a good model.
   double accuracy = 0.975, truePositiveRate = 0.96;
   std::size_t samplesPerRound = 8000;  ///< fresh uniform configurations measured per round
-  /// No more rounds once the model has learned this many labelled configurations (its initial
-  /// samples included); the last round's measurement is then the final one.
+  /// No round learns past this many labelled configurations (the initial samples included).
   std::size_t maxTrainingSamples = 40000;
 };
 
