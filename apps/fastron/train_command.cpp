@@ -75,9 +75,8 @@ TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
   return defaults;
 }
 
-/// `params` with the given iteration limit and a cap of 5000.
-TrainParams forRobot(TrainParams params, std::size_t maxIterations) {
-  params.maxIterations = maxIterations;
+/// `params` with a cap of 5000 support points (a robot's dataset).
+TrainParams forRobot(TrainParams params) {
   params.maxSupportPoints = 5000;
   return params;
 }
@@ -109,13 +108,14 @@ void printReport(const UpdateReport& report) {
             << " training points misclassified\n";
 }
 
-void printRounds(const HeldOutTraining& trained, std::size_t perRound) {
+void printRounds(const HeldOutTraining& trained) {
   for (std::size_t r = 0; r < trained.rounds.size(); ++r) {
     const HeldOutRound& round = trained.rounds[r];
     std::cout << "held out      model of " << round.trainingSamples << " samples, |S| "
-              << round.supportCount << ", on " << perRound << " fresh configurations: accuracy "
-              << rate(round.heldOut.accuracy()) << ", TPR " << rate(round.heldOut.tpr()) << ", TNR "
-              << rate(round.heldOut.tnr()) << (r == trained.chosenRound ? " (kept)" : "") << '\n';
+              << round.supportCount << ", on " << round.heldOut.total()
+              << " fresh configurations: accuracy " << rate(round.heldOut.accuracy()) << ", TPR "
+              << rate(round.heldOut.tpr()) << ", TNR " << rate(round.heldOut.tnr())
+              << (r == trained.chosenRound ? " (kept)" : "") << '\n';
   }
 }
 
@@ -133,8 +133,7 @@ int trainOnScene(const TrainOptions& o) {
       std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
   const FeatureMap features = featuresFromOptions(o.features, robot);
   ProxyParams params;
-  params.train =
-      withOptions(forRobot(sceneTrainParams(features.kind(), o.selfCollision), 20000), o);
+  params.train = withOptions(sceneTrainParams(features.kind(), o.selfCollision), o);
   params.seed = o.seed;
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
             << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
@@ -148,7 +147,7 @@ int trainOnScene(const TrainOptions& o) {
     std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
               << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
               << ", TPR " << o.heldOut.truePositiveRate << ")\n";
-    printRounds(trained, o.heldOut.samplesPerRound);
+    printRounds(trained);
     printReport(trained.update);
     std::cout << "time          "
               << durationText(inSeconds(std::chrono::steady_clock::now() - start))
@@ -199,7 +198,7 @@ int runTrain(const TrainOptions& o) {
                                     : FeatureMap::jointScaling(parseLimits(o.limits, data));
   // A dataset without a robot keeps the settings of old (gamma 10, beta 1, cap 3000).
   const TrainParams params =
-      withOptions(robot ? forRobot(defaultTrainParams(features.kind()), 5000) : TrainParams{}, o);
+      withOptions(robot ? forRobot(defaultTrainParams(features.kind())) : TrainParams{}, o);
 
   const auto [train, test] = splitHoldout(data, o.holdout, o.seed);
 

@@ -70,8 +70,6 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
   TrainParams params = sceneTrainParams(features.kind(), selfCollisionLabels);
-  params.maxIterations = 20000;
-  params.maxSupportPoints = 5000;
   if (gamma) params.kernel.gamma = *gamma;
   if (beta) params.beta = *beta;
   const HeldOutTargets targets{accuracy, tpr, heldOut, maxSamples};
@@ -93,10 +91,13 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
 
 void bindProxy(py::module_& m) {
   m.def("train_scene", &trainScene, py::arg("oracle"), py::arg("features"),
-        py::arg("samples") = kSceneSamples, py::kw_only(), py::arg("accuracy") = 0.975,
-        py::arg("tpr") = 0.96, py::arg("held_out") = 8000, py::arg("max_samples") = 40000,
-        py::arg("seed") = 1, py::arg("self_collision_labels") = false,
-        py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
+        py::arg("samples") = kSceneSamples, py::kw_only(),
+        py::arg("accuracy") = HeldOutTargets{}.accuracy,
+        py::arg("tpr") = HeldOutTargets{}.truePositiveRate,
+        py::arg("held_out") = HeldOutTargets{}.samplesPerRound,
+        py::arg("max_samples") = HeldOutTargets{}.maxTrainingSamples, py::arg("seed") = 1,
+        py::arg("self_collision_labels") = false, py::arg("gamma") = py::none(),
+        py::arg("beta") = py::none(),
         "A model of a scene that stands still, as `fastron train --scene` trains it: Algorithm 1 "
         "on `samples` uniform configurations labelled by the oracle, then rounds on `held_out` "
         "fresh ones: while their accuracy or TPR is below the targets and fewer than "

@@ -65,7 +65,6 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     if (!result.model || missing < bestShortfall) {
       result.model = model;
       result.chosenRound = result.rounds.size() - 1;
-      result.trainingSamples = labels.size();
       result.update = update;
       bestShortfall = missing;
     }

@@ -29,8 +29,8 @@ struct TrainParams {
   /// update after update: on the demo's world with 2500 new points per update they passed 1e30
   /// (where float queries mean nothing, long before) at update 369. Converging weights reach
   /// 2e4 beta in a smooth planar world (tests/proxy, gamma 3 over 2 m); at 1000 beta that test's
-  /// training stopped early and lost accuracy in 5 runs of 600 beside two busy loops, none at 1e5
-  /// (docs/algorithms.md).
+  /// training stopped early and lost accuracy in 5 and 7 of two batches of 600 runs beside two
+  /// busy loops, none of 1200 at 1e5 (docs/algorithms.md).
   double maxWeightOverBeta = 1e5;
 };
 
@@ -51,15 +51,16 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels = fals
 inline constexpr std::size_t kSceneSamples = 16000;
 /// For the most accurate model of a scene that stands still, learned at once from kSceneSamples
 /// uniform samples and held-out rounds (`fastron train --scene`, trainToHeldOutTargets):
-/// defaultTrainParams with gamma 60 and beta 40 for task-space features without self-collision
-/// labels. Uniform samples of a scene are 1-9% colliding, and the colliding class needs a larger
-/// bias than updates under change (whose Algorithm 2 samples lie near the boundary); the narrower
-/// kernel finds more of the thin colliding regions (shelves) once the rounds have supplied the
-/// samples it needs. The mesh Panda in the 20 sample MotionBenchMaker scenes, 3 seeds, with the
-/// rounds: accuracy 0.976 and TPR 0.962, both 0.97 and 0.95 in 49 of 60 trainings, against 44
-/// with gamma 40 and beta 60 and 34 without rounds (docs/algorithms.md, "Training on one
-/// scene"). Planners that train per query (`fastron plan`, motion-bench) keep the smaller,
-/// cheaper models: there larger ones planned slower, counting their training or not.
+/// defaultTrainParams with an iteration limit of 20000 and a cap of 5000 support points, and gamma
+/// 60 and beta 40 for task-space features without self-collision labels. Uniform samples of a scene
+/// are 1-9% colliding, and the colliding class needs a larger bias than updates under change (whose
+/// Algorithm 2 samples lie near the boundary); the narrower kernel finds more of the thin colliding
+/// regions (shelves) once the rounds have supplied the samples it needs. The mesh Panda in the 20
+/// sample MotionBenchMaker scenes, 3 seeds, with the rounds: accuracy 0.976 and TPR 0.962, both
+/// 0.97 and 0.95 in 49 of 60 trainings, against 44 with gamma 40 and beta 60 and 34 without rounds
+/// (docs/algorithms.md, "Training on one scene"). Planners that train per query (`fastron plan`,
+/// motion-bench) keep the smaller, cheaper models: there larger ones planned slower, counting their
+/// training or not.
 TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels = false);
 
 enum class StopReason {

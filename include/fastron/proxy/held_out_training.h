@@ -45,7 +45,6 @@ struct HeldOutTraining {
   std::shared_ptr<const Model> model;
   std::vector<HeldOutRound> rounds;  ///< every round, each on its own fresh configurations
   std::size_t chosenRound = 0;       ///< the round that measured `model`
-  std::size_t trainingSamples = 0;   ///< labelled configurations `model` learned
   UpdateReport update;               ///< Algorithm 1 that made `model`
 };
 
