@@ -75,9 +75,9 @@ TrainParams withOptions(TrainParams defaults, const TrainOptions& o) {
   return defaults;
 }
 
-/// `params` with a cap of 5000 support points (a robot's dataset).
+/// `params` with the cap of a robot's models (a robot's dataset).
 TrainParams forRobot(TrainParams params) {
-  params.maxSupportPoints = 5000;
+  params.maxSupportPoints = kRobotSupportCap;
   return params;
 }
 

@@ -36,6 +36,12 @@ struct ReleasingDelete {
 };
 using DetectorHolder = std::unique_ptr<ProxyCollisionDetector, ReleasingDelete>;
 
+/// Threads that label for `oracle`: `requested`, but one for a Python oracle, which answers one
+/// call at a time (the GIL), so more threads only wait.
+unsigned labellingThreads(const CollisionChecker& oracle, unsigned requested) {
+  return dynamic_cast<const PythonChecker*>(&oracle) ? 1 : requested;
+}
+
 DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::uint64_t seed,
                             std::optional<double> gamma, std::optional<double> beta,
                             std::optional<std::uint32_t> kernelBlock,
@@ -55,8 +61,7 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   if (coldStart == false) params = withWarmStart(params);  // the paper's update
   if (coldStart == true) params.coldStart = true;
   params.seed = seed;
-  // A Python oracle answers one call at a time (the GIL): more threads only wait.
-  params.labelThreads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : labelThreads;
+  params.labelThreads = labellingThreads(*checker, labelThreads);
   params.calibrationSamples = calibrationSamples;
   return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
 }
@@ -73,12 +78,12 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
   if (gamma) params.kernel.gamma = *gamma;
   if (beta) params.beta = *beta;
   const HeldOutTargets targets{accuracy, tpr, heldOut, maxSamples};
-  const unsigned threads = dynamic_cast<const PythonChecker*>(checker.get()) ? 1 : 0;
   HeldOutTraining trained;
   {
     py::gil_scoped_release released;
     Rng rng(seed);
-    trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng, threads);
+    trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng,
+                                    labellingThreads(*checker, 0));
   }
   py::list rounds;
   for (const HeldOutRound& round : trained.rounds) {

@@ -96,7 +96,7 @@ TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels) {
 TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels) {
   TrainParams params = defaultTrainParams(kind, selfCollisionLabels);
   params.maxIterations = 20000;
-  params.maxSupportPoints = 5000;
+  params.maxSupportPoints = kRobotSupportCap;
   if (kind == FeatureKind::Kinematic && !selfCollisionLabels) {
     params.kernel.gamma = 60;
     params.beta = 40;

@@ -217,7 +217,7 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
   p.train.kernel = {KernelType::RationalQuadratic, gamma};
   p.train.beta = beta;
   p.train.maxIterations = 20000;
-  p.train.maxSupportPoints = 5000;
+  p.train.maxSupportPoints = kRobotSupportCap;
   p.activeLearning.maxSamples = 500;
   p.seed = seed;
   return p;

@@ -46,21 +46,19 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     data.labels = labelConfigurations(oracle, data.points, threads);
     return data;
   };
-  const Dataset initial = labelled(initialSamples);
-  Configurations learned = initial.points;
-  Labels labels = initial.labels;
+  Dataset learned = labelled(initialSamples);
 
   HeldOutTraining result;
   double bestShortfall = 0;
   for (;;) {
     Trainer trainer(features, params);
-    trainer.addPoints(learned, labels);
+    trainer.addPoints(learned.points, learned.labels);
     const UpdateReport update = trainer.update();
     const std::shared_ptr<const Model> model = trainer.model();
 
     const Dataset fresh = labelled(targets.samplesPerRound);
     const ConfusionCounts counts = evaluate(*model, fresh.points, fresh.labels);
-    result.rounds.push_back({labels.size(), model->supportCount(), counts});
+    result.rounds.push_back({learned.size(), model->supportCount(), counts});
     const double missing = shortfall(counts, targets);
     if (!result.model || missing < bestShortfall) {
       result.model = model;
@@ -70,12 +68,12 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     }
     // A model at the support cap cannot take in what more samples would teach it.
     if (missing == 0 || update.stopReason == StopReason::SupportCap ||
-        labels.size() + fresh.size() > targets.maxTrainingSamples) {
+        learned.size() + fresh.size() > targets.maxTrainingSamples) {
       return result;
     }
-    learned.conservativeResize(learned.rows() + fresh.points.rows(), Eigen::NoChange);
-    learned.bottomRows(fresh.points.rows()) = fresh.points;
-    labels.insert(labels.end(), fresh.labels.begin(), fresh.labels.end());
+    learned.points.conservativeResize(learned.points.rows() + fresh.points.rows(), Eigen::NoChange);
+    learned.points.bottomRows(fresh.points.rows()) = fresh.points;
+    learned.labels.insert(learned.labels.end(), fresh.labels.begin(), fresh.labels.end());
   }
 }
 

@@ -47,6 +47,9 @@ void validate(const TrainParams& params);
 /// with point terms, each costing 1.7 times as much to query).
 TrainParams defaultTrainParams(FeatureKind kind, bool selfCollisionLabels = false);
 
+/// The support-point cap of a robot's models (the CLI with --robot, sceneTrainParams, the
+/// experiments): a 7-joint arm in clutter needs more than the paper's 3000.
+inline constexpr std::size_t kRobotSupportCap = 5000;
 /// Uniform samples for a scene that stands still, learned at once (sceneTrainParams).
 inline constexpr std::size_t kSceneSamples = 16000;
 /// For the most accurate model of a scene that stands still, learned at once from kSceneSamples
