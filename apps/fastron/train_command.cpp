@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -34,6 +35,7 @@ struct TrainOptions {
   std::optional<std::size_t> maxIterations, maxSupport;
   std::size_t samples = kSceneSamples, activeLearning = 0;
   HeldOutTargets heldOut;
+  std::vector<double> margins{kGrownObstacleMargins.begin(), kGrownObstacleMargins.end()};
   double holdout = 0;
   std::uint64_t seed = 1;
   bool selfCollision = false;
@@ -108,15 +110,35 @@ void printReport(const UpdateReport& report) {
             << " training points misclassified\n";
 }
 
-void printRounds(const HeldOutTraining& trained) {
+void printRounds(const HeldOutTraining& trained, const std::vector<double>& margins) {
   for (std::size_t r = 0; r < trained.rounds.size(); ++r) {
     const HeldOutRound& round = trained.rounds[r];
-    std::cout << "held out      model of " << round.trainingSamples << " samples, |S| "
-              << round.supportCount << ", on " << round.heldOut.total()
+    std::cout << "held out      model of " << round.trainingSamples << " samples";
+    if (round.grownLevel > 0) {
+      std::cout << " (obstacles grown " << margins[round.grownLevel - 1] * 1000 << " mm)";
+    }
+    std::cout << ", |S| " << round.supportCount << ", on " << round.heldOut.total()
               << " fresh configurations: accuracy " << rate(round.heldOut.accuracy()) << ", TPR "
               << rate(round.heldOut.tpr()) << ", TNR " << rate(round.heldOut.tnr())
               << (r == trained.chosenRound ? " (kept)" : "") << '\n';
   }
+}
+
+/// --margins without its zeros; throws InvalidArgument unless they increase.
+std::vector<double> grownMargins(const std::vector<double>& margins) {
+  std::vector<double> used;
+  for (const double margin : margins) {
+    if (!std::isfinite(margin) || margin < 0) {
+      throw InvalidArgument("--margins: " + std::to_string(margin) + " is not a margin >= 0");
+    }
+    if (margin == 0) continue;
+    if (!used.empty() && margin <= used.back()) {
+      throw InvalidArgument("--margins must increase, got " + std::to_string(used.back()) +
+                            " then " + std::to_string(margin));
+    }
+    used.push_back(margin);
+  }
+  return used;
 }
 
 /// fastron train --robot R --scene S: FCL-labelled uniform samples and Algorithm 1, then either
@@ -141,13 +163,22 @@ int trainOnScene(const TrainOptions& o) {
   std::shared_ptr<const Model> model;
   if (o.heldOut.samplesPerRound > 0) {
     const auto start = std::chrono::steady_clock::now();
+    // Oracles whose labels leave the robot more room, for rounds that miss the TPR alone.
+    const std::vector<double> margins = grownMargins(o.margins);
+    std::vector<std::unique_ptr<const FclChecker>> grown;
+    std::vector<const CollisionChecker*> grownOracles;
+    for (const double margin : margins) {
+      grown.push_back(std::make_unique<const FclChecker>(robot, scene.grown(margin),
+                                                         CheckerOptions{o.selfCollision}));
+      grownOracles.push_back(grown.back().get());
+    }
     Rng rng(o.seed);
-    const HeldOutTraining trained =
-        trainToHeldOutTargets(*fcl, features, params.train, o.samples, o.heldOut, rng);
+    const HeldOutTraining trained = trainToHeldOutTargets(*fcl, features, params.train, o.samples,
+                                                          o.heldOut, rng, 0, grownOracles);
     std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
               << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
               << ", TPR " << o.heldOut.truePositiveRate << ")\n";
-    printRounds(trained);
+    printRounds(trained, margins);
     printReport(trained.update);
     std::cout << "time          "
               << durationText(inSeconds(std::chrono::steady_clock::now() - start))
@@ -269,6 +300,12 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--max-samples", o->heldOut.maxTrainingSamples,
                   "with --scene: no more held-out rounds once the model has learned this many "
                   "labelled configurations")
+      ->capture_default_str();
+  cmd->add_option("--margins", o->margins,
+                  "with --scene: obstacle margins (m, increasing, comma-separated) of the labels "
+                  "a round learns when it meets the target accuracy and misses the TPR; the "
+                  "rounds are measured on exact labels (--margins 0: none)")
+      ->delimiter(',')
       ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
                 "with --scene: label self-collisions as collisions too");

@@ -147,6 +147,8 @@ void bindGeometry(py::module_& m) {
             return toArray(s.obstacle(name).pose.translation());
           },
           py::arg("name"))
+      .def("grown", &Scene::grown, py::arg("margin"),
+           "The same scene with every obstacle but meshes grown by `margin` metres.")
       .def("__repr__", [](const Scene& scene) {
         return "Scene(" + std::to_string(scene.size()) + " obstacles)";
       });

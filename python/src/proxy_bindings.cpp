@@ -66,14 +66,22 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
 }
 
-/// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts)],
-/// index of the round kept).
+/// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts, grown
+/// level)], index of the round kept).
 py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t samples,
                      double accuracy, double tpr, std::size_t heldOut, std::size_t maxSamples,
                      std::uint64_t seed, bool selfCollisionLabels, std::optional<double> gamma,
-                     std::optional<double> beta) {
+                     std::optional<double> beta, const py::sequence& grownOracles) {
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
+  std::vector<std::shared_ptr<const CollisionChecker>> grown;
+  std::vector<const CollisionChecker*> grownPointers;
+  unsigned threads = labellingThreads(*checker, 0);  // 0: all cores, 1: a Python oracle's
+  for (const py::handle g : grownOracles) {
+    grown.push_back(oracleOf(g, features.configurationDim()));
+    grownPointers.push_back(grown.back().get());
+    if (labellingThreads(*grown.back(), 0) == 1) threads = 1;
+  }
   TrainParams params = sceneTrainParams(features.kind(), selfCollisionLabels);
   if (gamma) params.kernel.gamma = *gamma;
   if (beta) params.beta = *beta;
@@ -82,12 +90,13 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
   {
     py::gil_scoped_release released;
     Rng rng(seed);
-    trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng,
-                                    labellingThreads(*checker, 0));
+    trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng, threads,
+                                    grownPointers);
   }
   py::list rounds;
   for (const HeldOutRound& round : trained.rounds) {
-    rounds.append(py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut));
+    rounds.append(
+        py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut, round.grownLevel));
   }
   return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds, trained.chosenRound);
 }
@@ -102,14 +111,19 @@ void bindProxy(py::module_& m) {
         py::arg("held_out") = HeldOutTargets{}.samplesPerRound,
         py::arg("max_samples") = HeldOutTargets{}.maxTrainingSamples, py::arg("seed") = 1,
         py::arg("self_collision_labels") = false, py::arg("gamma") = py::none(),
-        py::arg("beta") = py::none(),
+        py::arg("beta") = py::none(), py::arg("grown_oracles") = py::tuple(),
         "A model of a scene that stands still, as `fastron train --scene` trains it: Algorithm 1 "
         "on `samples` uniform configurations labelled by the oracle, then rounds on `held_out` "
         "fresh ones: while their accuracy or TPR is below the targets and fewer than "
         "max_samples have been learned, learn them with all before and measure on new ones. "
+        "grown_oracles: oracles that call more configurations colliding, each more than the "
+        "last (FclChecker(robot, scene.grown(m)) for increasing margins m); a round that meets "
+        "the accuracy target and misses the TPR makes the next rounds learn the next one's "
+        "labels, while every round is still measured on the oracle's. "
         "Returns (Model, rounds, kept): each round (training samples, |S|, ConfusionCounts on "
-        "configurations its model had not learned), and the index of the round whose model, "
-        "the closest to the targets, is returned. "
+        "configurations its model had not learned, grown level: 0 the oracle's labels, k the "
+        "k-th grown oracle's), and the index of the round whose model, the closest to the "
+        "targets, is returned. "
         "The GIL is released while it trains (a Python oracle takes it for each call).");
   py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
       .def_readonly("update", &StepReport::update)

@@ -208,6 +208,24 @@ def test_train_scene_measures_each_round_on_fresh_configurations(baxter, baxter_
         fastron.train_scene(baxter_fcl, features, 100, accuracy=2.0)
 
 
+def test_train_scene_learns_a_grown_oracles_labels_when_only_the_tpr_misses(
+        baxter, three_boxes, baxter_fcl):
+    features = fastron.robot_features(baxter)
+    roomy = fastron.FclChecker(baxter, three_boxes.grown(0.03))
+    _, rounds, _ = fastron.train_scene(baxter_fcl, features, 1000, accuracy=0.0, tpr=1.0,
+                                       held_out=1000, max_samples=3000, grown_oracles=[roomy])
+    assert [r[3] for r in rounds] == [0, 1, 1][:len(rounds)] and len(rounds) >= 2
+    # A Python oracle works too; calling everything a collision meets TPR 1 on the exact labels,
+    # where the free configurations are its false positives.
+    _, rounds, kept = fastron.train_scene(baxter_fcl, features, 1000, accuracy=0.0, tpr=1.0,
+                                          held_out=1000, grown_oracles=(lambda q: True,))
+    assert [r[3] for r in rounds] == [0, 1] and kept == 1
+    assert rounds[1][2].tpr == 1.0 and rounds[1][2].true_negatives == 0
+    assert rounds[1][2].false_positives > 0
+    with pytest.raises(fastron.InvalidArgument, match="margin must be finite"):
+        three_boxes.grown(-0.01)
+
+
 def test_background_updates_and_snapshots(baxter, three_boxes):
     scene = three_boxes
     fcl = fastron.FclChecker(baxter, scene)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "fastron/core/error.h"
 
@@ -56,6 +57,18 @@ Eigen::Vector3d reflectInto(Eigen::Vector3d p, const Eigen::AlignedBox3d& box) {
 }
 
 }  // namespace
+
+Scene Scene::grown(double margin) const {
+  if (!std::isfinite(margin) || margin < 0) {
+    throw InvalidArgument("an obstacle margin must be finite and >= 0, got " +
+                          std::to_string(margin));
+  }
+  Scene result = *this;
+  for (Obstacle& o : result.obstacles_) {
+    if (!std::holds_alternative<Mesh>(o.shape)) o.shape = inflate(o.shape, margin);
+  }
+  return result;
+}
 
 Eigen::Isometry3d makePose(const Eigen::Vector3d& position, const Eigen::Vector3d& rpy) {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

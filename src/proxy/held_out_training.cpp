@@ -37,16 +37,24 @@ double shortfall(const ConfusionCounts& counts, const HeldOutTargets& targets) {
 
 HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const FeatureMap& features,
                                       const TrainParams& params, std::size_t initialSamples,
-                                      const HeldOutTargets& targets, Rng& rng, unsigned threads) {
+                                      const HeldOutTargets& targets, Rng& rng, unsigned threads,
+                                      std::span<const CollisionChecker* const> grownOracles) {
   validate(targets);
   if (initialSamples == 0) throw InvalidArgument("initial samples must be at least 1");
-  const auto labelled = [&](std::size_t n) {
-    Dataset data;
-    data.points = uniformConfigurations(features.limits(), n, rng);
-    data.labels = labelConfigurations(oracle, data.points, threads);
-    return data;
+  for (const CollisionChecker* grown : grownOracles) {
+    if (grown == nullptr) throw InvalidArgument("a grown oracle is null");
+    if (grown->dof() != oracle.dof()) {
+      throw InvalidArgument("a grown oracle has " + std::to_string(grown->dof()) +
+                            " joints, the oracle " + std::to_string(oracle.dof()));
+    }
+  }
+  std::size_t level = 0;  // whose labels the rounds learn: 0 oracle, k grownOracles[k - 1]
+  const auto labelsAt = [&](std::size_t at, const Eigen::MatrixXd& points) {
+    return labelConfigurations(at == 0 ? oracle : *grownOracles[at - 1], points, threads);
   };
-  Dataset learned = labelled(initialSamples);
+  Dataset learned;
+  learned.points = uniformConfigurations(features.limits(), initialSamples, rng);
+  learned.labels = labelsAt(level, learned.points);
 
   HeldOutTraining result;
   double bestShortfall = 0;
@@ -56,9 +64,11 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     const UpdateReport update = trainer.update();
     const std::shared_ptr<const Model> model = trainer.model();
 
-    const Dataset fresh = labelled(targets.samplesPerRound);
+    Dataset fresh;
+    fresh.points = uniformConfigurations(features.limits(), targets.samplesPerRound, rng);
+    fresh.labels = labelsAt(0, fresh.points);
     const ConfusionCounts counts = evaluate(*model, fresh.points, fresh.labels);
-    result.rounds.push_back({learned.size(), model->supportCount(), counts});
+    result.rounds.push_back({learned.size(), model->supportCount(), counts, level});
     const double missing = shortfall(counts, targets);
     if (!result.model || missing < bestShortfall) {
       result.model = model;
@@ -71,6 +81,11 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
         learned.size() + fresh.size() > targets.maxTrainingSamples) {
       return result;
     }
+    if (counts.accuracy() >= targets.accuracy && level < grownOracles.size()) {
+      ++level;  // missing is the TPR alone: learn with more room around the obstacles
+      learned.labels = labelsAt(level, learned.points);
+    }
+    if (level > 0) fresh.labels = labelsAt(level, fresh.points);
     learned.points.conservativeResize(learned.points.rows() + fresh.points.rows(), Eigen::NoChange);
     learned.points.bottomRows(fresh.points.rows()) = fresh.points;
     learned.labels.insert(learned.labels.end(), fresh.labels.begin(), fresh.labels.end());

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "fastron/core/active_learning.h"
@@ -126,6 +127,33 @@ Scene baxterPrimitives() {
   scene.add({"pill", Capsule{0.06, 0.3}, makePose({0.3, -0.5, -0.2}, {0, 1.2, 0}), std::nullopt});
   scene.add({"cube_mesh", Mesh{cubeMesh(0.15)}, makePose({0.9, -0.8, 0.4}), std::nullopt});
   return scene;
+}
+
+TEST(Checkers, AGrownSceneCollidesWhereverTheSceneDoesAndMore) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = baxterPrimitives();
+  const Scene grown = scene.grown(0.02);
+  EXPECT_TRUE(
+      std::get<Box>(grown.obstacle("box").shape).size.isApprox(Eigen::Vector3d::Constant(0.24)));
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(grown.obstacle("ball").shape).radius, 0.14);
+  EXPECT_DOUBLE_EQ(std::get<Capsule>(grown.obstacle("pill").shape).radius, 0.08);
+  EXPECT_EQ(std::get<Mesh>(grown.obstacle("cube_mesh").shape).mesh,
+            std::get<Mesh>(scene.obstacle("cube_mesh").shape).mesh);  // meshes stay
+  EXPECT_TRUE(grown.obstacle("can").pose.isApprox(scene.obstacle("can").pose));
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(baxter.limits(), 2000, rng);
+  const Labels exact = labelConfigurations(FclChecker(baxter, scene), q);
+  const Labels roomy = labelConfigurations(FclChecker(baxter, grown), q);
+  std::size_t more = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    if (exact[i] > 0) {
+      EXPECT_GT(roomy[i], 0) << "configuration " << i;
+    }
+    more += exact[i] < 0 && roomy[i] > 0;
+  }
+  EXPECT_GT(more, 0u);
+  EXPECT_THROW((void)scene.grown(-0.01), InvalidArgument);
+  EXPECT_THROW((void)scene.grown(std::nan("")), InvalidArgument);
 }
 
 TEST(Checkers, FclAndGjkAgreeOnPrimitiveScenes) {

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -124,6 +126,70 @@ TEST(HeldOutTraining, ASceneWithoutCollisionsHasNoTprToMiss) {
       free, FeatureMap::jointScaling(JointLimits::unitBox(kDim)), ballParams(), 500, {}, rng);
   ASSERT_EQ(trained.rounds.size(), 1u);
   EXPECT_EQ(trained.rounds[0].heldOut.accuracy(), 1.0);
+}
+
+TEST(HeldOutTraining, ARoundThatMissesOnlyTheTprLearnsTheNextGrownOraclesLabels) {
+  const BallOracle oracle;
+  // The most room there is: every configuration collides.
+  const FunctionChecker everywhere("everywhere", kDim, [](const double*) { return true; });
+  const std::vector<const CollisionChecker*> grown{&everywhere};
+  const HeldOutTargets targets{.accuracy = 0, .truePositiveRate = 1, .samplesPerRound = 1000};
+  Rng rng(5);
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(oracle.checker, FeatureMap::jointScaling(JointLimits::unitBox(kDim)),
+                            ballParams(), 1000, targets, rng, 0, grown);
+  ASSERT_EQ(trained.rounds.size(), 2u);
+  EXPECT_EQ(trained.rounds[0].grownLevel, 0u);
+  ASSERT_LT(trained.rounds[0].heldOut.tpr(), 1.0);
+  // The second round learned the first's configurations and its fresh ones, all as collisions.
+  EXPECT_EQ(trained.rounds[1].grownLevel, 1u);
+  EXPECT_EQ(trained.rounds[1].trainingSamples, 2000u);
+  // ... and was measured on the oracle's labels: its model calls everything a collision, so the
+  // free configurations are its false positives, not true positives as the grown labels say.
+  const ConfusionCounts& second = trained.rounds[1].heldOut;
+  EXPECT_EQ(second.tpr(), 1.0);
+  EXPECT_EQ(second.trueNegatives, 0u);
+  EXPECT_GT(second.falsePositives, second.truePositives);
+  EXPECT_EQ(trained.chosenRound, 1u);
+}
+
+TEST(HeldOutTraining, GrowsNoFurtherThanItsOraclesNorWhenTheAccuracyMisses) {
+  const FunctionChecker noise("noise", kDim, [](const double* q) {
+    return std::hash<double>{}(q[0] * 7.3 + q[1] * 3.1 + q[2]) % 5 == 0;
+  });
+  const std::vector<const CollisionChecker*> grown{&noise, &noise};
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  const auto levels = [&](HeldOutTargets targets) {
+    targets.samplesPerRound = 500;
+    targets.maxTrainingSamples = 2500;
+    Rng rng(6);
+    const HeldOutTraining trained =
+        trainToHeldOutTargets(noise, features, ballParams(), 500, targets, rng, 0, grown);
+    std::vector<std::size_t> result;
+    for (const HeldOutRound& round : trained.rounds) result.push_back(round.grownLevel);
+    return result;
+  };
+  using Levels = std::vector<std::size_t>;
+  EXPECT_EQ(levels({.accuracy = 0, .truePositiveRate = 1}), (Levels{0, 1, 2, 2, 2}));
+  EXPECT_EQ(levels({.accuracy = 1, .truePositiveRate = 0}), (Levels{0, 0, 0, 0, 0}));
+}
+
+TEST(HeldOutTraining, RejectsANullOrMismatchedGrownOracle) {
+  const BallOracle oracle;
+  const FunctionChecker twoJoints("two", 2, [](const double*) { return true; });
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  Rng rng(4);
+  const auto train = [&](const CollisionChecker* grown) {
+    const std::vector<const CollisionChecker*> oracles{grown};
+    return trainToHeldOutTargets(oracle.checker, features, ballParams(), 100, {}, rng, 0, oracles);
+  };
+  EXPECT_THROW(train(nullptr), InvalidArgument);
+  try {
+    train(&twoJoints);
+    FAIL() << "a grown oracle with 2 joints was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("2 joints, the oracle 3"), std::string::npos) << e.what();
+  }
 }
 
 TEST(HeldOutTraining, RejectsBadTargets) {

@@ -58,6 +58,10 @@ class Scene {
   const Obstacle& obstacle(std::string_view name) const;
   const std::vector<Obstacle>& obstacles() const { return obstacles_; }
   std::size_t size() const { return obstacles_.size(); }
+  /// The same scene with every obstacle grown by `margin` metres in every direction, meshes
+  /// excepted (they stay as they are): labels that leave the robot that much room. Throws
+  /// InvalidArgument for a margin that is negative or not finite.
+  Scene grown(double margin) const;
 
   /// Advances time by `steps`, moving every obstacle that has a motion. Deterministic: random
   /// walks draw from their own seeded generators.

@@ -3,8 +3,10 @@
 // enough: each round measures the model on uniform configurations it has never seen and, if
 // they miss the targets, learns them too and measures again on new ones.
 
+#include <array>
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
@@ -27,6 +29,10 @@ struct HeldOutTargets {
   std::size_t maxTrainingSamples = 40000;
 };
 
+/// Margins (metres) by which `fastron train --scene` grows a scene's obstacles for the grown
+/// oracles of trainToHeldOutTargets; measured in docs/algorithms.md.
+inline constexpr std::array<double, 2> kGrownObstacleMargins{0.005, 0.01};
+
 /// Throws InvalidArgument naming the field that is out of range.
 void validate(const HeldOutTargets& targets);
 
@@ -36,6 +42,8 @@ struct HeldOutRound {
   std::size_t trainingSamples = 0;  ///< labelled configurations learned so far
   std::size_t supportCount = 0;     ///< |S| of the model measured
   ConfusionCounts heldOut;          ///< on samplesPerRound fresh uniform configurations
+  /// Whose labels the model learned: 0 the oracle's, k the k-th grown oracle's.
+  std::size_t grownLevel = 0;
 };
 
 /// A model of a scene that stands still and the rounds that measured it.
@@ -53,14 +61,21 @@ struct HeldOutTraining {
 /// uniform configurations and, while they miss `targets`, fewer than maxTrainingSamples have been
 /// learned and the model is below its support cap, Algorithm 1 runs again from zero weights on
 /// every labelled configuration so far, the fresh ones included. Each round measures its model
-/// on configurations it never learned; the one closest to the targets is kept, so rounds never
-/// leave a worse model than the first (a mesh Panda model with self-collision labels, far from
-/// the targets at the cap of 5000, lost TPR with every round: 0.884 to 0.715). (Learning each
-/// round's configurations from the last weights instead, as
+/// on configurations it never learned, labelled by `oracle`; the one closest to the targets is
+/// kept, so rounds never leave a worse model than the first (a mesh Panda model with
+/// self-collision labels, far from the targets at the cap of 5000, lost TPR with every round:
+/// 0.884 to 0.715). (Learning each round's configurations from the last weights instead, as
 /// ProxyCollisionDetector::learnObservations does, lost accuracy and TPR round after round.)
+///
+/// `grownOracles` call more configurations colliding than `oracle` does, each more than the last
+/// (the scene's obstacles grown by a margin: geometry's Scene::grown). When a round meets the
+/// accuracy target but misses the TPR, the next round learns every configuration with the next
+/// grown oracle's labels: the collisions a model misses lie at the boundary, where a little more
+/// room turns them into the collisions it sees (docs/algorithms.md, "Rounds on held-out
+/// configurations").
 HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const FeatureMap& features,
                                       const TrainParams& params, std::size_t initialSamples,
-                                      const HeldOutTargets& targets, Rng& rng,
-                                      unsigned threads = 0);
+                                      const HeldOutTargets& targets, Rng& rng, unsigned threads = 0,
+                                      std::span<const CollisionChecker* const> grownOracles = {});
 
 }  // namespace fastron
