@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -126,15 +127,20 @@ void printRounds(const HeldOutTraining& trained, const std::vector<double>& marg
 
 /// --margins without its zeros; throws InvalidArgument unless they increase.
 std::vector<double> grownMargins(const std::vector<double>& margins) {
+  const auto text = [](double margin) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", margin);
+    return std::string(buffer);
+  };
   std::vector<double> used;
   for (const double margin : margins) {
     if (!std::isfinite(margin) || margin < 0) {
-      throw InvalidArgument("--margins: " + std::to_string(margin) + " is not a margin >= 0");
+      throw InvalidArgument("--margins: " + text(margin) + " is not a margin >= 0");
     }
     if (margin == 0) continue;
     if (!used.empty() && margin <= used.back()) {
-      throw InvalidArgument("--margins must increase, got " + std::to_string(used.back()) +
-                            " then " + std::to_string(margin));
+      throw InvalidArgument("--margins must increase, got " + text(used.back()) + " then " +
+                            text(margin));
     }
     used.push_back(margin);
   }
