@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <sstream>
 
 #include "commands.h"
 #include "fastron/core/dataset.h"
@@ -125,22 +124,16 @@ void printRounds(const HeldOutTraining& trained, const std::vector<double>& marg
   }
 }
 
-/// --margins without its zeros; throws InvalidArgument unless they increase.
+/// --margins (each at least 0, checked by its option) without its zeros; throws InvalidArgument
+/// unless they increase.
 std::vector<double> grownMargins(const std::vector<double>& margins) {
-  const auto text = [](double margin) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%g", margin);
-    return std::string(buffer);
-  };
   std::vector<double> used;
   for (const double margin : margins) {
-    if (!std::isfinite(margin) || margin < 0) {
-      throw InvalidArgument("--margins: " + text(margin) + " is not a margin >= 0");
-    }
     if (margin == 0) continue;
     if (!used.empty() && margin <= used.back()) {
-      throw InvalidArgument("--margins must increase, got " + text(used.back()) + " then " +
-                            text(margin));
+      std::ostringstream message;
+      message << "--margins must increase, got " << used.back() << " then " << margin;
+      throw InvalidArgument(message.str());
     }
     used.push_back(margin);
   }
@@ -312,6 +305,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
                   "a round learns when it meets the target accuracy and misses the TPR; the "
                   "rounds are measured on exact labels (--margins 0: none)")
       ->delimiter(',')
+      ->check(numberAbove(0, true))
       ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
                 "with --scene: label self-collisions as collisions too");

@@ -27,6 +27,13 @@ TrainParams ballParams() {
   return p;
 }
 
+/// Labels without structure: about one configuration in five collides, at random.
+struct NoiseOracle {
+  FunctionChecker checker{"noise", kDim, [](const double* q) {
+                            return std::hash<double>{}(q[0] * 7.3 + q[1] * 3.1 + q[2]) % 5 == 0;
+                          }};
+};
+
 struct BallOracle {
   test::BallWorld world = test::BallWorld::random(kDim, 8, 0.3, 5);
   FunctionChecker checker{"balls", kDim, [this](const double* q) { return world.inCollision(q); }};
@@ -92,13 +99,12 @@ TEST(HeldOutTraining, LearnsEachRoundAndMeasuresEveryModelOnConfigurationsItNeve
 TEST(HeldOutTraining, KeepsTheRoundClosestToTheTargets) {
   // Labels without structure: no round learns anything that holds on fresh configurations, so
   // which round comes closest is chance, and the one kept must be it.
-  const FunctionChecker noise("noise", kDim, [](const double* q) {
-    return std::hash<double>{}(q[0] * 7.3 + q[1] * 3.1 + q[2]) % 5 == 0;
-  });
+  const NoiseOracle noise;
   const HeldOutTargets targets{.samplesPerRound = 500, .maxTrainingSamples = 2500};
   Rng rng(6);
-  const HeldOutTraining trained = trainToHeldOutTargets(
-      noise, FeatureMap::jointScaling(JointLimits::unitBox(kDim)), ballParams(), 500, targets, rng);
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(noise.checker, FeatureMap::jointScaling(JointLimits::unitBox(kDim)),
+                            ballParams(), 500, targets, rng);
   ASSERT_EQ(trained.rounds.size(), 5u);
   for (const HeldOutRound& round : trained.rounds) {
     EXPECT_LE(lacking(trained.rounds[trained.chosenRound].heldOut, targets),
@@ -154,17 +160,15 @@ TEST(HeldOutTraining, ARoundThatMissesOnlyTheTprLearnsTheNextGrownOraclesLabels)
 }
 
 TEST(HeldOutTraining, GrowsNoFurtherThanItsOraclesNorWhenTheAccuracyMisses) {
-  const FunctionChecker noise("noise", kDim, [](const double* q) {
-    return std::hash<double>{}(q[0] * 7.3 + q[1] * 3.1 + q[2]) % 5 == 0;
-  });
-  const std::vector<const CollisionChecker*> grown{&noise, &noise};
+  const NoiseOracle noise;
+  const std::vector<const CollisionChecker*> grown{&noise.checker, &noise.checker};
   const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
   const auto levels = [&](HeldOutTargets targets) {
     targets.samplesPerRound = 500;
     targets.maxTrainingSamples = 2500;
     Rng rng(6);
     const HeldOutTraining trained =
-        trainToHeldOutTargets(noise, features, ballParams(), 500, targets, rng, 0, grown);
+        trainToHeldOutTargets(noise.checker, features, ballParams(), 500, targets, rng, 0, grown);
     std::vector<std::size_t> result;
     for (const HeldOutRound& round : trained.rounds) result.push_back(round.grownLevel);
     return result;
