@@ -14,11 +14,11 @@ struct Item {
   bool waypoint;
 };
 
-// With threads = 0, paths of fewer states stay on the calling thread. Waking a worker takes about
-// 12 us, but a worker that has not checked for a while meets the checker's data cold in its
-// core's caches: in `bench plan` (BIT*'s straight paths of 110-235 states, other methods planning
-// in between) verification took 167-239 us on two threads and 92-174 us on one. Back to back
-// (BM_CheckPath, ~160 states) two threads are 1.7-1.8 times faster.
+// With threads = 0, paths of fewer states stay on the calling thread. Back to back (BM_CheckPath,
+// ~160 states) two threads are 1.7-1.8 times faster; in `bench plan` (BIT*'s straight paths, other
+// methods planning in between) 1.35 times (median of 31 queries, 2026-11-24), which moved BIT*'s
+// medians within noise; in `fastron demo`, whose second core runs the background updates, two
+// threads were slower (docs/planning.md, "A second core kept awake for verification").
 constexpr std::size_t kParallelFrom = 1024;
 // States handed to a thread at a time: few, so that the bisection order is kept roughly, and
 // enough that a checker's batch path (one world read, one scratch lease) pays.
