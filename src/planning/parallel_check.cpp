@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 
 #include "fastron/proxy/parallel_chunks.h"
 
@@ -14,12 +15,15 @@ struct Item {
   bool waypoint;
 };
 
-// With threads = 0, paths of fewer states stay on the calling thread. Back to back (BM_CheckPath,
-// ~160 states) two threads are 1.7-1.8 times faster; in `bench plan` (BIT*'s straight paths, other
-// methods planning in between) 1.35 times (median of 31 queries, 2026-11-24), which moved BIT*'s
-// medians within noise; in `fastron demo`, whose second core runs the background updates, two
-// threads were slower (docs/planning.md, "A second core kept awake for verification").
-constexpr std::size_t kParallelFrom = 1024;
+// With threads = 0, the first kProbe states are checked on the calling thread and timed; the
+// rest go to every core when they would take at least kParallelWork at that rate, else stay on the
+// calling thread. A worker wakes in 12-40 us and meets the checker's data cold in its caches, and
+// where a background model update owns the other core it only takes turns with it: on Baxter
+// among boxes (0.7-1 us a state, paths of 100-400 states) two threads verified 1.35 times faster
+// in `bench plan` and no faster in `fastron demo`; on the mesh Panda (about 10 us a state) 1.6-1.7
+// times faster in `bench motion-bench` (docs/planning.md, "Verification on every core").
+constexpr std::size_t kProbe = 16;
+constexpr std::chrono::microseconds kParallelWork{250};
 // States handed to a thread at a time: few, so that the bisection order is kept roughly, and
 // enough that a checker's batch path (one world read, one scratch lease) pays.
 constexpr std::size_t kChunk = 8;
@@ -63,8 +67,7 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
   const auto settled = [&](std::size_t k) {  // a state of an edge already found invalid
     return !order[k].waypoint && edgeHit[order[k].index].load(std::memory_order_relaxed);
   };
-  if (threads == 0 && order.size() < kParallelFrom) threads = 1;
-  forEachChunk(order.size(), kChunk, threads, [&](std::size_t begin, std::size_t end) {
+  const auto checkStates = [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end;) {
       if (settled(k)) {
         ++k;
@@ -76,6 +79,19 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
           true, std::memory_order_relaxed);
       k = hit + 1;
     }
+  };
+  std::size_t first = 0;  // the states checked before the hand-out
+  if (threads == 0) {
+    first = std::min(order.size(), kProbe);
+    const auto began = std::chrono::steady_clock::now();
+    for (std::size_t k = 0; k < first; k += kChunk) checkStates(k, std::min(first, k + kChunk));
+    const auto probe = std::chrono::steady_clock::now() - began;
+    const auto rest = probe * static_cast<double>(order.size() - first) /
+                      static_cast<double>(std::max<std::size_t>(first, 1));
+    threads = rest >= kParallelWork ? 0 : 1;  // 0: every core
+  }
+  forEachChunk(order.size() - first, kChunk, threads, [&](std::size_t begin, std::size_t end) {
+    checkStates(first + begin, first + end);
   });
 
   for (std::size_t i = 0; i < path.size(); ++i) {

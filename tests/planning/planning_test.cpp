@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -113,7 +115,7 @@ TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
 TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
   const auto wall = wallChecker();
   const JointPath wallPath{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};
-  for (const unsigned threads : {1u, 2u, 3u}) {
+  for (const unsigned threads : {0u, 1u, 2u, 3u}) {
     const PathCheck check = checkPathParallel(*wall, wallPath, 0.001, threads);
     EXPECT_THAT(check.invalidWaypoints, ::testing::ElementsAre(2u));
     EXPECT_THAT(check.invalidEdges, ::testing::ElementsAre(1u, 2u));
@@ -131,13 +133,38 @@ TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
     for (Eigen::Index i = 0; i < waypoints.rows(); ++i) path.emplace_back(waypoints.row(i));
     const PathCheck serial = checkPath(fcl, path, 0.05);
     invalidEdges += serial.invalidEdges.size();
-    for (const unsigned threads : {1u, 2u, 3u}) {
+    for (const unsigned threads : {0u, 1u, 2u, 3u}) {
       const PathCheck parallel = checkPathParallel(fcl, path, 0.05, threads);
       EXPECT_EQ(parallel.invalidWaypoints, serial.invalidWaypoints) << "trial " << trial;
       EXPECT_EQ(parallel.invalidEdges, serial.invalidEdges) << "trial " << trial;
     }
   }
   EXPECT_GT(invalidEdges, 10u) << "the test needs colliding edges";
+}
+
+// threads = 0 decides by the time the first states took: a path whose checks add up to tens of
+// milliseconds (50 us a state, about 800 states) is shared with a worker thread, and a path of
+// cheap checks (about 80 states at well under a microsecond) stays on the calling thread. Both give
+// the serial answer.
+TEST(Motion, ParallelCheckSharesOnlyAPathOfSlowChecks) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one hardware thread";
+  const JointPath aroundTheWall{kStart, vec({-0.5, 0.7}), vec({0.5, 0.7}), kGoal};
+  const auto threadsUsed = [&](std::chrono::microseconds perState, double resolution) {
+    std::mutex mutex;
+    std::set<std::thread::id> seen;
+    const FunctionChecker checker("timed wall", 2, [&](const double* q) {
+      const auto until = std::chrono::steady_clock::now() + perState;
+      while (std::chrono::steady_clock::now() < until) {
+      }
+      const std::lock_guard lock(mutex);
+      seen.insert(std::this_thread::get_id());
+      return inWall(q);
+    });
+    EXPECT_TRUE(checkPathParallel(checker, aroundTheWall, resolution).valid());
+    return seen.size();
+  };
+  EXPECT_EQ(threadsUsed(std::chrono::microseconds(50), 0.005), 2u);
+  EXPECT_EQ(threadsUsed(std::chrono::microseconds(0), 0.05), 1u);
 }
 
 // A check that throws (here: a checker that fails on its 100th call) reaches the caller from

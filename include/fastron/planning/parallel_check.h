@@ -8,8 +8,10 @@
 namespace FASTRON_API fastron {
 
 /// The same answer as checkPath (every invalid waypoint and edge), computed on `threads` threads
-/// (0: every core for paths of 1024 states or more, where it pays even with cold caches; shorter
-/// ones on the calling thread) in a global bisection order: the waypoints first, then every edge's
+/// (0: the first 16 states on the calling thread, timed, and the rest on every core when at that
+/// rate they would take 250 us or more, else on the calling thread too: a worker's wake-up and
+/// cold caches pay on the mesh Panda's paths, not on a few hundred checks of a microsecond) in a
+/// global bisection order: the waypoints first, then every edge's
 /// midpoint, then its quarter points, and so on across the whole path, so that a colliding stretch
 /// is found after a few checks wherever it lies. An edge stops being checked at its first
 /// collision. `checker` must be safe to call from many threads (every CollisionChecker of Fastron
