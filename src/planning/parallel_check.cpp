@@ -80,14 +80,13 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
       k = hit + 1;
     }
   };
-  std::size_t first = 0;  // the states checked before the hand-out
+  std::size_t first = 0;  // the states checked before the hand-out (at least 1: a waypoint)
   if (threads == 0) {
     first = std::min(order.size(), kProbe);
     const auto began = std::chrono::steady_clock::now();
-    for (std::size_t k = 0; k < first; k += kChunk) checkStates(k, std::min(first, k + kChunk));
-    const auto probe = std::chrono::steady_clock::now() - began;
-    const auto rest = probe * static_cast<double>(order.size() - first) /
-                      static_cast<double>(std::max<std::size_t>(first, 1));
+    checkStates(0, first);
+    const auto rest = (std::chrono::steady_clock::now() - began) *
+                      static_cast<double>(order.size() - first) / static_cast<double>(first);
     threads = rest >= kParallelWork ? 0 : 1;  // 0: every core
   }
   forEachChunk(order.size() - first, kChunk, threads, [&](std::size_t begin, std::size_t end) {
