@@ -79,7 +79,7 @@ Eigen::Vector3d ConvexBody::support(const Eigen::Vector3d& direction) const {
       p = d.norm() > 0 ? Eigen::Vector3d(radius * d.normalized()) : Eigen::Vector3d(radius, 0, 0);
       break;
     case Kind::Cylinder: {
-      // Not std::hypot: its care for overflow made it a tenth of `fastron demo`'s time (perf), and
+      // Not std::hypot: its care for overflow made it 8% of `fastron demo`'s samples (perf), and
       // libccd's directions are differences of points a few metres apart.
       const double planar = std::sqrt(d.x() * d.x() + d.y() * d.y());
       if (planar > 0) p.head<2>() = radius * d.head<2>() / planar;
