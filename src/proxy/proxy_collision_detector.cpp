@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <future>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "fastron/core/error.h"
@@ -108,6 +107,20 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
+  // The uniform points held out to calibrate the new model's band do not depend on it: they are
+  // labelled while the support set and the active-learning points are, and then while
+  // Algorithm 1 runs (which uses one core: the labelling threads take the others). An oracle
+  // that may only be called from one thread (labelThreads 1) labels them after Algorithm 1.
+  // (A future of std::async waits for its task when destroyed: if anything below throws, the
+  // labelling is over before the step returns.)
+  const auto policy = params_.labelThreads == 1 ? std::launch::deferred : std::launch::async;
+  // Their labels never enter the model: the repeated rows that test the oracle are asked among
+  // the labels that do.
+  LabelGuard heldOutGuard = labelGuard(stop);
+  heldOutGuard.repeatedRows = 0;
+  auto heldOut = std::async(policy, [&] {
+    return labelConfigurations(*oracle_, calibration, params_.labelThreads, heldOutGuard);
+  });
   const Labels labels =
       labelConfigurations(*oracle_, learnt, params_.labelThreads, labelGuard(stop));
   report.labelTime = Clock::now() - labelStart;
@@ -121,23 +134,6 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
-  // The uniform points held out to calibrate the new model's band do not depend on it: they are
-  // labelled while Algorithm 1 runs, on the cores it leaves free (it uses one). Labelled beside
-  // the support set and the active-learning points instead, they took turns with them for the
-  // same cores: a 7dof-3boxes step on two cores took 6.2 ms instead of 5.7 ms
-  // (docs/performance.md). An oracle that may only be called from one thread
-  // (labelThreads 1) labels them after Algorithm 1. (A future of std::async waits for its task
-  // when destroyed: if anything below throws, the labelling is over before the step returns.)
-  const auto policy = params_.labelThreads == 1 ? std::launch::deferred : std::launch::async;
-  const unsigned threads =
-      params_.labelThreads == 0 ? std::thread::hardware_concurrency() : params_.labelThreads;
-  // Their labels never enter the model: the repeated rows that test the oracle are asked among
-  // the labels that do.
-  LabelGuard heldOutGuard = labelGuard(stop);
-  heldOutGuard.repeatedRows = 0;
-  auto heldOut = std::async(policy, [&, heldOutThreads = std::max(2u, threads) - 1] {
-    return labelConfigurations(*oracle_, calibration, heldOutThreads, heldOutGuard);
-  });
   report.update = trainer_.update();
   Labels heldOutLabels;
   try {
