@@ -2,8 +2,6 @@
 
 #include <ccd/ccd.h>
 
-#include <cmath>
-
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
 #include "overloaded.h"
@@ -81,7 +79,7 @@ Eigen::Vector3d ConvexBody::support(const Eigen::Vector3d& direction) const {
     case Kind::Cylinder: {
       // Not std::hypot: its care for overflow made it 8% of `fastron demo`'s samples (perf), and
       // libccd's directions are differences of points a few metres apart.
-      const double planar = std::sqrt(d.x() * d.x() + d.y() * d.y());
+      const double planar = d.head<2>().norm();
       if (planar > 0) p.head<2>() = radius * d.head<2>() / planar;
       p.z() = sign(d.z()) * halfLength;
       break;

@@ -5,11 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <thread>
 
 #include "fastron/core/active_learning.h"
+#include "fastron/core/metrics.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -65,6 +69,51 @@ TEST(FclOracle, ProxyLearnsFromFclWhileTheBoxMoves) {
   for (std::size_t i = 0; i < truth.size(); ++i)
     correct += (scores[static_cast<Eigen::Index>(i)] > 0) == (truth[i] > 0);
   EXPECT_GT(static_cast<double>(correct) / static_cast<double>(truth.size()), 0.85);
+}
+
+// The task-space default, updates from zero weights, in the background beside a reader of the
+// published models while the boxes move: the concurrency of that path, under ThreadSanitizer too
+// (its statistical comparison with the warm start is in learning_quality_test.cpp).
+TEST(FclOracle, UpdatesFromZeroWeightsRunBesideQueries) {
+  const Robot baxter = loadRobot("baxter");
+  Scene scene = loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml");
+  auto fcl = std::make_shared<FclChecker>(baxter, scene);
+  ProxyParams params = defaultProxyParams(FeatureKind::Kinematic);
+  ASSERT_TRUE(params.coldStart);
+  params.activeLearning.maxSamples = 500;  // the default's 2500 are slow under the sanitizers
+  params.calibrationSamples = 200;
+  ProxyCollisionDetector proxy(fcl, robotFeatures(baxter, FeatureKind::Kinematic), params);
+  proxy.initialize(1500);
+  std::atomic<int> steps{0};
+  std::atomic<bool> done{false};
+  std::size_t reads = 0;
+  std::jthread reader([&] {
+    Rng rng(3);
+    const Configurations q = uniformConfigurations(baxter.limits(), 64, rng);
+    while (!done) {
+      const auto model = proxy.model();
+      for (Eigen::Index i = 0; i < q.rows(); ++i)
+        ASSERT_TRUE(std::isfinite(model->score(q.row(i).data())));
+      ++reads;
+    }
+  });
+  proxy.startBackground([&](const StepReport&) { ++steps; });
+  for (int replaced = 0; steps < 3; ++replaced) {  // as in ProxyLearnsFromFclWhileTheBoxMoves
+    if (replaced < 20) scene.step();
+    fcl->setScene(scene);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  proxy.stopBackground();
+  done = true;
+  reader.join();
+  EXPECT_GT(reads, 0u);
+  const StepReport report = proxy.step();  // synchronous, on the final scene
+  // From zero weights every support point took at least one weight update.
+  EXPECT_GE(report.update.iterations, report.update.supportCount);
+  Rng rng(4);
+  const Configurations test = uniformConfigurations(baxter.limits(), 1000, rng);
+  const ConfusionCounts counts = evaluate(*proxy.model(), test, labelConfigurations(*fcl, test));
+  EXPECT_GT(counts.accuracy(), 0.9) << "TPR " << counts.tpr();
 }
 
 TEST(FclOracle, TaskSpaceDefaultsUpdateFromZeroWeightsWithMoreSamples) {
