@@ -6,6 +6,7 @@
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <sstream>
 
 #include "commands.h"
@@ -14,6 +15,7 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
 #include "fastron/core/trainer.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/held_out_training.h"
@@ -39,6 +41,7 @@ struct TrainOptions {
   double holdout = 0;
   std::uint64_t seed = 1;
   bool selfCollision = false;
+  bool secondCandidate = true;
 };
 
 /// "lo:hi" per joint, or the dataset's bounding box when none are given.
@@ -110,10 +113,16 @@ void printReport(const UpdateReport& report) {
             << " training points misclassified\n";
 }
 
-void printRounds(const HeldOutTraining& trained, const std::vector<double>& margins) {
+void printRounds(const HeldOutTraining& trained, const std::vector<double>& margins,
+                 std::span<const ModelCandidate> alternatives) {
   for (std::size_t r = 0; r < trained.rounds.size(); ++r) {
     const HeldOutRound& round = trained.rounds[r];
     std::cout << "held out      model of " << round.trainingSamples << " samples";
+    if (round.candidate > 0) {
+      const ModelCandidate& candidate = alternatives[round.candidate - 1];
+      std::cout << " (second candidate: " << candidate.features.summary() << ", beta "
+                << candidate.params.beta << ")";
+    }
     if (round.grownLevel > 0) {
       std::cout << " (obstacles grown " << margins[round.grownLevel - 1] * 1000 << " mm)";
     }
@@ -138,6 +147,25 @@ std::vector<double> grownMargins(const std::vector<double>& margins) {
     used.push_back(margin);
   }
   return used;
+}
+
+/// The second candidate of the held-out rounds: one more automatic control point than `features`
+/// and beta kMorePointsBeta, when `features` are the automatic task-space ones of a scene without
+/// self-collision labels (where it was measured) and the rule has a point more to give; none
+/// otherwise.
+std::vector<ModelCandidate> secondCandidate(const TrainOptions& o, const Robot& robot,
+                                            const FeatureMap& features, const TrainParams& params) {
+  if (!o.secondCandidate || o.selfCollision || features.kind() != FeatureKind::Kinematic ||
+      !o.features.controlLinks.empty() || o.features.automatic.maxPoints == 0) {
+    return {};
+  }
+  ControlPointOptions more = o.features.automatic;
+  ++more.maxPoints;
+  std::vector<ControlPoint> points = defaultControlPoints(robot, more);
+  if (points.size() * 3 <= features.featureDim()) return {};
+  TrainParams candidateParams = params;
+  candidateParams.beta = kMorePointsBeta;
+  return {{robotFeatures(robot, FeatureKind::Kinematic, std::move(points)), candidateParams}};
 }
 
 /// fastron train --robot R --scene S: FCL-labelled uniform samples and Algorithm 1, then either
@@ -171,13 +199,20 @@ int trainOnScene(const TrainOptions& o) {
                                                          CheckerOptions{o.selfCollision}));
       grownOracles.push_back(grown.back().get());
     }
+    const std::vector<ModelCandidate> alternatives =
+        secondCandidate(o, robot, features, params.train);
     Rng rng(o.seed);
-    const HeldOutTraining trained = trainToHeldOutTargets(*fcl, features, params.train, o.samples,
-                                                          o.heldOut, rng, 0, grownOracles);
+    const HeldOutTraining trained = trainToHeldOutTargets(
+        *fcl, features, params.train, o.samples, o.heldOut, rng, 0, grownOracles, alternatives);
     std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
               << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
               << ", TPR " << o.heldOut.truePositiveRate << ")\n";
-    printRounds(trained, margins);
+    printRounds(trained, margins, alternatives);
+    if (trained.rounds[trained.chosenRound].candidate > 0) {
+      const ModelCandidate& kept = alternatives[trained.rounds[trained.chosenRound].candidate - 1];
+      std::cout << "kept          the second candidate:\n";
+      printParams(kept.params, kept.features);
+    }
     printReport(trained.update);
     std::cout << "time          "
               << durationText(inSeconds(std::chrono::steady_clock::now() - start))
@@ -309,6 +344,10 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
                 "with --scene: label self-collisions as collisions too");
+  cmd->add_flag("--second-candidate,!--no-second-candidate", o->secondCandidate,
+                "with --scene and automatic fk control points, no --self-collision: a round that "
+                "misses the targets also trains a model with one more control point and beta 10 "
+                "on the same samples, and the one closer to the targets is kept (default: on)");
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
   cmd->add_option("--gamma", o->gamma,
                   "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "

@@ -181,8 +181,9 @@ def train_scene(oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64
                 self_collision_labels: bool = False, gamma: Optional[float] = None,
                 beta: Optional[float] = None,
                 grown_oracles: Sequence[Union[CollisionChecker,
-                                              Callable[[npt.NDArray[np.float64]], bool]]] = ()
-                ) -> tuple[Model, list[tuple[int, int, ConfusionCounts, int]], int]: ...
+                                              Callable[[npt.NDArray[np.float64]], bool]]] = (),
+                alternatives: Sequence[tuple[FeatureMap, Optional[float]]] = ()
+                ) -> tuple[Model, list[tuple[int, int, ConfusionCounts, int, int]], int]: ...
 
 class ProxyCollisionDetector:
     def __init__(self, oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],

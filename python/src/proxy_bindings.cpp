@@ -67,11 +67,12 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
 }
 
 /// trainToHeldOutTargets with `train --scene`'s settings: (Model, [(samples, |S|, counts, grown
-/// level)], index of the round kept).
-py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t samples,
-                     double accuracy, double tpr, std::size_t heldOut, std::size_t maxSamples,
-                     std::uint64_t seed, bool selfCollisionLabels, std::optional<double> gamma,
-                     std::optional<double> beta, const py::sequence& grownOracles) {
+/// level, candidate)], index of the round kept).
+py::tuple trainScene(
+    py::handle oracle, const FeatureMap& features, std::size_t samples, double accuracy, double tpr,
+    std::size_t heldOut, std::size_t maxSamples, std::uint64_t seed, bool selfCollisionLabels,
+    std::optional<double> gamma, std::optional<double> beta, const py::sequence& grownOracles,
+    const std::vector<std::pair<FeatureMap, std::optional<double>>>& alternatives) {
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
   std::vector<std::shared_ptr<const CollisionChecker>> grown;
@@ -85,18 +86,26 @@ py::tuple trainScene(py::handle oracle, const FeatureMap& features, std::size_t 
   TrainParams params = sceneTrainParams(features.kind(), selfCollisionLabels);
   if (gamma) params.kernel.gamma = *gamma;
   if (beta) params.beta = *beta;
+  // Each alternative: its features with the same settings, and its own beta where it has one.
+  std::vector<ModelCandidate> candidates;
+  for (const auto& [alternativeFeatures, alternativeBeta] : alternatives) {
+    TrainParams alternative = sceneTrainParams(alternativeFeatures.kind(), selfCollisionLabels);
+    if (gamma) alternative.kernel.gamma = *gamma;
+    alternative.beta = alternativeBeta.value_or(beta.value_or(alternative.beta));
+    candidates.push_back({alternativeFeatures, alternative});
+  }
   const HeldOutTargets targets{accuracy, tpr, heldOut, maxSamples};
   HeldOutTraining trained;
   {
     py::gil_scoped_release released;
     Rng rng(seed);
     trained = trainToHeldOutTargets(*checker, features, params, samples, targets, rng, threads,
-                                    grownPointers);
+                                    grownPointers, candidates);
   }
   py::list rounds;
   for (const HeldOutRound& round : trained.rounds) {
-    rounds.append(
-        py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut, round.grownLevel));
+    rounds.append(py::make_tuple(round.trainingSamples, round.supportCount, round.heldOut,
+                                 round.grownLevel, round.candidate));
   }
   return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds, trained.chosenRound);
 }
@@ -112,6 +121,7 @@ void bindProxy(py::module_& m) {
         py::arg("max_samples") = HeldOutTargets{}.maxTrainingSamples, py::arg("seed") = 1,
         py::arg("self_collision_labels") = false, py::arg("gamma") = py::none(),
         py::arg("beta") = py::none(), py::arg("grown_oracles") = py::tuple(),
+        py::arg("alternatives") = std::vector<std::pair<FeatureMap, std::optional<double>>>{},
         "A model of a scene that stands still, as `fastron train --scene` trains it: Algorithm 1 "
         "on `samples` uniform configurations labelled by the oracle, then rounds on `held_out` "
         "fresh ones: while their accuracy or TPR is below the targets and fewer than "
@@ -120,10 +130,14 @@ void bindProxy(py::module_& m) {
         "last (FclChecker(robot, scene.grown(m)) for increasing margins m); a round that meets "
         "the accuracy target and misses the TPR makes the next rounds learn the next one's "
         "labels, while every round is still measured on the oracle's. "
+        "alternatives: (FeatureMap, beta or None) pairs, other ways to model the same "
+        "configurations; a round whose model misses the targets trains each on the same samples "
+        "and measures it on the same fresh ones (`fastron train --scene` adds "
+        "(robot_features(robot, max_points=5), 10) to its four automatic points). "
         "Returns (Model, rounds, kept): each round (training samples, |S|, ConfusionCounts on "
         "configurations its model had not learned, grown level: 0 the oracle's labels, k the "
-        "k-th grown oracle's), and the index of the round whose model, the closest to the "
-        "targets, is returned. "
+        "k-th grown oracle's, candidate: 0 `features`, k the k-th alternative), and the index of "
+        "the round whose model, the closest to the targets, is returned. "
         "The GIL is released while it trains (a Python oracle takes it for each call).");
   py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
       .def_readonly("update", &StepReport::update)

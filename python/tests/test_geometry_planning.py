@@ -208,6 +208,24 @@ def test_train_scene_measures_each_round_on_fresh_configurations(baxter, baxter_
         fastron.train_scene(baxter_fcl, features, 100, accuracy=2.0)
 
 
+def test_train_scene_trains_an_alternative_in_each_round_that_misses(baxter, baxter_fcl):
+    features = fastron.robot_features(baxter)
+    five = fastron.robot_features(baxter, max_points=5)
+    model, rounds, kept = fastron.train_scene(baxter_fcl, features, 1000, accuracy=1.0,
+                                              held_out=1000, max_samples=2000,
+                                              alternatives=[(five, 10.0)])
+    # Every round misses accuracy 1: both candidates learn the same samples, in turn.
+    assert [(r[0], r[4]) for r in rounds] == [(1000, 0), (1000, 1), (2000, 0), (2000, 1)]
+    assert all(r[2].total == 1000 for r in rounds)
+    assert rounds[kept][1] == model.support_count
+    assert model.feature_dim == (five if rounds[kept][4] == 1 else features).feature_dim
+    lacking = [1.0 - r[2].accuracy + max(0.0, 0.96 - r[2].tpr) for r in rounds]
+    assert lacking[kept] == min(lacking)
+    with pytest.raises(fastron.InvalidArgument, match="reads 4 joint values, the first 7"):
+        four_joints = fastron.FeatureMap.joint_scaling(fastron.JointLimits([0] * 4, [1] * 4))
+        fastron.train_scene(baxter_fcl, features, 100, alternatives=[(four_joints, None)])
+
+
 def test_train_scene_learns_a_grown_oracles_labels_when_only_the_tpr_misses(
         baxter, three_boxes, baxter_fcl):
     features = fastron.robot_features(baxter)

@@ -38,9 +38,19 @@ double shortfall(const ConfusionCounts& counts, const HeldOutTargets& targets) {
 HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const FeatureMap& features,
                                       const TrainParams& params, std::size_t initialSamples,
                                       const HeldOutTargets& targets, Rng& rng, unsigned threads,
-                                      std::span<const CollisionChecker* const> grownOracles) {
+                                      std::span<const CollisionChecker* const> grownOracles,
+                                      std::span<const ModelCandidate> alternatives) {
   validate(targets);
   if (initialSamples == 0) throw InvalidArgument("initial samples must be at least 1");
+  for (const ModelCandidate& alternative : alternatives) {
+    if (alternative.features.configurationDim() != features.configurationDim()) {
+      throw InvalidArgument("an alternative feature map reads " +
+                            std::to_string(alternative.features.configurationDim()) +
+                            " joint values, the first " +
+                            std::to_string(features.configurationDim()));
+    }
+    validate(alternative.params);
+  }
   for (const CollisionChecker* grown : grownOracles) {
     if (grown == nullptr) throw InvalidArgument("a grown oracle is null");
     if (grown->dof() != oracle.dof()) {
@@ -58,17 +68,17 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
 
   HeldOutTraining result;
   double bestShortfall = 0;
-  for (;;) {
-    Trainer trainer(features, params);
+  Dataset fresh;
+  // Algorithm 1 from zero weights on every configuration learned so far with candidate k's
+  // features and parameters, measured on `fresh`; the closest to the targets is kept.
+  const auto trainAndMeasure = [&](std::size_t k) {
+    Trainer trainer(k == 0 ? features : alternatives[k - 1].features,
+                    k == 0 ? params : alternatives[k - 1].params);
     trainer.addPoints(learned.points, learned.labels);
     const UpdateReport update = trainer.update();
     const std::shared_ptr<const Model> model = trainer.model();
-
-    Dataset fresh;
-    fresh.points = uniformConfigurations(features.limits(), targets.samplesPerRound, rng);
-    fresh.labels = labelsAt(0, fresh.points);
     const ConfusionCounts counts = evaluate(*model, fresh.points, fresh.labels);
-    result.rounds.push_back({learned.size(), model->supportCount(), counts, level});
+    result.rounds.push_back({learned.size(), model->supportCount(), counts, level, k});
     const double missing = shortfall(counts, targets);
     if (!result.model || missing < bestShortfall) {
       result.model = model;
@@ -76,8 +86,20 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
       result.update = update;
       bestShortfall = missing;
     }
+    return update;
+  };
+  for (;;) {
+    fresh.points = uniformConfigurations(features.limits(), targets.samplesPerRound, rng);
+    fresh.labels = labelsAt(0, fresh.points);
+    const UpdateReport update = trainAndMeasure(0);
+    const ConfusionCounts counts = result.rounds.back().heldOut;
+    if (shortfall(counts, targets) > 0) {
+      for (std::size_t k = 1; k <= alternatives.size() && bestShortfall > 0; ++k) {
+        trainAndMeasure(k);
+      }
+    }
     // A model at the support cap cannot take in what more samples would teach it.
-    if (missing == 0 || update.stopReason == StopReason::SupportCap ||
+    if (bestShortfall == 0 || update.stopReason == StopReason::SupportCap ||
         learned.size() + fresh.size() > targets.maxTrainingSamples) {
       return result;
     }

@@ -196,6 +196,95 @@ TEST(HeldOutTraining, RejectsANullOrMismatchedGrownOracle) {
   }
 }
 
+TEST(HeldOutTraining, AnAlternativeLearnsTheSameSamplesWhenTheFirstMissesAndTheCloserIsKept) {
+  const BallOracle oracle;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  // The first way stops Algorithm 1 after three iterations: three support points cannot describe
+  // eight balls, so it misses the accuracy target; the usual parameters meet it.
+  TrainParams stopped = ballParams();
+  stopped.maxIterations = 3;
+  const std::vector<ModelCandidate> alternatives{{features, ballParams()}};
+  const HeldOutTargets targets{.accuracy = 0.85, .truePositiveRate = 0.8, .samplesPerRound = 1000};
+  Rng rng(8);
+  const Rng start = rng;
+  const HeldOutTraining trained = trainToHeldOutTargets(oracle.checker, features, stopped, 1500,
+                                                        targets, rng, 0, {}, alternatives);
+  // One round, two candidates, measured on the same 1000 fresh configurations; the alternative
+  // met the targets, so no second round.
+  ASSERT_EQ(trained.rounds.size(), 2u);
+  EXPECT_EQ(trained.rounds[0].candidate, 0u);
+  EXPECT_EQ(trained.rounds[1].candidate, 1u);
+  EXPECT_EQ(trained.rounds[1].trainingSamples, 1500u);
+  EXPECT_EQ(trained.rounds[1].heldOut.total(), 1000u);
+  EXPECT_EQ(trained.rounds[0].heldOut.truePositives + trained.rounds[0].heldOut.falseNegatives,
+            trained.rounds[1].heldOut.truePositives + trained.rounds[1].heldOut.falseNegatives);
+  EXPECT_LT(trained.rounds[0].heldOut.accuracy(), targets.accuracy);
+  EXPECT_GE(trained.rounds[1].heldOut.accuracy(), targets.accuracy);
+  EXPECT_EQ(trained.chosenRound, 1u);
+  EXPECT_EQ(trained.update.supportCount, trained.model->supportCount());
+  // The model kept is Algorithm 1 with the alternative's parameters on the first round's samples.
+  Rng replay = start;
+  const Configurations learned = uniformConfigurations(features.limits(), 1500, replay);
+  Trainer trainer(features, ballParams());
+  trainer.addPoints(learned, oracle.world.label(learned));
+  trainer.update();
+  EXPECT_EQ(trainer.model()->weights(), trained.model->weights());
+}
+
+TEST(HeldOutTraining, AnAlternativeIsNotTrainedWhenTheFirstMeetsTheTargets) {
+  const BallOracle oracle;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  const std::vector<ModelCandidate> alternatives{{features, ballParams()}};
+  Rng rng(1);
+  const HeldOutTraining trained =
+      trainToHeldOutTargets(oracle.checker, features, ballParams(), 1500,
+                            {.accuracy = 0.5, .truePositiveRate = 0.5}, rng, 0, {}, alternatives);
+  ASSERT_EQ(trained.rounds.size(), 1u);
+  EXPECT_EQ(trained.rounds[0].candidate, 0u);
+}
+
+TEST(HeldOutTraining, AlternativesAreTriedEveryRoundThatMisses) {
+  // Labels without structure: no candidate meets the targets, so every round trains both, and
+  // the one kept is the closest of all.
+  const NoiseOracle noise;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  TrainParams wide = ballParams();
+  wide.kernel.gamma = 3;
+  const std::vector<ModelCandidate> alternatives{{features, wide}};
+  const HeldOutTargets targets{.samplesPerRound = 500, .maxTrainingSamples = 1500};
+  Rng rng(6);
+  const HeldOutTraining trained = trainToHeldOutTargets(noise.checker, features, ballParams(), 500,
+                                                        targets, rng, 0, {}, alternatives);
+  ASSERT_EQ(trained.rounds.size(), 6u);
+  for (std::size_t r = 0; r < trained.rounds.size(); ++r) {
+    EXPECT_EQ(trained.rounds[r].candidate, r % 2);
+    EXPECT_EQ(trained.rounds[r].trainingSamples, 500 + r / 2 * 500);
+    EXPECT_LE(lacking(trained.rounds[trained.chosenRound].heldOut, targets),
+              lacking(trained.rounds[r].heldOut, targets));
+  }
+}
+
+TEST(HeldOutTraining, RejectsAnAlternativeOfOtherJoints) {
+  const BallOracle oracle;
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));
+  const std::vector<ModelCandidate> twoJoints{
+      {FeatureMap::jointScaling(JointLimits::unitBox(2)), ballParams()}};
+  Rng rng(4);
+  try {
+    trainToHeldOutTargets(oracle.checker, features, ballParams(), 100, {}, rng, 0, {}, twoJoints);
+    FAIL() << "an alternative of 2 joints was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("reads 2 joint values, the first 3"), std::string::npos)
+        << e.what();
+  }
+  TrainParams bad = ballParams();
+  bad.kernel.gamma = -1;
+  const std::vector<ModelCandidate> badParams{{features, bad}};
+  EXPECT_THROW(
+      trainToHeldOutTargets(oracle.checker, features, ballParams(), 100, {}, rng, 0, {}, badParams),
+      InvalidArgument);
+}
+
 TEST(HeldOutTraining, RejectsBadTargets) {
   const BallOracle oracle;
   const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(kDim));

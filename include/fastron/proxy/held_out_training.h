@@ -36,6 +36,19 @@ inline constexpr std::array<double, 2> kGrownObstacleMargins{0.005, 0.01};
 /// Throws InvalidArgument naming the field that is out of range.
 void validate(const HeldOutTargets& targets);
 
+/// Another way to model the same configurations: its own feature map (of the same joints and
+/// limits) and training parameters. trainToHeldOutTargets trains it on a round's samples when the
+/// first way misses the targets, and keeps whichever model measures closer to them.
+struct ModelCandidate {
+  FeatureMap features;
+  TrainParams params;
+};
+
+/// The conditional bias of `fastron train --scene`'s candidate with one more automatic control
+/// point than the first model: five points with the default beta lost TPR in more trainings than
+/// they won accuracy, beta 10 kept both (docs/algorithms.md, "A second candidate").
+inline constexpr double kMorePointsBeta = 10;
+
 /// One round of trainToHeldOutTargets: the model as it stood, measured on configurations it had
 /// not learned.
 struct HeldOutRound {
@@ -44,6 +57,8 @@ struct HeldOutRound {
   ConfusionCounts heldOut;          ///< on samplesPerRound fresh uniform configurations
   /// Whose labels the model learned: 0 the oracle's, k the k-th grown oracle's.
   std::size_t grownLevel = 0;
+  /// Which way of modelling: 0 the features and parameters given first, k the k-th alternative.
+  std::size_t candidate = 0;
 };
 
 /// A model of a scene that stands still and the rounds that measured it.
@@ -51,9 +66,10 @@ struct HeldOutTraining {
   /// The round's model closest to the targets (the sum of what accuracy and TPR lack; the
   /// earlier, smaller one on a tie).
   std::shared_ptr<const Model> model;
-  std::vector<HeldOutRound> rounds;  ///< every round, each on its own fresh configurations
-  std::size_t chosenRound = 0;       ///< the round that measured `model`
-  UpdateReport update;               ///< Algorithm 1 that made `model`
+  /// Every round (and candidate), each round on its own fresh configurations.
+  std::vector<HeldOutRound> rounds;
+  std::size_t chosenRound = 0;  ///< the round that measured `model`
+  UpdateReport update;          ///< Algorithm 1 that made `model`
 };
 
 /// Algorithm 1 from zero weights on `initialSamples` uniform configurations labelled by `oracle`
@@ -73,9 +89,15 @@ struct HeldOutTraining {
 /// grown oracle's labels: the collisions a model misses lie at the boundary, where a little more
 /// room turns them into the collisions it sees (docs/algorithms.md, "Rounds on held-out
 /// configurations").
+///
+/// In a round whose model misses the targets, each of `alternatives` is trained too, from zero
+/// weights on the same labelled configurations, and measured on the same fresh ones (a round
+/// entry each); the model kept is the closest to the targets of every round and candidate, and
+/// the rounds end when any candidate meets them.
 HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const FeatureMap& features,
                                       const TrainParams& params, std::size_t initialSamples,
                                       const HeldOutTargets& targets, Rng& rng, unsigned threads = 0,
-                                      std::span<const CollisionChecker* const> grownOracles = {});
+                                      std::span<const CollisionChecker* const> grownOracles = {},
+                                      std::span<const ModelCandidate> alternatives = {});
 
 }  // namespace fastron
