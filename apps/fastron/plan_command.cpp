@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
+#include "fastron/core/model_checker.h"
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/common.h"
 #include "fastron/geometry/control_points.h"
@@ -30,7 +31,7 @@ namespace {
 
 struct PlanOptions {
   RobotOptions robot;
-  std::string scene, request, model, out, checker = "fastron", planner = "RRTConnect";
+  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect";
   std::vector<double> start, goal;
   std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
   FeatureOptions features;
@@ -46,6 +47,49 @@ std::string contactAt(const FclChecker& fcl, const Eigen::VectorXd& q) {
   const auto contact =
       fcl.firstContact(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
   return contact ? describe(*contact) : "";
+}
+
+/// A model file read for `robot`, reported on one line under `label`.
+std::shared_ptr<const Model> readModel(const std::string& path, const Robot& robot,
+                                       const char* label) {
+  auto model = std::make_shared<const Model>(loadModelFor(path, robot));
+  std::cout << label << path << ", " << model->supportCount() << " support points, features "
+            << model->features().summary() << '\n';
+  return model;
+}
+
+/// --self-model: plans on the scene's obstacle model (read with --model, or trained here on FCL
+/// without self-collisions) and the robot's self-collision model together, and verifies and
+/// repairs with `fcl`, which checks both.
+VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const Scene& scene,
+                               const std::shared_ptr<const FclChecker>& fcl,
+                               const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                               const PlannerOptions& options) {
+  const auto self = readModel(o.selfModel, robot, "self     ");
+  std::shared_ptr<const Model> obstacles;
+  if (!o.model.empty()) {
+    obstacles = readModel(o.model, robot, "model    ");
+  } else {
+    const FeatureMap features = featuresFromOptions(o.features, robot);
+    ProxyParams params =
+        withoutBand(forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed)));
+    if (o.gamma) params.train.kernel.gamma = *o.gamma;
+    if (o.beta) params.train.beta = *o.beta;
+    ProxyCollisionDetector proxy(
+        std::make_shared<const FclChecker>(robot, scene, CheckerOptions{false, o.padding}),
+        features, params);
+    const StepReport trained = trainStatic(proxy, o.samples, o.updates);
+    obstacles = proxy.model();
+    std::cout << "model    of the obstacles, trained on " << o.samples
+              << " FCL-labelled samples and " << o.updates << " active-learning updates in "
+              << durationText(inSeconds(trained.total)) << ", " << obstacles->supportCount()
+              << " support points, features " << features.summary() << '\n';
+  }
+  const auto both =
+      std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
+          std::make_shared<const ModelChecker>(obstacles),
+          std::make_shared<const ModelChecker>(self, "Fastron self")});
+  return planVerified(both, fcl, robot.limits(), start, goal, options);
 }
 
 int runPlan(const PlanOptions& o) {
@@ -73,6 +117,13 @@ int runPlan(const PlanOptions& o) {
     }
     scene.allowedCollisions.allow(pair.substr(0, colon), pair.substr(colon + 1));
   }
+  if (!o.selfModel.empty() && !o.selfCollision) {
+    throw InvalidArgument(
+        "--self-model needs --self-collision: the final path is checked for self-collisions too");
+  }
+  if (!o.selfModel.empty() && o.checker != "fastron") {
+    throw InvalidArgument("--self-model goes with --checker fastron, not " + o.checker);
+  }
   const CheckerOptions checkerOptions{o.selfCollision, o.padding};
   const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
@@ -96,15 +147,14 @@ int runPlan(const PlanOptions& o) {
   } else if (o.checker == "gjk") {
     const auto gjk = std::make_shared<const GjkChecker>(robot, scene, checkerOptions);
     plan = planVerified(gjk, fcl, limits, start, goal, options);
+  } else if (!o.selfModel.empty()) {
+    plan = planWithSelfModel(o, robot, scene, fcl, start, goal, options);
   } else {
     // A model read from a file has no calibrated band: the planner falls back from it to FCL
     // directly. A model trained here plans on the model, then on the hybrid, then on FCL.
     CalibratedModel calibrated;
     if (!o.model.empty()) {
-      calibrated.model = std::make_shared<const Model>(loadModelFor(o.model, robot));
-      const Model& model = *calibrated.model;
-      std::cout << "model    " << o.model << ", " << model.supportCount()
-                << " support points, features " << model.features().summary() << '\n';
+      calibrated.model = readModel(o.model, robot, "model    ");
     } else {
       const FeatureMap features = featuresFromOptions(o.features, robot);
       ProxyParams params =
@@ -161,6 +211,11 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"fastron", "gjk", "fcl"}));
   cmd->add_option("--planner", o->planner, "RRT, RRTConnect, RRT* or BIT*")->capture_default_str();
   cmd->add_option("--model", o->model, "a model file to plan on (default: train one on the scene)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--self-model", o->selfModel,
+                  "with --self-collision: a model of the robot's self-collisions (fastron train "
+                  "--robot R --self-collision); plan on it beside a model of the scene's "
+                  "obstacles alone, trained here or given with --model")
       ->check(CLI::ExistingFile);
   cmd->add_option("--samples", o->samples, "training samples when no --model is given")
       ->capture_default_str()

@@ -42,7 +42,14 @@ struct TrainOptions {
   std::uint64_t seed = 1;
   bool selfCollision = false;
   bool secondCandidate = true;
+  bool featuresGiven = false;  ///< --features on the command line
 };
+
+/// --robot with --self-collision and neither --scene nor --data: a model of the robot's
+/// self-collisions alone, for `fastron plan --self-model`.
+bool selfCollisionsAlone(const TrainOptions& o) {
+  return o.data.empty() && o.scene.empty() && o.selfCollision && !o.robot.robot.empty();
+}
 
 /// "lo:hi" per joint, or the dataset's bounding box when none are given.
 JointLimits parseLimits(const std::vector<std::string>& items, const Dataset& data) {
@@ -177,21 +184,31 @@ int trainOnScene(const TrainOptions& o) {
         "--active-learning replaces the held-out rounds: give --held-out 0 with it");
   }
   const Robot robot = loadRobotFromOptions(o.robot);
-  const Scene scene = loadScene(o.scene);
+  const bool selfAlone = selfCollisionsAlone(o);
+  const Scene scene = selfAlone ? Scene{} : loadScene(o.scene);
   const auto fcl =
       std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
-  const FeatureMap features = featuresFromOptions(o.features, robot);
+  // Self-collisions depend on the joint values alone, and a kernel over them modelled them better
+  // than one over control points (docs/planning.md, "A self-collision model learned once").
+  FeatureOptions featureOptions = o.features;
+  if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
+  const FeatureMap features = featuresFromOptions(featureOptions, robot);
   ProxyParams params;
   params.train = withOptions(sceneTrainParams(features.kind(), o.selfCollision), o);
   params.seed = o.seed;
-  std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n"
-            << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+  std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n";
+  if (selfAlone) {
+    std::cout << "scene         none: a model of the robot's self-collisions alone\n";
+  } else {
+    std::cout << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+  }
   printParams(params.train, features);
   std::shared_ptr<const Model> model;
   if (o.heldOut.samplesPerRound > 0) {
     const auto start = std::chrono::steady_clock::now();
     // Oracles whose labels leave the robot more room, for rounds that miss the TPR alone.
-    const std::vector<double> margins = grownMargins(o.margins);
+    // (A scene without obstacles has nothing to grow.)
+    const std::vector<double> margins = selfAlone ? std::vector<double>{} : grownMargins(o.margins);
     std::vector<std::unique_ptr<const FclChecker>> grown;
     std::vector<const CollisionChecker*> grownOracles;
     for (const double margin : margins) {
@@ -238,10 +255,12 @@ int trainOnScene(const TrainOptions& o) {
 
 int runTrain(const TrainOptions& o) {
   if (o.holdout < 0 || o.holdout >= 1) throw InvalidArgument("--holdout must be in [0, 1)");
-  if (o.data.empty() == o.scene.empty()) {
-    throw InvalidArgument("give --data (a labelled dataset) or --robot with --scene, not both");
+  if (!selfCollisionsAlone(o) && o.data.empty() == o.scene.empty()) {
+    throw InvalidArgument(
+        "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
+        "--self-collision alone: a model of the robot's self-collisions)");
   }
-  if (!o.scene.empty()) {
+  if (!o.scene.empty() || selfCollisionsAlone(o)) {
     if (o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
     if (!o.limits.empty())
       throw InvalidArgument("--limits goes with --data; the robot has its own");
@@ -343,7 +362,9 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0, true))
       ->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
-                "with --scene: label self-collisions as collisions too");
+                "with --scene: label self-collisions as collisions too; with --robot alone: "
+                "learn the robot's self-collisions alone (joint features by default), for "
+                "fastron plan --self-model");
   cmd->add_flag("--second-candidate,!--no-second-candidate", o->secondCandidate,
                 "with --scene and automatic fk control points, no --self-collision: a round that "
                 "misses the targets also trains a model with one more control point and beta 10 "
@@ -379,7 +400,10 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the held-out split and of sampling")
       ->capture_default_str();
-  cmd->callback([o, &exitCode] { exitCode = runTrain(*o); });
+  cmd->callback([o, cmd, &exitCode] {
+    o->featuresGiven = cmd->count("--features") > 0;
+    exitCode = runTrain(*o);
+  });
 }
 
 }  // namespace fastron::cli
