@@ -103,6 +103,12 @@ class FunctionChecker(CollisionChecker):
     def __init__(self, fn: Callable[[npt.NDArray[np.float64]], bool], dof: int,
                  name: str = "python") -> None: ...
 
+class ModelChecker(CollisionChecker):
+    def __init__(self, model: Model, name: str = "Fastron") -> None: ...
+
+class AnyOfChecker(CollisionChecker):
+    def __init__(self, checkers: Sequence[CollisionChecker]) -> None: ...
+
 class Robot:
     name: str
     dof: int

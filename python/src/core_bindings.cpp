@@ -12,6 +12,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/model.h"
+#include "fastron/core/model_checker.h"
 #include "fastron/core/model_file.h"
 #include "fastron/core/simd.h"
 #include "fastron/core/support_reduction.h"
@@ -320,6 +321,26 @@ void bindCore(py::module_& m) {
       "from one thread at a time, holding the GIL.")
       .def(py::init<py::function, std::size_t, std::string>(), py::arg("fn"), py::arg("dof"),
            py::arg("name") = "python");
+
+  py::class_<ModelChecker, CollisionChecker, std::shared_ptr<ModelChecker>>(
+      m, "ModelChecker",
+      "A model answering as a checker (score > 0: in collision), to combine with others in an "
+      "AnyOfChecker.")
+      .def(py::init([](const std::shared_ptr<Model>& model, std::string name) {
+             return std::make_shared<ModelChecker>(model, std::move(name));
+           }),
+           py::arg("model"), py::arg("name") = "Fastron");
+
+  py::class_<AnyOfChecker, CollisionChecker, std::shared_ptr<AnyOfChecker>>(
+      m, "AnyOfChecker",
+      "In collision when any of its checkers says so: e.g. a scene's obstacle model beside the "
+      "robot's self-collision model, learned once (ModelChecker of each), as a planning source.")
+      .def(py::init([](const std::vector<std::shared_ptr<CollisionChecker>>& checkers) {
+             return std::make_shared<AnyOfChecker>(
+                 std::vector<std::shared_ptr<const CollisionChecker>>(checkers.begin(),
+                                                                      checkers.end()));
+           }),
+           py::arg("checkers"));
 }
 
 }  // namespace fastron::python

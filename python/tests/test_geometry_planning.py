@@ -301,6 +301,38 @@ def test_planning_verified_paths_never_collide(baxter):
     assert on_model.path.shape[1] == 7
 
 
+def test_plans_on_two_models_at_once(baxter):
+    # Two models, each of a part of the scene (as a scene's obstacles beside a robot's
+    # self-collisions), answer together through an AnyOfChecker; FCL on the whole scene verifies.
+    scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
+    parts = [fastron.Scene(), fastron.Scene()]
+    for part, name in zip((0, 1, 1), ("box1", "box2", "box3")):
+        parts[part].add_box(name, [0.2] * 3, scene.position(name))
+    models = []
+    for part in parts:
+        detector = fastron.ProxyCollisionDetector(fastron.FclChecker(baxter, part),
+                                                  fastron.robot_features(baxter), seed=3)
+        detector.initialize(3000)
+        models.append(detector.model())
+    checkers = [fastron.ModelChecker(models[0]), fastron.ModelChecker(models[1], "other boxes")]
+    both = fastron.AnyOfChecker(checkers)
+    assert both.dof == 7 and both.name == "Fastron+other boxes"
+    x = uniform(baxter.limits, 500, seed=12)
+    assert np.array_equal(checkers[0].in_collision(x), models[0].in_collision(x))
+    assert np.array_equal(both.in_collision(x),
+                          checkers[0].in_collision(x) | checkers[1].in_collision(x))
+    fcl = fastron.FclChecker(baxter, scene)
+    free = x[~fcl.in_collision(x)]
+    plan = fastron.plan_verified(both, fcl, free[0], free[1], limits=baxter.limits,
+                                 resolution=0.05, time_limit=5)
+    assert plan.solved, plan
+    assert fastron.check_path(fcl, plan.path, 0.05), plan
+    with pytest.raises(fastron.InvalidArgument, match="no checkers"):
+        fastron.AnyOfChecker([])
+    with pytest.raises(fastron.InvalidArgument, match="has 2 dof"):
+        fastron.AnyOfChecker([both, fastron.FunctionChecker(lambda q: False, 2)])
+
+
 def test_moveit_files():
     shared = os.environ.get("FASTRON_SHARED_DIR")
     if not shared or not pathlib.Path(shared, "data/motion-bench-sample").is_dir():
