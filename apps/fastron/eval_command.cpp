@@ -69,8 +69,14 @@ std::string missesByLink(const Model& model, const FclChecker& fcl, const Datase
 }
 
 int runEval(const EvalOptions& o) {
-  if (o.data.empty() == o.scene.empty()) {
-    throw InvalidArgument("give --data (a labelled dataset) or --robot with --scene, not both");
+  // --robot with --self-collision alone: a model of the robot's self-collisions (fastron train
+  // --robot R --self-collision), against FCL on the robot without obstacles.
+  const bool selfAlone =
+      o.data.empty() && o.scene.empty() && o.selfCollision && !o.robot.robot.empty();
+  if (!selfAlone && o.data.empty() == o.scene.empty()) {
+    throw InvalidArgument(
+        "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
+        "--self-collision alone: the robot's self-collisions)");
   }
   if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
   std::optional<Robot> robot;
@@ -79,8 +85,8 @@ int runEval(const EvalOptions& o) {
 
   Dataset data;
   std::shared_ptr<const FclChecker> fcl;
-  if (!o.scene.empty()) {
-    fcl = std::make_shared<const FclChecker>(*robot, loadScene(o.scene),
+  if (!o.scene.empty() || selfAlone) {
+    fcl = std::make_shared<const FclChecker>(*robot, selfAlone ? Scene{} : loadScene(o.scene),
                                              CheckerOptions{o.selfCollision});
     Rng rng(o.seed);
     data.points = uniformConfigurations(robot->limits(), o.samples, rng);
@@ -111,8 +117,9 @@ int runEval(const EvalOptions& o) {
             << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
             << ", " << describeTerms(model.kernel(), model.featureDim()) << '\n';
   if (fcl) {
-    std::cout << "data        " << data.size() << " uniform configurations of " << o.scene
-              << " labelled by FCL (seed " << o.seed << "), "
+    std::cout << "data        " << data.size() << " uniform configurations of "
+              << (selfAlone ? "the robot without obstacles" : o.scene) << " labelled by FCL (seed "
+              << o.seed << "), "
               << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
                       static_cast<double>(data.size()))
               << " in collision\n";
@@ -155,7 +162,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "with --scene: seed of the samples")->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision,
-                "with --scene: count self-collisions as collisions");
+                "with --scene: count self-collisions as collisions; with --robot alone: against "
+                "the robot's self-collisions alone (a model of fastron train --robot R "
+                "--self-collision)");
   cmd->callback([o, &exitCode] { exitCode = runEval(*o); });
 }
 
