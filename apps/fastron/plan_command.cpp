@@ -58,33 +58,43 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
   return model;
 }
 
+/// A model of the scene trained here on `oracle` (whose labels include self-collisions when
+/// `selfCollisionLabels`), with the calibrated band of the hybrid when `band`. `what` says what it
+/// models, for the report.
+CalibratedModel trainSceneModel(const PlanOptions& o, const Robot& robot,
+                                const std::shared_ptr<const FclChecker>& oracle,
+                                bool selfCollisionLabels, bool band, const std::string& what) {
+  const FeatureMap features = featuresFromOptions(o.features, robot);
+  ProxyParams params =
+      forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed, selfCollisionLabels));
+  if (!band) params = withoutBand(params);
+  if (o.gamma) params.train.kernel.gamma = *o.gamma;
+  if (o.beta) params.train.beta = *o.beta;
+  ProxyCollisionDetector proxy(oracle, features, params);
+  const StepReport trained = trainStatic(proxy, o.samples, o.updates);
+  CalibratedModel calibrated = proxy.calibratedModel();
+  std::cout << "model    " << what << "trained on " << o.samples << " FCL-labelled samples and "
+            << o.updates << " active-learning updates in " << durationText(inSeconds(trained.total))
+            << ", " << calibrated.model->supportCount() << " support points, features "
+            << features.summary() << '\n';
+  return calibrated;
+}
+
 /// --self-model: plans on the scene's obstacle model (read with --model, or trained here on FCL
 /// without self-collisions) and the robot's self-collision model together, and verifies and
-/// repairs with `fcl`, which checks both.
+/// repairs with `fcl`, which checks both. (No band: the pair has none to plan a hybrid on.)
 VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const Scene& scene,
                                const std::shared_ptr<const FclChecker>& fcl,
                                const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
                                const PlannerOptions& options) {
   const auto self = readModel(o.selfModel, robot, "self     ");
-  std::shared_ptr<const Model> obstacles;
-  if (!o.model.empty()) {
-    obstacles = readModel(o.model, robot, "model    ");
-  } else {
-    const FeatureMap features = featuresFromOptions(o.features, robot);
-    ProxyParams params =
-        withoutBand(forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed)));
-    if (o.gamma) params.train.kernel.gamma = *o.gamma;
-    if (o.beta) params.train.beta = *o.beta;
-    ProxyCollisionDetector proxy(
-        std::make_shared<const FclChecker>(robot, scene, CheckerOptions{false, o.padding}),
-        features, params);
-    const StepReport trained = trainStatic(proxy, o.samples, o.updates);
-    obstacles = proxy.model();
-    std::cout << "model    of the obstacles, trained on " << o.samples
-              << " FCL-labelled samples and " << o.updates << " active-learning updates in "
-              << durationText(inSeconds(trained.total)) << ", " << obstacles->supportCount()
-              << " support points, features " << features.summary() << '\n';
-  }
+  const auto obstacles = !o.model.empty()
+                             ? readModel(o.model, robot, "model    ")
+                             : trainSceneModel(o, robot,
+                                               std::make_shared<const FclChecker>(
+                                                   robot, scene, CheckerOptions{false, o.padding}),
+                                               false, false, "of the obstacles, ")
+                                   .model;
   const auto both =
       std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
           std::make_shared<const ModelChecker>(obstacles),
@@ -152,23 +162,9 @@ int runPlan(const PlanOptions& o) {
   } else {
     // A model read from a file has no calibrated band: the planner falls back from it to FCL
     // directly. A model trained here plans on the model, then on the hybrid, then on FCL.
-    CalibratedModel calibrated;
-    if (!o.model.empty()) {
-      calibrated.model = readModel(o.model, robot, "model    ");
-    } else {
-      const FeatureMap features = featuresFromOptions(o.features, robot);
-      ProxyParams params =
-          forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed, o.selfCollision));
-      if (o.gamma) params.train.kernel.gamma = *o.gamma;
-      if (o.beta) params.train.beta = *o.beta;
-      ProxyCollisionDetector proxy(fcl, features, params);
-      const StepReport trained = trainStatic(proxy, o.samples, o.updates);
-      calibrated = proxy.calibratedModel();
-      std::cout << "model    trained on " << o.samples << " FCL-labelled samples and " << o.updates
-                << " active-learning updates in " << durationText(inSeconds(trained.total)) << ", "
-                << calibrated.model->supportCount() << " support points, features "
-                << features.summary() << '\n';
-    }
+    const CalibratedModel calibrated =
+        !o.model.empty() ? CalibratedModel{readModel(o.model, robot, "model    ")}
+                         : trainSceneModel(o, robot, fcl, o.selfCollision, true, "");
     plan = planVerified(calibrated, fcl, limits, start, goal, options);
   }
 

@@ -260,7 +260,7 @@ int runTrain(const TrainOptions& o) {
         "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
         "--self-collision alone: a model of the robot's self-collisions)");
   }
-  if (!o.scene.empty() || selfCollisionsAlone(o)) {
+  if (o.data.empty()) {  // a scene, or the robot's self-collisions alone
     if (o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
     if (!o.limits.empty())
       throw InvalidArgument("--limits goes with --data; the robot has its own");

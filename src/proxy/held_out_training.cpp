@@ -92,12 +92,9 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     fresh.points = uniformConfigurations(features.limits(), targets.samplesPerRound, rng);
     fresh.labels = labelsAt(0, fresh.points);
     const UpdateReport update = trainAndMeasure(0);
-    const ConfusionCounts counts = result.rounds.back().heldOut;
-    if (shortfall(counts, targets) > 0) {
-      for (std::size_t k = 1; k <= alternatives.size() && bestShortfall > 0; ++k) {
-        trainAndMeasure(k);
-      }
-    }
+    const ConfusionCounts counts = result.rounds.back().heldOut;  // a copy: rounds grows below
+    // No round before this one met the targets, so they are met only if this model meets them.
+    for (std::size_t k = 1; k <= alternatives.size() && bestShortfall > 0; ++k) trainAndMeasure(k);
     // A model at the support cap cannot take in what more samples would teach it.
     if (bestShortfall == 0 || update.stopReason == StopReason::SupportCap ||
         learned.size() + fresh.size() > targets.maxTrainingSamples) {
