@@ -16,23 +16,32 @@ bool CollisionChecker::inCollision(std::span<const double> q) const {
 }
 
 std::vector<std::uint8_t> CollisionChecker::inCollisionBatch(const Configurations& q) const {
+  checkColumns(q);
   std::vector<std::uint8_t> out(static_cast<std::size_t>(q.rows()));
-  for (Eigen::Index i = 0; i < q.rows(); ++i) {
-    out[static_cast<std::size_t>(i)] =
-        inCollision({q.row(i).data(), static_cast<std::size_t>(q.cols())});
-  }
+  inCollisionEach(q.data(), out.size(), out.data());
   return out;
 }
 
-std::size_t CollisionChecker::firstInCollision(const Configurations& q) const {
+void CollisionChecker::inCollisionEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  checkFinite(q, n);
+  calls_.fetch_add(
+      n, std::memory_order_relaxed);  // before: a call that throws counts, as in inCollision
+  checkEach(q, n, out);
+}
+
+void CollisionChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  const std::size_t dim = dof();
+  for (std::size_t i = 0; i < n; ++i) out[i] = check(q + i * dim) ? 1 : 0;
+}
+
+void CollisionChecker::checkColumns(const Configurations& q) const {
   if (static_cast<std::size_t>(q.cols()) != dof()) {
     throw InvalidArgument("configurations have " + std::to_string(q.cols()) + " columns, " +
                           name() + " checks " + std::to_string(dof()) + " joints");
   }
-  return firstInCollision(q.data(), static_cast<std::size_t>(q.rows()));
 }
 
-std::size_t CollisionChecker::firstInCollision(const double* q, std::size_t n) const {
+void CollisionChecker::checkFinite(const double* q, std::size_t n) const {
   const std::size_t dim = dof();
   for (std::size_t i = 0; i < n; ++i) {
     const std::span<const double> row(q + i * dim, dim);
@@ -40,6 +49,15 @@ std::size_t CollisionChecker::firstInCollision(const double* q, std::size_t n) c
       checkConfiguration(row, dim, ("configuration " + std::to_string(i)).c_str());
     }
   }
+}
+
+std::size_t CollisionChecker::firstInCollision(const Configurations& q) const {
+  checkColumns(q);
+  return firstInCollision(q.data(), static_cast<std::size_t>(q.rows()));
+}
+
+std::size_t CollisionChecker::firstInCollision(const double* q, std::size_t n) const {
+  checkFinite(q, n);
   const std::size_t first = checkFirst(q, n);
   calls_.fetch_add(std::min(first + 1, n), std::memory_order_relaxed);
   return first;

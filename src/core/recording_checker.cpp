@@ -15,16 +15,24 @@ bool RecordingChecker::check(const double* q) const {
   return checkFirst(q, 1) == 0;
 }
 
-std::size_t RecordingChecker::checkFirst(const double* q, std::size_t n) const {
-  const std::size_t dim = dof();
-  const std::size_t first = inner_->firstInCollision(q, n);
-  const std::size_t answered = std::min(first + 1, n);  // the free ones, then the hit
+void RecordingChecker::record(const double* q, std::size_t n, const auto& inCollision) const {
   const std::lock_guard lock(mutex_);
-  values_.insert(values_.end(), q, q + answered * dim);
-  for (std::size_t i = 0; i < answered; ++i) {
-    labels_.push_back(i == first ? std::int8_t{1} : std::int8_t{-1});
+  values_.insert(values_.end(), q, q + n * dof());
+  for (std::size_t i = 0; i < n; ++i) {
+    labels_.push_back(inCollision(i) ? std::int8_t{1} : std::int8_t{-1});
   }
+}
+
+std::size_t RecordingChecker::checkFirst(const double* q, std::size_t n) const {
+  const std::size_t first = inner_->firstInCollision(q, n);
+  // The free ones, then the hit.
+  record(q, std::min(first + 1, n), [&](std::size_t i) { return i == first; });
   return first;
+}
+
+void RecordingChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  inner_->inCollisionEach(q, n, out);
+  record(q, n, [&](std::size_t i) { return out[i] != 0; });
 }
 
 Dataset RecordingChecker::take() {

@@ -244,6 +244,14 @@ std::size_t FclChecker::checkFirst(const double* q, std::size_t n) const {
   return n;
 }
 
+void FclChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  auto scratch = scratch_.lease();
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = collide(*world, *scratch, q + i * robot_.dof(), false).has_value();
+  }
+}
+
 std::optional<Contact> FclChecker::firstContact(std::span<const double> q) const {
   checkConfiguration(q, dof());
   const std::shared_ptr<const Obstacles> world = obstacles_.get();

@@ -173,6 +173,12 @@ std::size_t GjkChecker::checkFirst(const double* q, std::size_t n) const {
   return n;
 }
 
+void GjkChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  const std::shared_ptr<const World> world = world_.get();
+  auto scratch = scratch_.lease();
+  for (std::size_t i = 0; i < n; ++i) out[i] = collides(*world, *scratch, q + i * robot_.dof());
+}
+
 bool GjkChecker::collides(const World& world, Scratch& scratch, const double* q) const {
   forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
   const auto& shapes = robot_.shapes();

@@ -39,5 +39,24 @@ TEST(RecordingChecker, RecordsEveryAnsweredConfigurationOnceInOrder) {
   EXPECT_THROW(RecordingChecker(nullptr), InvalidArgument);
 }
 
+// inCollisionEach (the labelling's path) answers every row, so every row is recorded.
+TEST(RecordingChecker, RecordsEveryRowOfARunAnsweredEach) {
+  const auto inner =
+      std::make_shared<FunctionChecker>("half", 2, [](const double* q) { return q[0] > 0.5; });
+  RecordingChecker recorder(inner);
+  const std::vector<double> run{0.1, 1.0, 0.7, 2.0, 0.2, 3.0};
+  std::uint8_t hits[3] = {9, 9, 9};
+  recorder.inCollisionEach(run.data(), 3, hits);
+  EXPECT_EQ(hits[0], 0);
+  EXPECT_EQ(hits[1], 1);
+  EXPECT_EQ(hits[2], 0);
+  EXPECT_EQ(inner->callCount(), 3u);
+  EXPECT_EQ(recorder.callCount(), 3u);
+  const Dataset answers = recorder.take();
+  ASSERT_EQ(answers.size(), 3u);
+  EXPECT_EQ(answers.labels, (Labels{-1, 1, -1}));
+  EXPECT_EQ(answers.points(2, 1), 3.0);
+}
+
 }  // namespace
 }  // namespace fastron

@@ -178,6 +178,37 @@ TEST(Checkers, FclAndGjkAgreeOnPrimitiveScenes) {
   EXPECT_LE(disagreements, 2 + a.size() / 5'000);
 }
 
+// A run of configurations answered at once (inCollisionEach: one read of the world, one
+// scratch; the labelling's path) answers each as a check of its own does, and counts each.
+TEST(Checkers, ARunAnsweredAtOnceAnswersEachAsAlone) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = baxterPrimitives();
+  const FclChecker fcl(baxter, scene);
+  const GjkChecker gjk(baxter, scene);
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(baxter.limits(), 500, rng);
+  for (const CollisionChecker* checker :
+       std::initializer_list<const CollisionChecker*>{&fcl, &gjk}) {
+    SCOPED_TRACE(checker->name());
+    const std::vector<std::uint8_t> run = checker->inCollisionBatch(q);
+    EXPECT_EQ(checker->callCount(), 500u);
+    std::size_t collisions = 0;
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      const bool alone = checker->inCollision({q.row(i).data(), baxter.dof()});
+      EXPECT_EQ(run[static_cast<std::size_t>(i)] != 0, alone) << "row " << i;
+      collisions += alone;
+    }
+    EXPECT_GT(collisions, 25u);  // both answers occur
+    EXPECT_LT(collisions, 475u);
+  }
+  Configurations bad = q.topRows(3);
+  bad(2, 4) = std::nan("");
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fcl.inCollisionBatch(bad); }),
+              ::testing::HasSubstr("configuration 2"));
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { gjk.inCollisionBatch(q.leftCols(6)); }),
+              ::testing::HasSubstr("6 columns"));
+}
+
 TEST(Checkers, SelfCollisionFindsTheArmHittingTheBody) {
   const Robot baxter = loadRobot("baxter");
   const Scene empty;

@@ -76,6 +76,54 @@ TEST(Labelling, ParallelLabelsEqualSerialLabels) {
   EXPECT_TRUE(labelConfigurations(*checker, Configurations(0, 3)).empty());
 }
 
+// A checker that counts how it is asked: rows per call of checkEach.
+class RunCountingChecker final : public CollisionChecker {
+ public:
+  explicit RunCountingChecker(std::chrono::microseconds perCheck) : perCheck_(perCheck) {}
+  std::string name() const override { return "counting"; }
+  std::size_t dof() const override { return 2; }
+  mutable std::atomic<std::size_t> runs{0}, longestRun{0};
+
+ protected:
+  bool check(const double* q) const override {
+    if (perCheck_.count() > 0) std::this_thread::sleep_for(perCheck_);
+    return q[0] > 0;
+  }
+  void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override {
+    ++runs;
+    std::size_t longest = longestRun.load();
+    while (n > longest && !longestRun.compare_exchange_weak(longest, n)) {
+    }
+    CollisionChecker::checkEach(q, n, out);
+  }
+
+ private:
+  std::chrono::microseconds perCheck_;
+};
+
+// Labelling asks a quick checker for runs of rows (one read of its world and one scratch each,
+// FclChecker::checkEach), and a slow one for one row at a time, so that a stop or a deadline is
+// seen between its calls. The labels are the same either way.
+TEST(Labelling, AsksAQuickCheckerForRunsAndASlowOneRowByRow) {
+  const Configurations q = test::uniformPoints(1000, 2, 4);
+  const RunCountingChecker quick(std::chrono::microseconds(0));
+  const Labels labels = labelConfigurations(quick, q, 2);
+  EXPECT_EQ(quick.callCount(), 1000u);
+  EXPECT_GT(quick.longestRun.load(), 1u);
+  EXPECT_LE(quick.longestRun.load(), 16u);  // a chunk
+  // Two calls per chunk of 16 (its first row, then the rest): 126; a row per call would be 1000.
+  // (A first call that a busy machine preempts past 20 us sends its chunk row by row.)
+  EXPECT_LE(quick.runs.load(), 500u);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    EXPECT_EQ(labels[static_cast<std::size_t>(i)], q(i, 0) > 0 ? 1 : -1) << "row " << i;
+  }
+  const RunCountingChecker slow(std::chrono::microseconds(100));
+  EXPECT_EQ(labelConfigurations(slow, q.topRows(64), 2),
+            Labels(labels.begin(), labels.begin() + 64));
+  EXPECT_EQ(slow.longestRun.load(), 1u);
+  EXPECT_EQ(slow.runs.load(), 64u);
+}
+
 TEST(Labelling, CheckerErrorsReachTheCaller) {
   const FunctionChecker failing("failing", 2, [](const double* q) -> bool {
     if (q[0] > 0.9) throw Error("sensor offline");

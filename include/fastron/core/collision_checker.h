@@ -27,8 +27,13 @@ class CollisionChecker {
 
   /// True when q is in collision. Throws InvalidArgument on a wrong length or non-finite value.
   bool inCollision(std::span<const double> q) const;
-  /// One result per row of q (1 = in collision), on the calling thread.
+  /// One result per row of q (1 = in collision), on the calling thread (inCollisionEach).
+  /// Throws InvalidArgument when q does not have dof() columns or a row a non-finite value.
   std::vector<std::uint8_t> inCollisionBatch(const Configurations& q) const;
+  /// out[i] = 1 when the i-th of n configurations (row by row in q, n * dof() values) is in
+  /// collision, else 0. Counts n calls. Throws InvalidArgument naming the first row with a
+  /// non-finite value.
+  void inCollisionEach(const double* q, std::size_t n, std::uint8_t* out) const;
   /// Index of the first of n configurations (row by row in q, n * dof() values), in the order
   /// given, that is in collision, or n when all are free. Counts one call per configuration up to
   /// that one. Throws InvalidArgument naming the first row with a non-finite value.
@@ -45,8 +50,18 @@ class CollisionChecker {
   /// firstInCollision for n rows of finite values; by default check() on one row after the other.
   /// A checker that answers many configurations at once faster overrides it.
   virtual std::size_t checkFirst(const double* q, std::size_t n) const;
+  /// inCollisionEach for n rows of finite values; by default check() on one row after the other.
+  /// A checker with per-call overhead (a read of its world, a scratch lease) overrides it to pay
+  /// that once per run: paid per row, two labelling threads contended for it and labelled no
+  /// faster than one (docs/performance.md).
+  virtual void checkEach(const double* q, std::size_t n, std::uint8_t* out) const;
 
  private:
+  /// Throws InvalidArgument when q does not have dof() columns.
+  void checkColumns(const Configurations& q) const;
+  /// Throws InvalidArgument naming the first of n rows with a non-finite value.
+  void checkFinite(const double* q, std::size_t n) const;
+
   mutable std::atomic<std::uint64_t> calls_{0};
 };
 

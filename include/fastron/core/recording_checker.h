@@ -32,8 +32,13 @@ class RecordingChecker final : public CollisionChecker {
   /// One call of inner's firstInCollision (so the inner checker's batch path is kept) and one
   /// record of every row it answered.
   std::size_t checkFirst(const double* q, std::size_t n) const override;
+  /// One call of inner's inCollisionEach and one record of every row.
+  void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
 
  private:
+  /// Records the first n rows of q with their answers (1 in collision).
+  void record(const double* q, std::size_t n, const auto& inCollision) const;
+
   std::shared_ptr<const CollisionChecker> inner_;
   mutable std::mutex mutex_;
   mutable std::vector<double> values_;  // dof() per answer

@@ -60,6 +60,7 @@ class FclChecker final : public CollisionChecker {
  protected:
   bool check(const double* q) const override;
   std::size_t checkFirst(const double* q, std::size_t n) const override;
+  void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
 
  private:
   struct Geometry;
