@@ -44,7 +44,8 @@ case "$command" in
       -DFASTRON_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
     build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
-      --target proxy_tests proxy_soak planning_concurrency_tests geometry_concurrency_tests
+      --target core_concurrency_tests proxy_tests proxy_soak planning_concurrency_tests \
+      geometry_concurrency_tests
     ctest --test-dir build/tsan --output-on-failure -j "$jobs" -L concurrency
     ;;
   build)

@@ -84,6 +84,31 @@ BENCHMARK(BM_Train)
     ->ArgNames({"N", "d", "terms"})
     ->Unit(benchmark::kMillisecond);
 
+// Algorithm 1 on threads = range(3) threads (Trainer::update(threads): each iteration's Gram
+// column and F update split with a helper thread), against range(3) = 1 in the same run. N 3000
+// is the size of a bench changing 7dof-3boxes update (2500 new points beside |S| about 400).
+void BM_TrainOnThreads(benchmark::State& state) {
+  const TrainingCase c = trainingCase(state);
+  const auto threads = static_cast<unsigned>(state.range(3));
+  UpdateReport report;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Trainer trainer(JointLimits::unitBox(c.d), c.params);
+    trainer.addPoints(c.q, c.y);
+    state.ResumeTiming();
+    report = trainer.update(threads);
+    benchmark::DoNotOptimize(trainer.weights().data());
+  }
+  state.counters["support"] = static_cast<double>(report.supportCount);
+  state.counters["iterations"] = static_cast<double>(report.iterations);
+}
+BENCHMARK(BM_TrainOnThreads)
+    ->ArgsProduct({{3000, 8000}, {7}, {0}, {1, 2}})
+    ->ArgsProduct({{1500, 3000, 8000, 20000}, {12}, {1}, {1, 2}})
+    ->ArgNames({"N", "d", "terms", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // An update's new points (Trainer::addPoints: their features, and F from the current weights)
 // after Algorithm 1 trained on N = range(0) points in d = range(1) features with point terms: the
 // 2000 active-learning points of an update, on threads = range(2) threads (forEachChunk, as

@@ -115,7 +115,11 @@ void printReport(const UpdateReport& report) {
   std::cout << "update        " << report.iterations
             << " iterations, stopped: " << toString(report.stopReason)
             << (report.reverted ? " (reverted to the better earlier solution)" : "") << ", "
-            << durationText(inSeconds(report.elapsed)) << '\n';
+            << durationText(inSeconds(report.elapsed));
+  if (report.sharedIterations > 0) {
+    std::cout << " (" << report.sharedIterations << " iterations shared by two cores)";
+  }
+  std::cout << '\n';
   std::cout << "support set   " << report.supportCount << " points; " << report.misclassified
             << " training points misclassified\n";
 }
@@ -288,7 +292,7 @@ int runTrain(const TrainOptions& o) {
 
   Trainer trainer(features, params);
   trainer.addPoints(train.points, train.labels);
-  const UpdateReport report = trainer.update();
+  const UpdateReport report = trainer.update(0);  // on two cores when the data are large enough
   const auto model = trainer.model();
   saveModel(*model, o.output);
 

@@ -25,6 +25,16 @@ def test_train_learns_a_disc():
     assert np.all(np.sign(model.score(x)) == y)
 
 
+def test_training_on_two_cores_gives_the_model_of_one():
+    x, y = disc_data(6000, seed=4)  # more rows than Trainer::kRowsToShareUpdate (4096)
+    one, report_one = fastron.train(x, y, gamma=30, beta=5, threads=1)
+    two, report_two = fastron.train(x, y, gamma=30, beta=5)  # threads=0: every core
+    assert report_one.shared_iterations == 0
+    assert report_two.iterations == report_one.iterations
+    assert np.array_equal(two.weights, one.weights)
+    assert np.array_equal(two.score(x), one.score(x))
+
+
 def test_batch_and_single_queries_agree():
     x, y = disc_data()
     model, _ = fastron.train(x, y, gamma=30, beta=5)

@@ -25,13 +25,15 @@ struct GramKernel {
 };
 
 struct GramPasses {
-  /// k[j - from] = K(x_i, x_j) for the rows j in [from, rows); x is column-major, rows x
+  /// k[j - from] = K(x_i, x_j) for the rows j in [from, to); x is column-major, rows x
   /// features, and xf the same values as floats (a Trainer's features are rounded to float):
   /// which one is read depends on the number of features (gram_columns_impl.h); each float is
   /// widened to double before any arithmetic, so the column is the same either way. The kernel's
-  /// block divides `features` (validated by the Trainer).
+  /// block divides `features` (validated by the Trainer). A value does not depend on `from` and
+  /// `to`: a column computed in pieces equals the column computed at once.
   void (*column)(const double* x, const float* xf, std::size_t rows, std::size_t features,
-                 std::size_t i, std::size_t from, const GramKernel& kernel, double* k);
+                 std::size_t i, std::size_t from, std::size_t to, const GramKernel& kernel,
+                 double* k);
   /// f[j - from] += sum_s weights[s] K(support_s, x_j) for the rows j in [from, to) of x
   /// (column-major, rows x features) and the `count` rows of `support` (row-major, count x
   /// features): the hypothesis of new training points from the current weights, summed in the

@@ -68,8 +68,8 @@ inline Doubles termOf(Doubles r2, Doubles halfGammas) {
 /// it, so the result does not depend on where the registers start. A Gaussian kernel with point
 /// terms goes row by row (an exponential per term; no planner uses it).
 void columnByRow(const double* x, std::size_t rows, std::size_t features, std::size_t i,
-                 std::size_t from, const GramKernel& kernel, double* k) {
-  const std::size_t n = rows - from;
+                 std::size_t from, std::size_t to, const GramKernel& kernel, double* k) {
+  const std::size_t n = to - from;
   double xi[kMaxGramFeatures];
   for (std::size_t c = 0; c < features; ++c) xi[c] = x[c * rows + i];
   const bool rationalQuadratic = kernel.type == KernelType::RationalQuadratic;
@@ -131,8 +131,8 @@ void termsInPlace(double* r2, std::size_t size, KernelType type, double gamma) {
 }
 
 void columnByFeature(const float* x, std::size_t rows, std::size_t features, std::size_t i,
-                     std::size_t from, const GramKernel& kernel, double* k) {
-  const std::size_t n = rows - from;
+                     std::size_t from, std::size_t to, const GramKernel& kernel, double* k) {
+  const std::size_t n = to - from;
   const std::size_t block = kernel.block == 0 ? features : kernel.block;
   for (std::size_t begin = 0; begin < n; begin += kBlock) {
     const std::size_t size = n - begin < kBlock ? n - begin : kBlock;
@@ -193,11 +193,11 @@ void columnByFeature(const float* x, std::size_t rows, std::size_t features, std
 constexpr std::size_t kRowFeatures = 12;
 
 void column(const double* x, const float* xf, std::size_t rows, std::size_t features, std::size_t i,
-            std::size_t from, const GramKernel& kernel, double* k) {
+            std::size_t from, std::size_t to, const GramKernel& kernel, double* k) {
   if (features <= kRowFeatures) {
-    columnByRow(x, rows, features, i, from, kernel, k);
+    columnByRow(x, rows, features, i, from, to, kernel, k);
   } else {
-    columnByFeature(xf, rows, features, i, from, kernel, k);
+    columnByFeature(xf, rows, features, i, from, to, kernel, k);
   }
 }
 

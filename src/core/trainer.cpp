@@ -1,6 +1,7 @@
 #include "fastron/core/trainer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -8,6 +9,7 @@
 
 #include "fastron/core/error.h"
 #include "gram_columns.h"
+#include "helper_thread.h"
 
 namespace fastron {
 namespace {
@@ -42,23 +44,55 @@ detail::GramKernel gramKernel(const Kernel& kernel, Eigen::Index features) {
   return {kernel.type, kernel.gamma, kernel.block, kernel.wholeWeight(), kernel.pointWeight(d)};
 }
 
-/// k[j - from] = K(x_i, x_j) for the rows j in [from, x.rows()), on the active SIMD path
+/// k[j - from] = K(x_i, x_j) for the rows j in [from, to), on the active SIMD path
 /// (gram_columns_impl.h).
 void gramColumn(const Eigen::MatrixXd& x, const Eigen::MatrixXf& xf, Eigen::Index i,
-                Eigen::Index from, const Kernel& kernel, double* k) {
-  detail::activeGramPasses().column(
-      x.data(), xf.data(), static_cast<std::size_t>(x.rows()), static_cast<std::size_t>(x.cols()),
-      static_cast<std::size_t>(i), static_cast<std::size_t>(from), gramKernel(kernel, x.cols()), k);
+                std::size_t from, std::size_t to, const Kernel& kernel, double* k) {
+  detail::activeGramPasses().column(x.data(), xf.data(), static_cast<std::size_t>(x.rows()),
+                                    static_cast<std::size_t>(x.cols()), static_cast<std::size_t>(i),
+                                    from, to, gramKernel(kernel, x.cols()), k);
 }
 
-/// f += delta k, then the most negative margin y_j f_j and its index (the first one on ties).
-double addAndFindWorst(Eigen::VectorXd& f, const Eigen::VectorXd& y, const double* k, double delta,
-                       Eigen::Index& worst) {
-  std::size_t at = 0;
-  const double lowest = detail::activeGramPasses().addAndFindWorst(
-      f.data(), y.data(), static_cast<std::size_t>(f.size()), k, delta, &at);
-  worst = static_cast<Eigen::Index>(at);
-  return lowest;
+// Algorithm 1 on two cores: an iteration's Gram column and F update split into two halves of
+// the rows, one taken by the calling thread and one by the helper (helper_thread.h). Each row's
+// values do not depend on the half it is in, and the halves' minima are combined in row order,
+// so the weights are those of one thread, bit for bit. Below Trainer::kRowsToShareUpdate rows an
+// iteration is too short to pay for the round trip between the cores (about 1 us on this
+// project's machine).
+constexpr std::size_t kChunks = 2;
+
+/// f += delta K(x_i, .), the Gram column of point i written to `column`, then the most negative
+/// margin y_j f_j (returned) and its index (the first one on ties, in `worst`); `shared` counts
+/// the call when the helper took part.
+double addColumnAndFindWorst(const Eigen::MatrixXd& x, const Eigen::MatrixXf& xf, Eigen::Index i,
+                             const Kernel& kernel, double delta, Eigen::VectorXd& f,
+                             const Eigen::VectorXd& y, double* column,
+                             detail::HelperSession& helper, Eigen::Index& worst,
+                             std::size_t& shared) {
+  const auto n = static_cast<std::size_t>(f.size());
+  const std::size_t chunks = helper.helped() ? kChunks : 1;
+  // Chunk bounds on whole registers of rows (8 doubles).
+  const std::size_t rowsPerChunk = ((n + chunks - 1) / chunks + 7) / 8 * 8;
+  std::array<double, kChunks> lowest{};
+  std::array<std::size_t, kChunks> at{};
+  auto chunk = [&](std::size_t c) {
+    const std::size_t from = std::min(n, c * rowsPerChunk), to = std::min(n, from + rowsPerChunk);
+    if (from == to) {
+      lowest[c] = std::numeric_limits<double>::infinity();
+      return;
+    }
+    gramColumn(x, xf, i, from, to, kernel, column + from);
+    lowest[c] = detail::activeGramPasses().addAndFindWorst(f.data() + from, y.data() + from,
+                                                           to - from, column + from, delta, &at[c]);
+    at[c] += from;
+  };
+  shared += static_cast<std::size_t>(helper.run(chunks, chunk));
+  std::size_t best = 0;
+  for (std::size_t c = 1; c < chunks; ++c) {
+    if (lowest[c] < lowest[best]) best = c;
+  }
+  worst = static_cast<Eigen::Index>(at[best]);
+  return lowest[best];
 }
 
 }  // namespace
@@ -131,7 +165,7 @@ Trainer::Trainer(FeatureMap features, TrainParams params)
 }
 
 void Trainer::computeColumn(Eigen::Index i) {
-  gramColumn(x_, xf_, i, 0, params_.kernel, column_.data());
+  gramColumn(x_, xf_, i, 0, size(), params_.kernel, column_.data());
   ++columnsComputed_;
 }
 
@@ -227,7 +261,7 @@ std::size_t Trainer::countMisclassified(const Eigen::VectorXd& f) const {
   return static_cast<std::size_t>((y_.array() * f.array() <= 0).count());
 }
 
-UpdateReport Trainer::update() {
+UpdateReport Trainer::update(unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
   UpdateReport report;
   report.trainingPoints = size();
@@ -241,17 +275,19 @@ UpdateReport Trainer::update() {
   double worstMargin = n > 0 ? (y_.array() * f_.array()).minCoeff(&i) : 0;
   bool stopped = false;
   const double maxWeight = params_.maxWeightOverBeta * params_.beta;
+  detail::HelperSession helper(threads != 1 && static_cast<std::size_t>(n) >= kRowsToShareUpdate);
   while (report.iterations < params_.maxIterations && n > 0) {
     // Add or adjust a support point: Delta alpha = beta^(0.5 (y_i + 1)) y_i - F_i (Eq. 18).
     const double delta = (y_[i] > 0 ? params_.beta : -1.0) - f_[i];
     if (worstMargin <= 0 && (supportCount_ < params_.maxSupportPoints || alpha_[i] != 0) &&
         std::abs(alpha_[i] + delta) <= maxWeight) {
       const bool wasSupport = alpha_[i] != 0;
-      computeColumn(i);
       alpha_[i] += delta;
       supportCount_ += static_cast<std::size_t>(!wasSupport && alpha_[i] != 0);
       supportCount_ -= static_cast<std::size_t>(wasSupport && alpha_[i] == 0);
-      worstMargin = addAndFindWorst(f_, y_, column_.data(), delta, i);
+      worstMargin = addColumnAndFindWorst(x_, xf_, i, params_.kernel, delta, f_, y_, column_.data(),
+                                          helper, i, report.sharedIterations);
+      ++columnsComputed_;
       ++report.iterations;
       continue;
     }
@@ -271,8 +307,10 @@ UpdateReport Trainer::update() {
       }
     }
     if (redundant >= 0) {
-      computeColumn(redundant);
-      worstMargin = addAndFindWorst(f_, y_, column_.data(), -alpha_[redundant], i);
+      worstMargin =
+          addColumnAndFindWorst(x_, xf_, redundant, params_.kernel, -alpha_[redundant], f_, y_,
+                                column_.data(), helper, i, report.sharedIterations);
+      ++columnsComputed_;
       alpha_[redundant] = 0;
       --supportCount_;
       ++report.iterations;

@@ -75,7 +75,7 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
     Trainer trainer(k == 0 ? features : alternatives[k - 1].features,
                     k == 0 ? params : alternatives[k - 1].params);
     trainer.addPoints(learned.points, learned.labels);
-    const UpdateReport update = trainer.update();
+    const UpdateReport update = trainer.update(threads);
     const std::shared_ptr<const Model> model = trainer.model();
     const ConfusionCounts counts = evaluate(*model, fresh.points, fresh.labels);
     result.rounds.push_back({learned.size(), model->supportCount(), counts, level, k});

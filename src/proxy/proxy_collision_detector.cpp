@@ -73,7 +73,7 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   trainer_ = Trainer(features_, params_.train);
   const auto learned = static_cast<Eigen::Index>(n);
   trainer_.addPoints(q.topRows(learned), {labels.data(), n}, onLabelThreads());
-  report.update = trainer_.update();
+  report.update = trainer_.update(params_.trainThreads);
   return finish(report, start, q.bottomRows(static_cast<Eigen::Index>(calibration)),
                 Labels(labels.begin() + learned, labels.end()));
 }
@@ -86,10 +86,10 @@ LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const
 }
 
 StepReport ProxyCollisionDetector::step() {
-  return runStep(std::stop_token{});
+  return runStep(std::stop_token{}, params_.trainThreads);
 }
 
-StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
+StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned trainThreads) {
   const std::lock_guard lock(stepMutex_);
   if (version_ == 0) throw Error("ProxyCollisionDetector::step() called before initialize()");
   const auto start = Clock::now();
@@ -108,9 +108,9 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   report.sampleTime = labelStart - start;
 
   // The uniform points held out to calibrate the new model's band do not depend on it: they are
-  // labelled while the support set and the active-learning points are, and then while
-  // Algorithm 1 runs (which uses one core: the labelling threads take the others). An oracle
-  // that may only be called from one thread (labelThreads 1) labels them after Algorithm 1.
+  // labelled while the support set and the active-learning points are, and, when Algorithm 1
+  // runs on one core (a background step, or too few points to share), while it runs. An oracle
+  // that may only be called from one thread (labelThreads 1) labels them where they are awaited.
   // (A future of std::async waits for its task when destroyed: if anything below throws, the
   // labelling is over before the step returns.)
   const auto policy = params_.labelThreads == 1 ? std::launch::deferred : std::launch::async;
@@ -129,21 +129,27 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop) {
   report.added = static_cast<std::size_t>(fresh.rows());
 
   Trainer before = trainer_;  // restored when the held-out labelling fails
+  Labels heldOutLabels;
+  const auto awaitHeldOut = [&] {
+    const auto waitStart = Clock::now();
+    try {
+      heldOutLabels = heldOut.get();
+    } catch (...) {
+      trainer_ = std::move(before);  // a step the oracle fails leaves the detector as it was,
+      throw;                         // its observations still waiting
+    }
+    report.labelTime += Clock::now() - waitStart;  // the labelling Algorithm 1 did not hide
+  };
   // Forgotten first, so that relabel has no weight to correct (a Gram column per flipped point).
   if (params_.coldStart) trainer_.forgetWeights();
   trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
   trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
-  report.update = trainer_.update();
-  Labels heldOutLabels;
-  try {
-    const auto waitStart = Clock::now();
-    heldOutLabels = heldOut.get();
-    report.labelTime += Clock::now() - waitStart;  // the labelling Algorithm 1 did not hide
-  } catch (...) {
-    trainer_ = std::move(before);  // a step the oracle fails leaves the detector as it was,
-    throw;                         // its observations still waiting
-  }
+  // Algorithm 1 on two cores needs the other core: then the held-out labelling ends first.
+  const bool trainOnTwoCores = trainThreads != 1 && trainer_.size() >= Trainer::kRowsToShareUpdate;
+  if (trainOnTwoCores) awaitHeldOut();
+  report.update = trainer_.update(trainOnTwoCores ? trainThreads : 1);
+  if (!trainOnTwoCores) awaitHeldOut();
   dropLearnedObservations(report.observed);
   return finish(report, start, calibration, heldOutLabels);
 }
@@ -197,7 +203,7 @@ StepReport ProxyCollisionDetector::learnObservations() {
     return report;
   }
   report.calibration = calibratedModel().calibration;  // kept: nothing new was held out
-  report.update = trainer_.update();
+  report.update = trainer_.update(params_.trainThreads);
   return finish(report, start, Configurations(0, 0), {});
 }
 
@@ -276,7 +282,7 @@ void ProxyCollisionDetector::startBackground(std::function<void(const StepReport
             const auto began = Clock::now();
             StepReport report;
             try {
-              report = runStep(stop);
+              report = runStep(stop, 1);
             } catch (const LabellingStopped&) {
               break;
             } catch (const OracleFault& fault) {

@@ -32,6 +32,11 @@ struct ProxyParams {
   /// threads labelling with the oracle (and computing the new points' features and F); 0 = every
   /// hardware thread
   unsigned labelThreads = 0;
+  /// Threads of Algorithm 1 in initialize(), step() and learnObservations() (Trainer::update): 1
+  /// the calling thread alone, any other value also the process's helper thread when the
+  /// training set is large enough to share (Trainer::kRowsToShareUpdate). Background steps run it
+  /// on their own thread alone, beside the planner that uses the other cores.
+  unsigned trainThreads = 0;
   /// Observations (addObservations) kept for the next step at most; later ones are dropped and
   /// counted, so a caller that outpaces the updates cannot grow memory without bound.
   std::size_t maxPendingObservations = 20000;
@@ -180,8 +185,9 @@ class ProxyCollisionDetector {
   const ProxyParams& params() const { return params_; }
 
  private:
-  /// step(), interrupted between oracle calls when `stop` is requested (LabellingStopped).
-  StepReport runStep(const std::stop_token& stop);
+  /// step(), interrupted between oracle calls when `stop` is requested (LabellingStopped), with
+  /// Algorithm 1 on `trainThreads` (Trainer::update).
+  StepReport runStep(const std::stop_token& stop, unsigned trainThreads);
   /// The labelling guard of a step that starts now.
   LabelGuard labelGuard(const std::stop_token& stop) const;
   /// Adds the waiting observations to the trainer (stepMutex_ held); returns how many. They keep
