@@ -112,8 +112,9 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   // runs on one core (a background step, or too few points to share), while it runs. An oracle
   // that may only be called from one thread (labelThreads 1) labels them where they are awaited.
   // (A future of std::async waits for its task when destroyed: if anything below throws, the
-  // labelling is over before the step returns.)
-  const auto policy = params_.labelThreads == 1 ? std::launch::deferred : std::launch::async;
+  // labelling is over before the step returns. Without calibration points no thread is started.)
+  const auto policy = params_.labelThreads == 1 || calibration.rows() == 0 ? std::launch::deferred
+                                                                           : std::launch::async;
   // Their labels never enter the model: the repeated rows that test the oracle are asked among
   // the labels that do.
   LabelGuard heldOutGuard = labelGuard(stop);
