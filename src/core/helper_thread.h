@@ -13,8 +13,8 @@ namespace fastron::detail {
 /// same rows in its cache round after round. Only one session holds the helper at a time: a
 /// session that finds it held, or is not wanted, or runs on a single-core machine, runs every
 /// chunk on the calling thread, and so does the rest of a session whose helper kept the calling
-/// thread waiting 200 us for its chunk (preempted: a busy machine). Rounds are run from the
-/// thread that created the session.
+/// thread waiting over 200 us for its chunk in 4 rounds (preempted: a busy machine). Rounds are run
+/// from the thread that created the session.
 class HelperSession {
  public:
   explicit HelperSession(bool wanted);
@@ -40,6 +40,7 @@ class HelperSession {
   void release();
 
   bool helped_ = false;
+  std::size_t lateRounds_ = 0;  // rounds whose helper kept this thread waiting (helper_thread.cpp)
 };
 
 }  // namespace fastron::detail

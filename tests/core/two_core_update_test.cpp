@@ -89,17 +89,18 @@ TEST(HelperThread, AHelperThatKeepsTheCallerWaitingIsLetGo) {
   HelperSession session(true);
   ASSERT_TRUE(session.helped());
   const auto caller = std::this_thread::get_id();
-  // Chunk 1 is the helper's when it is awake; there it takes 5 ms, as if preempted.
+  // Chunk 1 is the helper's when it is awake; there it takes 5 ms, as if preempted, so every
+  // round it shares keeps the caller waiting. The fourth such round lets it go.
   const auto deadline = std::chrono::steady_clock::now() + 10s;
-  bool slowRound = false;
-  while (!slowRound && std::chrono::steady_clock::now() < deadline) {
+  int slowRounds = 0;
+  while (session.helped() && std::chrono::steady_clock::now() < deadline) {
     auto body = [&](std::size_t c) {
       if (c == 1 && std::this_thread::get_id() != caller) std::this_thread::sleep_for(5ms);
     };
-    slowRound = session.run(2, body);
+    slowRounds += session.run(2, body) ? 1 : 0;
   }
-  ASSERT_TRUE(slowRound) << "the helper never took a chunk";
-  EXPECT_FALSE(session.helped());
+  ASSERT_FALSE(session.helped()) << "the helper took " << slowRounds << " chunks";
+  EXPECT_EQ(slowRounds, 4);
   std::array<std::thread::id, 2> ranOn{};
   auto body = [&](std::size_t c) { ranOn[c] = std::this_thread::get_id(); };
   EXPECT_FALSE(session.run(2, body));
