@@ -170,7 +170,9 @@ TEST_P(TwoCoreUpdate, GivesTheWeightsOfOneCore) {
     for (int attempt = 0; attempt < 20 && two.second.sharedIterations == 0; ++attempt) {
       two = trained(2);
     }
-    if (severalCores()) EXPECT_GT(two.second.sharedIterations, 0u);
+    if (severalCores()) {
+      EXPECT_GT(two.second.sharedIterations, 0u);
+    }
     expectSame(two, one);
     expectSame(trained(0), one);
     // Two updates at once: one of them has the helper.
