@@ -37,10 +37,10 @@ struct Round {
 // The state of the current round in one word, so that a chunk is claimed with one
 // compare-and-swap that also checks the round: bits 32-63 the round's number, 16-31 the end of
 // the chunks left, 0-15 their start. The owner takes chunks from the start and the helper from
-// the end, so that with two chunks each core gets the same rows round after round (and keeps
-// them in its own cache: taken in turns, an iteration's F and column moved between the cores and
-// the helper's half took a third longer than the owner's). A thread that read an older round's
-// state fails its claim instead of running a chunk of the new round with the old body.
+// the end, so that with two chunks each core gets the same rows round after round and keeps them
+// in its own cache (both taking from the start measured the same within this machine's noise,
+// docs/performance.md). A thread that read an older round's state fails its claim instead of
+// running a chunk of the new round with the old body.
 std::uint64_t stateOf(std::uint64_t round, std::size_t chunks) {
   return round << 32 | static_cast<std::uint64_t>(chunks) << 16;
 }
