@@ -17,9 +17,9 @@ namespace FASTRON_API fastron {
 struct LabelGuard {
   /// No checker call starts after this moment; one that would throws OracleFault.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  /// Rows (evenly spread) whose label is asked twice in a row; two different answers throw
-  /// OracleFault. The second call follows the first at once, so a scene changed between them is
-  /// rare, and would make the labels inconsistent anyway.
+  /// Rows (evenly spread) whose label is asked twice; two different answers throw OracleFault.
+  /// The second call follows the call that answered the row (a run of at most 16 rows), so a
+  /// scene changed between them is rare, and would make the labels inconsistent anyway.
   std::size_t repeatedRows = 0;
   /// Stops the labelling between checker calls (throws LabellingStopped).
   std::stop_token stop;
