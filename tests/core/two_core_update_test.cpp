@@ -165,9 +165,11 @@ TEST_P(TwoCoreUpdate, GivesTheWeightsOfOneCore) {
     const auto one = trained(1);
     EXPECT_EQ(one.second.sharedIterations, 0u);
     ASSERT_GE(one.second.iterations, std::min<std::size_t>(100, c.cap));
-    // The helper may sleep through a whole update on a busy machine: train until it took part.
+    // The helper may sleep through a whole update on a busy machine (a short update is over
+    // before another busy process lets it run): train until it took part, for 10 s at most.
     std::pair<Trainer, UpdateReport> two = trained(2);
-    for (int attempt = 0; attempt < 20 && two.second.sharedIterations == 0; ++attempt) {
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (two.second.sharedIterations == 0 && std::chrono::steady_clock::now() < deadline) {
       two = trained(2);
     }
     if (severalCores()) {
