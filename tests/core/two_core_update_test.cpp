@@ -45,8 +45,10 @@ bool helperTakesPart(HelperSession& session) {
     const bool shared = session.run(2, body);
     EXPECT_EQ(runs[0], 1);
     EXPECT_EQ(runs[1], 1);
-    EXPECT_EQ(ranOn[0], caller) << "the calling thread takes chunks from the first";
-    EXPECT_EQ(shared, ranOn[1] != caller);
+    // The helper takes chunks from the last: when it ran chunk 0 it ran chunk 1 before (the
+    // calling thread was preempted between publishing the round and claiming its chunk).
+    EXPECT_TRUE(ranOn[0] == caller || ranOn[1] != caller) << "the helper takes the last first";
+    EXPECT_EQ(shared, ranOn[0] != caller || ranOn[1] != caller);
     if (shared) return true;
   }
   return false;
