@@ -5,7 +5,7 @@
 #   ./dev.sh demo [ARGS]   build Release and run `fastron demo ARGS`
 #   ./dev.sh test          build and run the whole test suite: Release; then a Clang build with
 #                          address+undefined sanitizers that runs the tests and fuzzes every
-#                          reader for FASTRON_FUZZ_SECONDS (default 20) each; then
+#                          reader for FASTRON_FUZZ_SECONDS (default 10) each; then
 #                          ThreadSanitizer on the concurrency and soak tests
 #   ./dev.sh build         build Release into build/release
 #   ./dev.sh bench [ARGS]  build Release and run the Google Benchmark micro-benchmarks
@@ -40,7 +40,7 @@ case "$command" in
     # the reports still name every function. The address+undefined build is Clang's, with the
     # fuzz targets (fuzz/): one build of the library serves the tests and the fuzzers.
     build build/sanitize Release -DCMAKE_CXX_COMPILER=clang++ -DFASTRON_SANITIZE=ON -DFASTRON_FUZZ=ON \
-      -DFASTRON_FUZZ_SECONDS="${FASTRON_FUZZ_SECONDS:-20}" -DFASTRON_NATIVE=OFF \
+      -DFASTRON_FUZZ_SECONDS="${FASTRON_FUZZ_SECONDS:-10}" -DFASTRON_NATIVE=OFF \
       -DFASTRON_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
     build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
