@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -14,6 +13,7 @@
 #include "fastron/core/model_file.h"
 #include "fastron/geometry/kinematics.h"
 #include "lane_kinematics.h"
+#include "sin_cos.h"
 
 namespace fastron {
 namespace {
@@ -169,50 +169,16 @@ std::array<To, N> castArray(const std::array<From, N>& a) {
 constexpr std::size_t kConfigurationLanes = 16;
 constexpr std::size_t kOneByOne = 2;  // batches this short are placed one configuration at a time
 
-/// cos and sin of `count` angles, one by one: scalar code overlaps the chain of frames (a SIMD
-/// sine and cosine of all angles first made it wait: 9-19 ns slower). Double features (the exact
-/// score) take the C library's.
+/// cos and sin of `count` angles, one by one (sin_cos.h): scalar code overlaps the chain of frames
+/// (a SIMD sine and cosine of all angles first made it wait: 9-19 ns slower). Float features use
+/// the Cephes polynomials of the lanes' sinCos, so the single chain and the batch compute the same
+/// sines; double features (training, the exact score) those of the exact checkers' forward
+/// kinematics. Baxter's 4 points on 20000 uniform configurations (a loop over FeatureMap::map)
+/// took 95 ns with the C library's sinf and cosf and 65 ns with these; one configuration
+/// repeated, as BM_ControlPoints does, took 61 and 65 ns and hid the difference.
 template <class T>
 void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
-  for (std::size_t k = 0; k < count; ++k) {
-    cosines[k] = std::cos(angles[k]);
-    sines[k] = std::sin(angles[k]);
-  }
-}
-
-/// Float features: the Cephes polynomials of the lanes' sinCos (core/cephes_sin_cos.h), one
-/// angle at a time and without a branch. The C library's sinf and cosf branch on the angle's range,
-/// which a sampling planner's random configurations mispredict: Baxter's 4 points on 20000 uniform
-/// configurations (a loop over FeatureMap::map) took 95 ns with them and 65 ns with these; one
-/// configuration repeated, as BM_ControlPoints does, took 61 and 65 ns and hid the difference.
-/// Beyond |x| = 8192 the reduction by pi/4 in float loses digits, and those angles go to the C
-/// library.
-template <>
-void cosSin(const float* angles, std::size_t count, float* cosines, float* sines) {
-  constexpr float kReducible = 8192.0f;
-  constexpr std::uint32_t kSignBit = 0x80000000u;
-  for (std::size_t k = 0; k < count; ++k) {
-    const float x = angles[k];
-    const float a = std::fabs(x);
-    if (!(a <= kReducible)) {
-      cosines[k] = std::cos(x);
-      sines[k] = std::sin(x);
-      continue;
-    }
-    const auto octant = (static_cast<std::uint32_t>(a * detail::kFourOverPi) + 1u) & ~1u;
-    float sinOfA = 0, cosOfA = 0;
-    detail::reducedSinCos(a, static_cast<float>(octant), sinOfA, cosOfA);
-    // Select and flip signs with bit operations: with ?: GCC emitted jumps, and the same
-    // configurations took 124 ns.
-    const std::uint32_t swap = 0u - ((octant >> 1) & 1u);  // all ones where sine follows cosine
-    const auto sinBits = std::bit_cast<std::uint32_t>(sinOfA);
-    const auto cosBits = std::bit_cast<std::uint32_t>(cosOfA);
-    const std::uint32_t sinSign =
-        ((octant & 4u) << 29) ^ (std::bit_cast<std::uint32_t>(x) & kSignBit);
-    const std::uint32_t cosSign = ((octant + 2u) & 4u) << 29;
-    sines[k] = std::bit_cast<float>(((sinBits & ~swap) | (cosBits & swap)) ^ sinSign);
-    cosines[k] = std::bit_cast<float>(((cosBits & ~swap) | (sinBits & swap)) ^ cosSign);
-  }
+  for (std::size_t k = 0; k < count; ++k) detail::sinCos(angles[k], sines[k], cosines[k]);
 }
 
 }  // namespace
