@@ -18,32 +18,23 @@ namespace {
 /// pose * (the joint's motion at `value`), in place: forward kinematics applies it to the parent's
 /// pose times the joint origin, which costs one product fewer than composing a joint transform.
 /// A turn about z, the axis of most URDF joints (every joint of the robots shipped), turns two
-/// columns; another axis multiplies by its rotation matrix (Rodrigues' formula).
+/// columns with sin_cos.h's sine and cosine (the C library's sincos, which branches on the angle,
+/// was half of this function); another axis takes Eigen's AngleAxis.
 inline void applyMotion(const Joint& joint, double value, Eigen::Isometry3d& pose) {
   switch (joint.type) {
     case JointType::Revolute:
-    case JointType::Continuous: {
-      double s = 0, c = 1;
-      detail::sinCos(value, s, c);
-      auto r = pose.linear();
+    case JointType::Continuous:
       if (joint.axis == Eigen::Vector3d::UnitZ()) {
+        double s = 0, c = 1;
+        detail::sinCos(value, s, c);
+        auto r = pose.linear();
         const Eigen::Vector3d x = r.col(0), y = r.col(1);
         r.col(0) = c * x + s * y;
         r.col(1) = c * y - s * x;
       } else {
-        const Eigen::Vector3d& a = joint.axis;
-        Eigen::Matrix3d turn = (1 - c) * a * a.transpose();
-        turn.diagonal().array() += c;
-        turn(0, 1) -= s * a.z();
-        turn(1, 0) += s * a.z();
-        turn(0, 2) += s * a.y();
-        turn(2, 0) -= s * a.y();
-        turn(1, 2) -= s * a.x();
-        turn(2, 1) += s * a.x();
-        r = r * turn;
+        pose.linear() = pose.linear() * Eigen::AngleAxisd(value, joint.axis).toRotationMatrix();
       }
       break;
-    }
     case JointType::Prismatic:
       pose.translation() += pose.linear() * (value * joint.axis);
       break;

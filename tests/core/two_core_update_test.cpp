@@ -101,7 +101,7 @@ TEST(HelperThread, AHelperThatKeepsTheCallerWaitingIsLetGo) {
     };
     slowRounds += session.run(2, body) ? 1 : 0;
   }
-  ASSERT_FALSE(session.helped()) << "the helper took " << slowRounds << " chunks";
+  ASSERT_FALSE(session.helped()) << "the helper shared " << slowRounds << " rounds";
   EXPECT_EQ(slowRounds, 4);
   std::array<std::thread::id, 2> ranOn{};
   auto body = [&](std::size_t c) { ranOn[c] = std::this_thread::get_id(); };

@@ -128,10 +128,11 @@ TEST(ForwardKinematics, HeldJointsAndBasePose) {
   EXPECT_THROW(panda.setHeldPosition("panda_finger_joint1", 0.5), InvalidArgument);
 }
 
-// A joint's turn (sin_cos.h's sine and cosine without a branch, two columns turned for the z
-// axis, Rodrigues' formula for any other) against Eigen's AngleAxis with the C library's sine and
-// cosine: within a few ulps at the octant boundaries of the reduction, at random angles, far out
-// and beyond the bound where the C library takes over. (A wrong sign or octant is off by up to 2.)
+// A turn about z (sin_cos.h's sine and cosine without a branch, two columns turned) against
+// Eigen's AngleAxis with the C library's sine and cosine: within a few ulps at the octant
+// boundaries of the reduction, at random angles, far out and beyond the bound where the C library
+// takes over. (A wrong sign or octant is off by up to 2.) The -z and oblique axes, which take
+// AngleAxis, check that only z takes the two-column turn.
 TEST(ForwardKinematics, AJointTurnsAsEigensAngleAxisDoes) {
   std::vector<double> angles{0.0, -0.0, 1e-300, 2 * pi, -pi};
   for (int octant = -24; octant <= 24; ++octant) {
