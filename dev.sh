@@ -36,16 +36,18 @@ case "$command" in
     scripts/install-deps.sh
     build build/release Release
     ctest --test-dir build/release --output-on-failure -j "$jobs"
-    # Sanitizer builds at -O1 without debug info: they compile in a fraction of the time, and
-    # the reports still name every function. The address+undefined build is Clang's, with the
-    # fuzz targets (fuzz/): one build of the library serves the tests and the fuzzers.
+    # Sanitizer builds at -O1 without debug info, as unity builds (several sources per
+    # compiler run; the SIMD paths' files, which carry their own flags, stay apart): they compile
+    # in a fraction of the time, and the reports still name every function. The address+undefined
+    # build is Clang's, with the fuzz targets (fuzz/): one build of the library serves the tests
+    # and the fuzzers.
     build build/sanitize Release -DCMAKE_CXX_COMPILER=clang++ -DFASTRON_SANITIZE=ON -DFASTRON_FUZZ=ON \
       -DFASTRON_FUZZ_SECONDS="${FASTRON_FUZZ_SECONDS:-10}" -DFASTRON_NATIVE=OFF \
-      -DFASTRON_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1
+      -DFASTRON_BUILD_BENCH=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 -DCMAKE_UNITY_BUILD=ON
     ctest --test-dir build/sanitize --output-on-failure -j "$jobs" -LE no-sanitizer
     build build/tsan Release -DFASTRON_TSAN=ON -DFASTRON_NATIVE=OFF -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
-      --target core_concurrency_tests proxy_tests proxy_soak planning_concurrency_tests \
-      geometry_concurrency_tests
+      -DCMAKE_UNITY_BUILD=ON --target core_concurrency_tests proxy_tests proxy_soak \
+      planning_concurrency_tests geometry_concurrency_tests
     ctest --test-dir build/tsan --output-on-failure -j "$jobs" -L concurrency
     ;;
   build)
