@@ -1,5 +1,6 @@
 // fastron: learned proxy collision detection from the command line.
 
+#include <malloc.h>
 #include <CLI/CLI.hpp>
 
 #include <ompl/util/Console.h>
@@ -25,6 +26,15 @@ std::string oneLine(std::string text) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A model update allocates and frees a few MB (the new points, their features, the trainer's
+  // grown matrices). By default glibc gives freed memory at the top of its heap back to the
+  // system, and the next update page-faults it in again: half a millisecond of a 7-joint update
+  // on the project's machine (docs/performance.md, "Memory an update gives back"). The command
+  // keeps it; a program using the library can do the same (or set GLIBC_TUNABLES).
+#ifdef __GLIBC__
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
   CLI::App app{"Fastron: learned proxy collision detection for motion planning", "fastron"};
   app.set_version_flag("--version", FASTRON_VERSION);
   app.require_subcommand(1);

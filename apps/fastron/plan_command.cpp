@@ -163,7 +163,7 @@ int runPlan(const PlanOptions& o) {
     // A model read from a file has no calibrated band: the planner falls back from it to FCL
     // directly. A model trained here plans on the model, then on the hybrid, then on FCL.
     const CalibratedModel calibrated =
-        !o.model.empty() ? CalibratedModel{readModel(o.model, robot, "model    ")}
+        !o.model.empty() ? CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}
                          : trainSceneModel(o, robot, fcl, o.selfCollision, true, "");
     plan = planVerified(calibrated, fcl, limits, start, goal, options);
   }
