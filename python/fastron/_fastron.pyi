@@ -183,7 +183,7 @@ class BackgroundHealth:
 
 def train_scene(oracle: Union[CollisionChecker, Callable[[npt.NDArray[np.float64]], bool]],
                 features: FeatureMap, samples: int = 16000, *, accuracy: float = 0.975,
-                tpr: float = 0.96, held_out: int = 8000, max_samples: int = 40000, seed: int = 1,
+                tpr: float = 0.96, held_out: int = 8000, max_samples: int = 64000, seed: int = 1,
                 self_collision_labels: bool = False, gamma: Optional[float] = None,
                 beta: Optional[float] = None,
                 grown_oracles: Sequence[Union[CollisionChecker,

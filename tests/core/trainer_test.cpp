@@ -165,7 +165,7 @@ TEST(Trainer, SceneDefaultsChangeOnlyTaskSpaceObstacleModels) {
   EXPECT_GT(scene.kernel.gamma, fk.kernel.gamma);
   EXPECT_EQ(scene.kernel.block, fk.kernel.block);
   EXPECT_EQ(scene.kernel.wholeShare, fk.kernel.wholeShare);
-  // Up to 40000 samples learned at once: room for the iterations and support points they need.
+  // Up to 64000 samples learned at once: room for the iterations and support points they need.
   EXPECT_EQ(scene.maxIterations, 20000u);
   EXPECT_EQ(scene.maxSupportPoints, 5000u);
   for (const auto& [kind, self] :

@@ -26,7 +26,7 @@ struct HeldOutTargets {
   double accuracy = 0.975, truePositiveRate = 0.96;
   std::size_t samplesPerRound = 8000;  ///< fresh uniform configurations measured per round
   /// No round learns past this many labelled configurations (the initial samples included).
-  std::size_t maxTrainingSamples = 40000;
+  std::size_t maxTrainingSamples = 64000;
 };
 
 /// Margins (metres) by which `fastron train --scene` grows a scene's obstacles for the grown
