@@ -96,6 +96,13 @@ bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b)
 
 struct FclChecker::Geometry {
   std::vector<FclGeometry> shapes;  // one per robot shape, padded
+  std::vector<std::uint8_t> moves;  // shapesMovedByConfiguration
+  std::vector<std::size_t> moving;  // the shapes that move, in shape order
+};
+
+struct FclChecker::Scratch {
+  KinematicsData kinematics;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> robotObjects;
 };
 
 struct FclChecker::Obstacles {
@@ -104,15 +111,24 @@ struct FclChecker::Obstacles {
   fcl::DynamicAABBTreeCollisionManagerd manager;
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // robot shapes that must not touch
-  std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
+  std::vector<std::pair<std::size_t, std::size_t>> movingSelfPairs;  // of those, the pairs a
+                                                                     // configuration can change
+  std::vector<std::uint8_t> allowed;                                 // see allowedObstacleContacts
+  // The robot shapes no configuration moves (the base, and links joined to it by fixed or held
+  // joints), placed once per scene: null for a shape that moves. Their contacts with obstacles and
+  // with each other are the same for every configuration, so they are looked for here once: a
+  // contact found makes every configuration collide. (Baxter's base, head and torso are 3 of its
+  // 13 shapes.)
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> fixedObjects;
+  std::optional<Contact> fixedContact;
+
+  /// Robot shape `shape` as placed for the configuration in `scratch`, or here if it does not move.
+  const fcl::CollisionObjectd& robotObject(const Scratch& scratch, std::size_t shape) const {
+    return fixedObjects[shape] ? *fixedObjects[shape] : *scratch.robotObjects[shape];
+  }
   // Mesh obstacles' FCL geometry by mesh, kept from one scene to the next (the mesh is held so
   // that its address cannot name another mesh later).
   std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, FclGeometry>> meshes;
-};
-
-struct FclChecker::Scratch {
-  KinematicsData kinematics;
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> robotObjects;
 };
 
 FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -126,8 +142,10 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   if (robot_.dof() == 0)
     throw InvalidArgument("FclChecker: robot '" + robot_.name() + "' has no actuated joints");
   auto geometry = std::make_shared<Geometry>();
+  geometry->moves = shapesMovedByConfiguration(robot_);
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
     geometry->shapes.push_back(toFcl(paddedShape(robot_, s, options_)));
+    if (geometry->moves[s] != 0) geometry->moving.push_back(s);
   }
   geometry_ = std::move(geometry);
   setScene(scene);
@@ -173,14 +191,48 @@ void FclChecker::setScene(const Scene& scene) {
   next->manager.setup();
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
+  placeFixedShapes(*next);
   obstacles_.set(std::move(next));
 }
 
-// Forward kinematics, then every robot shape moved to its pose with its AABB updated.
+void FclChecker::placeFixedShapes(Obstacles& world) const {
+  const Geometry& geometry = *geometry_;
+  KinematicsData kinematics = makeKinematicsData(robot_);
+  const std::vector<double> anyConfiguration(robot_.dof(), 0.0);
+  forwardKinematics(robot_, anyConfiguration.data(), kinematics, world.robotBase);
+  world.fixedObjects.resize(geometry.shapes.size());
+  for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
+    if (geometry.moves[s] != 0) continue;
+    world.fixedObjects[s] = std::make_unique<fcl::CollisionObjectd>(
+        geometry.shapes[s], toFcl(shapePose(robot_, kinematics, s)));
+    world.fixedObjects[s]->computeAABB();
+  }
+  for (std::size_t s = 0; s < geometry.shapes.size() && !world.fixedContact; ++s) {
+    if (geometry.moves[s] != 0) continue;
+    CollideData data;
+    if (!world.allowed.empty()) data.allowed = world.allowed.data() + s * world.objects.size();
+    world.manager.collide(world.fixedObjects[s].get(), &data, collideCallback);
+    if (data.hit != nullptr)
+      world.fixedContact = Contact{linkName(s), world.names[obstacleIndex(data.hit)], false};
+  }
+  for (const auto& [a, b] : world.selfPairs) {
+    if (geometry.moves[a] != 0 || geometry.moves[b] != 0) {
+      world.movingSelfPairs.emplace_back(a, b);
+    } else if (!world.fixedContact && shapesTouch(*world.fixedObjects[a], *world.fixedObjects[b])) {
+      world.fixedContact = Contact{linkName(a), linkName(b), true};
+    }
+  }
+}
+
+const std::string& FclChecker::linkName(std::size_t shape) const {
+  return robot_.links()[static_cast<std::size_t>(robot_.shapes()[shape].link)].name;
+}
+
+// Forward kinematics, then every robot shape that moves placed at its pose with its AABB updated.
 void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
                             const double* q) const {
   forwardKinematics(robot_, q, scratch.kinematics, base);
-  for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
+  for (const std::size_t s : geometry_->moving) {
     fcl::CollisionObjectd& object = *scratch.robotObjects[s];
     object.setTransform(toFcl(shapePose(robot_, scratch.kinematics, s)));
     object.computeAABB();
@@ -189,13 +241,9 @@ void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
 
 std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scratch,
                                            const double* q, bool wantContact) const {
+  if (world.fixedContact) return wantContact ? world.fixedContact : Contact{};
   placeRobot(scratch, world.robotBase, q);
-  const auto& shapes = robot_.shapes();
-  auto linkName = [&](std::size_t s) {
-    return robot_.links()[static_cast<std::size_t>(shapes[s].link)].name;
-  };
-
-  for (std::size_t s = 0; s < shapes.size(); ++s) {
+  for (const std::size_t s : geometry_->moving) {
     CollideData data;
     if (!world.allowed.empty()) data.allowed = world.allowed.data() + s * world.objects.size();
     world.manager.collide(scratch.robotObjects[s].get(), &data, collideCallback);
@@ -204,8 +252,8 @@ std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scra
       return Contact{linkName(s), world.names[obstacleIndex(data.hit)], false};
     }
   }
-  for (const auto& [a, b] : world.selfPairs) {
-    if (shapesTouch(*scratch.robotObjects[a], *scratch.robotObjects[b]))
+  for (const auto& [a, b] : world.movingSelfPairs) {
+    if (shapesTouch(world.robotObject(scratch, a), world.robotObject(scratch, b)))
       return Contact{linkName(a), linkName(b), true};
   }
   return std::nullopt;
@@ -221,7 +269,7 @@ std::vector<Contact> FclChecker::selfContacts(std::span<const double> q) const {
   for (const auto& [a, b] : world->selfPairs) {
     const std::pair<int, int> links = std::minmax(robot_.shapes()[a].link, robot_.shapes()[b].link);
     if (std::find(linkPairs.begin(), linkPairs.end(), links) != linkPairs.end()) continue;
-    if (!shapesTouch(*scratch->robotObjects[a], *scratch->robotObjects[b])) continue;
+    if (!shapesTouch(world->robotObject(*scratch, a), world->robotObject(*scratch, b))) continue;
     linkPairs.push_back(links);
     contacts.push_back({robot_.links()[static_cast<std::size_t>(links.first)].name,
                         robot_.links()[static_cast<std::size_t>(links.second)].name, true});
@@ -267,7 +315,7 @@ double FclChecker::distance(std::span<const double> q) const {
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    const fcl::CollisionObjectd& object = *scratch->robotObjects[s];
+    const fcl::CollisionObjectd& object = world->robotObject(*scratch, s);
     for (std::size_t o = 0; o < world->objects.size(); ++o) {
       if (!world->allowed.empty() && world->allowed[s * world->objects.size() + o] != 0) continue;
       fcl::DistanceResultd result;

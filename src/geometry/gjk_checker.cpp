@@ -118,8 +118,11 @@ bool gjkIntersect(const ConvexBody& a, const ConvexBody& b) {
 struct GjkChecker::World {
   std::vector<ConvexBody> obstacles;
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
-  std::vector<std::pair<std::size_t, std::size_t>> selfPairs;
-  std::vector<std::uint8_t> allowed;  // see allowedObstacleContacts
+  std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // pairs a configuration can change
+  std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
+  // A robot shape that no configuration moves touches an obstacle or another such shape, in this
+  // scene: every configuration collides (found once here, as in FclChecker).
+  bool fixedShapesCollide = false;
 };
 
 struct GjkChecker::Scratch {
@@ -141,6 +144,7 @@ GjkChecker::GjkChecker(Robot robot, const Scene& scene, CheckerOptions options)
     body.pose = robot_.shapes()[s].origin;
     robotBodies_.push_back(std::move(body));
   }
+  shapeMoves_ = shapesMovedByConfiguration(robot_);
   setScene(scene);
 }
 
@@ -154,9 +158,37 @@ void GjkChecker::setScene(const Scene& scene) {
     body.pose = o.pose;
     next->obstacles.push_back(std::move(body));
   }
-  if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
+  // The shapes that do not move, placed where every configuration puts them.
+  KinematicsData kinematics = makeKinematicsData(robot_);
+  const std::vector<double> anyConfiguration(robot_.dof(), 0.0);
+  forwardKinematics(robot_, anyConfiguration.data(), kinematics, next->robotBase);
+  std::vector<ConvexBody> fixed = robotBodies_;
+  for (std::size_t s = 0; s < fixed.size(); ++s) {
+    if (shapeMoves_[s] != 0) continue;
+    fixed[s].pose = shapePose(robot_, kinematics, s);
+    next->fixedShapesCollide = next->fixedShapesCollide || obstacleTouches(*next, fixed[s], s);
+  }
+  if (options_.selfCollision) {
+    for (const auto& [a, b] : robot_.selfCollisionPairs(scene.allowedCollisions)) {
+      if (shapeMoves_[a] != 0 || shapeMoves_[b] != 0) {
+        next->selfPairs.emplace_back(a, b);
+      } else {
+        next->fixedShapesCollide = next->fixedShapesCollide || gjkIntersect(fixed[a], fixed[b]);
+      }
+    }
+  }
   world_.set(std::move(next));
+}
+
+bool GjkChecker::obstacleTouches(const World& world, const ConvexBody& body,
+                                 std::size_t shape) const {
+  const std::size_t count = world.obstacles.size();
+  for (std::size_t o = 0; o < count; ++o) {
+    if (!world.allowed.empty() && world.allowed[shape * count + o] != 0) continue;
+    if (gjkIntersect(body, world.obstacles[o])) return true;
+  }
+  return false;
 }
 
 bool GjkChecker::check(const double* q) const {
@@ -180,16 +212,15 @@ void GjkChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) co
 }
 
 bool GjkChecker::collides(const World& world, Scratch& scratch, const double* q) const {
+  if (world.fixedShapesCollide) return true;
   forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
   const auto& shapes = robot_.shapes();
-  const std::size_t count = world.obstacles.size();
   for (std::size_t s = 0; s < shapes.size(); ++s) {
+    // Every shape is placed (a self pair may hold one that does not move); only the moving ones
+    // can meet an obstacle that the scene's set-up did not already rule out.
     scratch.robot[s].pose =
         scratch.kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
-    for (std::size_t o = 0; o < count; ++o) {
-      if (!world.allowed.empty() && world.allowed[s * count + o] != 0) continue;
-      if (gjkIntersect(scratch.robot[s], world.obstacles[o])) return true;
-    }
+    if (shapeMoves_[s] != 0 && obstacleTouches(world, scratch.robot[s], s)) return true;
   }
   for (const auto& [a, b] : world.selfPairs) {
     if (gjkIntersect(scratch.robot[a], scratch.robot[b])) return true;

@@ -66,4 +66,21 @@ void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data
   }
 }
 
+std::vector<std::uint8_t> shapesMovedByConfiguration(const Robot& robot) {
+  std::vector<std::uint8_t> actuated(robot.joints().size(), 0);
+  for (const int j : robot.actuatedJoints()) actuated[static_cast<std::size_t>(j)] = 1;
+  // Joints come parent before child: a link moves if its joint is actuated or its parent moves.
+  std::vector<std::uint8_t> linkMoves(robot.links().size(), 0);
+  for (std::size_t j = 0; j < robot.joints().size(); ++j) {
+    const Joint& joint = robot.joints()[j];
+    linkMoves[static_cast<std::size_t>(joint.child)] =
+        actuated[j] != 0 || linkMoves[static_cast<std::size_t>(joint.parent)] != 0;
+  }
+  std::vector<std::uint8_t> moves;
+  moves.reserve(robot.shapes().size());
+  for (const LinkShape& shape : robot.shapes())
+    moves.push_back(linkMoves[static_cast<std::size_t>(shape.link)]);
+  return moves;
+}
+
 }  // namespace fastron

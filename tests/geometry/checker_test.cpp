@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -11,6 +12,7 @@
 #include "fastron/core/error.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/proxy/labelling.h"
 #include "temp_dir.h"
@@ -241,6 +243,98 @@ TEST(Checkers, SelfCollisionFindsTheArmHittingTheBody) {
   }
   const FclChecker permissive(baxter, allowAll, {.selfCollision = true});
   for (Eigen::Index i = 0; i < 200; ++i) EXPECT_FALSE(permissive.inCollision({q.row(i).data(), 7}));
+}
+
+// Shapes that no configuration moves (Baxter's base, head and torso) are checked once per scene:
+// an obstacle on one of them makes every configuration collide, in both checkers, until the scene
+// allows the pair or moves the obstacle away.
+TEST(Checkers, AnObstacleOnAShapeThatNeverMovesCollidesWithEveryConfiguration) {
+  const Robot baxter = loadRobot("baxter");
+  KinematicsData kinematics = makeKinematicsData(baxter);
+  const std::vector<double> zero(7, 0.0);
+  forwardKinematics(baxter, zero.data(), kinematics);
+  const auto torso = static_cast<std::size_t>(
+      std::find_if(baxter.shapes().begin(), baxter.shapes().end(),
+                   [&](const LinkShape& s) { return s.link == baxter.linkIndex("torso"); }) -
+      baxter.shapes().begin());
+  ASSERT_LT(torso, baxter.shapes().size());
+  Scene scene;
+  scene.add({"on_the_torso", Sphere{0.02},
+             makePose(shapePose(baxter, kinematics, torso).translation()), std::nullopt});
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(baxter.limits(), 200, rng);
+  const auto collidingCount = [&](const CollisionChecker& checker) {
+    std::size_t colliding = 0;
+    for (Eigen::Index i = 0; i < q.rows(); ++i)
+      colliding += checker.inCollision({q.row(i).data(), 7}) ? 1 : 0;
+    return colliding;
+  };
+  for (const bool self : {false, true}) {
+    FclChecker fcl(baxter, scene, {.selfCollision = self});
+    const GjkChecker gjk(baxter, scene, {.selfCollision = self});
+    EXPECT_EQ(collidingCount(fcl), 200u);
+    EXPECT_EQ(collidingCount(gjk), 200u);
+    const auto contact = fcl.firstContact({q.row(0).data(), 7});
+    ASSERT_TRUE(contact.has_value());
+    EXPECT_EQ(contact->robotLink, "torso");
+    EXPECT_EQ(contact->other, "on_the_torso");
+    EXPECT_EQ(fcl.distance({q.row(0).data(), 7}), 0.0);
+
+    Scene moved = scene;
+    moved.setPose("on_the_torso", makePose({5, 5, 5}));
+    fcl.setScene(moved);
+    EXPECT_EQ(collidingCount(fcl),
+              collidingCount(GjkChecker(baxter, moved, {.selfCollision = self})));
+    EXPECT_LT(collidingCount(fcl), 200u);
+    EXPECT_GT(fcl.distance(zero), 1.0);  // the arm's own shapes are far from (5, 5, 5)
+  }
+  Scene allowed = scene;
+  allowed.allowedCollisions.allow("on_the_torso", "torso");
+  EXPECT_LT(collidingCount(FclChecker(baxter, allowed)), 200u);
+  EXPECT_LT(collidingCount(GjkChecker(baxter, allowed)), 200u);
+}
+
+// Two shapes that no configuration moves can still be a self-collision pair: here a held joint
+// turns the tip of a chain back onto its base (held joints, not fixed ones, join them, and the
+// link between them has geometry, so the pair is not adjacent). Every configuration of the
+// actuated slider then collides with the robot itself.
+TEST(Checkers, TwoShapesThatNeverMoveCanTouchEachOther) {
+  const auto joint = [](std::string name, JointType type, int parent, int child, double x) {
+    Joint j;
+    j.name = std::move(name);
+    j.type = type;
+    j.parent = parent;
+    j.child = child;
+    j.origin.translation() = Eigen::Vector3d(x, 0, 0);
+    j.axis = type == JointType::Prismatic ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+    j.lower = -4;
+    j.upper = 4;
+    return j;
+  };
+  const Box cube{Eigen::Vector3d(0.2, 0.2, 0.2)};
+  // base at 0, mid at x 1, tip 1 further along mid's x axis; the slider at z 2, clear of them.
+  Joint slide = joint("slide", JointType::Prismatic, 0, 3, 0);
+  slide.origin.translation() = Eigen::Vector3d(0, 0, 2);
+  Robot robot("chain", {{"base", -1}, {"mid", -1}, {"tip", -1}, {"slider", -1}},
+              {joint("bend", JointType::Revolute, 0, 1, 1),
+               joint("fold", JointType::Revolute, 1, 2, 1), slide},
+              {{0, Eigen::Isometry3d::Identity(), cube},
+               {1, Eigen::Isometry3d::Identity(), cube},
+               {2, Eigen::Isometry3d::Identity(), cube},
+               {3, Eigen::Isometry3d::Identity(), cube}});
+  robot.setActuatedJoints({"slide"});
+  const std::vector<double> q{0.5};
+  EXPECT_FALSE(FclChecker(robot, Scene{}, {.selfCollision = true}).inCollision(q));
+  robot.setHeldPosition("bend", std::numbers::pi);  // the tip folds back onto the base
+  const FclChecker fcl(robot, Scene{}, {.selfCollision = true});
+  EXPECT_TRUE(fcl.inCollision(q));
+  EXPECT_TRUE(GjkChecker(robot, Scene{}, {.selfCollision = true}).inCollision(q));
+  const auto contact = fcl.firstContact(q);
+  ASSERT_TRUE(contact.has_value());
+  EXPECT_TRUE(contact->selfCollision);
+  EXPECT_EQ(std::minmax(contact->robotLink, contact->other),
+            std::minmax(std::string("base"), std::string("tip")));
+  EXPECT_FALSE(FclChecker(robot, Scene{}).inCollision(q));  // without self-collision checks
 }
 
 TEST(Checkers, ContactNamesTheLinkAndTheObstacle) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -175,6 +176,48 @@ TEST(Robot, ActuatedJointSelection) {
   EXPECT_THROW(baxter.setActuatedJoints({"right_s0", "right_s0"}), InvalidArgument);
   EXPECT_THROW(baxter.setActuatedJoints({}), InvalidArgument);
   EXPECT_EQ(baxter.dof(), 4u);  // a refused selection changes nothing
+}
+
+// The shapes whose pose a configuration changes: those downstream of an actuated joint. Checked
+// against forward kinematics: a shape marked fixed keeps its pose under random configurations, one
+// marked moving changes it under some.
+TEST(Robot, ShapesMovedByConfigurationAreThoseDownstreamOfAnActuatedJoint) {
+  Robot baxter = loadRobot("baxter");
+  const auto fixedLinks = [&] {
+    const std::vector<std::uint8_t> moves = shapesMovedByConfiguration(baxter);
+    EXPECT_EQ(moves.size(), baxter.shapes().size());
+    KinematicsData data = makeKinematicsData(baxter);
+    const std::vector<double> zero(baxter.dof(), 0.0);
+    forwardKinematics(baxter, zero.data(), data);
+    const KinematicsData atZero = data;
+    std::vector<double> largest(moves.size(), 0.0);
+    Rng rng(4);
+    const Configurations q = uniformConfigurations(baxter.limits(), 20, rng);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      forwardKinematics(baxter, q.row(i).data(), data);
+      for (std::size_t s = 0; s < moves.size(); ++s) {
+        const Eigen::Matrix4d change =
+            shapePose(baxter, data, s).matrix() - shapePose(baxter, atZero, s).matrix();
+        largest[s] = std::max(largest[s], change.cwiseAbs().maxCoeff());
+      }
+    }
+    std::vector<std::string> names;
+    for (std::size_t s = 0; s < moves.size(); ++s) {
+      const std::string& link =
+          baxter.links()[static_cast<std::size_t>(baxter.shapes()[s].link)].name;
+      if (moves[s] == 0) names.push_back(link);
+      if (moves[s] == 0) EXPECT_EQ(largest[s], 0.0) << link;
+      if (moves[s] != 0) EXPECT_GT(largest[s], 1e-3) << link;
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  EXPECT_EQ(fixedLinks(), (std::vector<std::string>{"base", "head", "torso"}));
+  // A held joint moves nothing: without s0, the upper shoulder stays where s0's held value puts it.
+  baxter.setActuatedJoints(
+      {"right_s1", "right_e0", "right_e1", "right_w0", "right_w1", "right_w2"});
+  EXPECT_EQ(fixedLinks(),
+            (std::vector<std::string>{"base", "head", "right_upper_shoulder", "torso"}));
 }
 
 TEST(Robot, AdjacencySkipsLinksWithoutGeometry) {

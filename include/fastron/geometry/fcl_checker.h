@@ -67,6 +67,9 @@ class FclChecker final : public CollisionChecker {
   struct Obstacles;
   struct Scratch;
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
+  /// The shapes no configuration moves, placed in `world`, and their contacts (Obstacles).
+  void placeFixedShapes(Obstacles& world) const;
+  const std::string& linkName(std::size_t shape) const;
   /// Places the robot at q in `scratch`, then the first contact with `world` or itself.
   std::optional<Contact> collide(const Obstacles& world, Scratch& scratch, const double* q,
                                  bool wantContact) const;

@@ -53,10 +53,13 @@ class GjkChecker final : public CollisionChecker {
   struct Scratch;
   /// Places the robot at q in `scratch`; true when it touches an obstacle of `world` or itself.
   bool collides(const World& world, Scratch& scratch, const double* q) const;
+  /// Whether robot shape `shape`, placed as `body`, touches an obstacle it may not touch.
+  bool obstacleTouches(const World& world, const ConvexBody& body, std::size_t shape) const;
 
   Robot robot_;
   CheckerOptions options_;
-  std::vector<ConvexBody> robotBodies_;  // in their link frames (pose = shape origin)
+  std::vector<ConvexBody> robotBodies_;   // in their link frames (pose = shape origin)
+  std::vector<std::uint8_t> shapeMoves_;  // shapesMovedByConfiguration(robot_)
   Snapshot<World> world_;
   mutable ScratchPool<Scratch> scratch_;
 };

@@ -2,6 +2,7 @@
 // Forward kinematics: the world pose of every link for a configuration of the actuated joints.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -25,6 +26,11 @@ Eigen::Isometry3d jointTransform(const Joint& joint, double value);
 /// q: robot.dof() values of the actuated joints, in order. Does not allocate.
 void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data,
                        const Eigen::Isometry3d& base = Eigen::Isometry3d::Identity());
+
+/// Per collision shape (robot.shapes() order): 1 if an actuated joint lies between its link and
+/// the root, so that its pose depends on the configuration; 0 for shapes on the base and on links
+/// joined to it through fixed or held joints, whose pose only the robot's base sets.
+std::vector<std::uint8_t> shapesMovedByConfiguration(const Robot& robot);
 
 /// World pose of a collision shape after forwardKinematics.
 inline Eigen::Isometry3d shapePose(const Robot& robot, const KinematicsData& data,
