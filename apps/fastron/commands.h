@@ -32,5 +32,6 @@ void addRobotsCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addPlanCommand(CLI::App& app, int& exitCode);
 void addSampleCommand(CLI::App& app, int& exitCode);
+void addProblemsCommand(CLI::App& app, int& exitCode);
 
 }  // namespace fastron::cli

@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   fastron::cli::addTrainCommand(app, exitCode);
   fastron::cli::addEvalCommand(app, exitCode);
   fastron::cli::addSampleCommand(app, exitCode);
+  fastron::cli::addProblemsCommand(app, exitCode);
   fastron::cli::addDemoCommand(app, exitCode);
   fastron::cli::addCheckCommand(app, exitCode);
   fastron::cli::addRobotsCommand(app, exitCode);

@@ -5,9 +5,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/moveit_writer.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "temp_dir.h"
@@ -222,6 +224,56 @@ TEST(MoveItScene, ReadsTheRequestsForThePanda) {
   EXPECT_NEAR(actuatedConfiguration(panda, first.start, "start")[3], -2.356, 1e-15);
   NamedPositions partial{{"panda_joint1"}, {0.0}};
   EXPECT_THROW(actuatedConfiguration(panda, partial, "start"), InvalidArgument);
+}
+
+// What moveit_writer.h writes reads back as the same scene and request: shapes, poses (a turned
+// box, a tilted cylinder) and joint values bit for bit.
+TEST(MoveItWriter, ScenesAndRequestsReadBackAsWritten) {
+  Scene scene;
+  scene.add({"lid", Box{Eigen::Vector3d(0.7, 0.7, 0.04)}, makePose({0.9, -0.1, 1.3}, {0, 0.6, 0.3}),
+             std::nullopt});
+  scene.add({"ball", Sphere{0.05}, makePose({0.2, 0.3, 0.4}), std::nullopt});
+  scene.add({"can", Cylinder{0.03, 0.14}, makePose({0.8, 0, 0.53}, {0.2, 0, 0}), std::nullopt});
+  const std::string yaml = moveItSceneYaml(scene, "panda");
+  EXPECT_THAT(yaml, HasSubstr("dimensions: [0.7, 0.7, 0.04]"));  // the shortest exact text
+  const Scene read = parseMoveItScene(yaml, "written.yaml");
+  ASSERT_EQ(read.size(), 3u);
+  for (const Obstacle& o : scene.obstacles()) {
+    const Obstacle& r = read.obstacle(o.name);
+    EXPECT_EQ(r.shape.index(), o.shape.index()) << o.name;
+    EXPECT_TRUE(r.pose.isApprox(o.pose, 1e-14)) << o.name;
+  }
+  EXPECT_EQ(std::get<Box>(read.obstacle("lid").shape).size, Eigen::Vector3d(0.7, 0.7, 0.04));
+  EXPECT_EQ(std::get<Cylinder>(read.obstacle("can").shape).length, 0.14);
+  EXPECT_EQ(std::get<Cylinder>(read.obstacle("can").shape).radius, 0.03);
+
+  const PlanRequest request{
+      "arm", {{"j1", "j2"}, {0.1, -2.356194490192345}}, {{"j1", "j2"}, {1.0 / 3.0, 1e-300}}};
+  const PlanRequest back = parseMoveItRequest(moveItRequestYaml(request), "written.yaml");
+  EXPECT_EQ(back.group, "arm");
+  EXPECT_EQ(back.start.names, request.start.names);
+  EXPECT_EQ(back.start.positions, request.start.positions);
+  EXPECT_EQ(back.goal.names, request.goal.names);
+  EXPECT_EQ(back.goal.positions, request.goal.positions);
+}
+
+TEST(MoveItWriter, RefusesWhatItCannotWrite) {
+  Scene capsule;
+  capsule.add({"rod", Capsule{0.05, 0.3}, makePose({1, 0, 0}), std::nullopt});
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { moveItSceneYaml(capsule, "r"); }),
+              HasSubstr("obstacle 'rod' is a capsule"));
+  Scene moved;
+  moved.robotBase = makePose({0, 0, 1});
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { moveItSceneYaml(moved, "r"); }),
+              HasSubstr("robot base must be the identity"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                moveItRequestYaml({"arm", {{"j1", "j2"}, {0.0}}, {{"j1"}, {0.0}}});
+              }),
+              HasSubstr("start has 2 joint names but 1 positions"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                moveItRequestYaml({"arm", {{"j1"}, {0.0}}, {{"j1"}, {std::nan("")}}});
+              }),
+              HasSubstr("goal position of 'j1' is not finite"));
 }
 
 // Not only the samples: object poses, several primitives, inline meshes, and bad input.

@@ -1,0 +1,69 @@
+// fastron problems: planning problems in MotionBenchMaker's file format, generated.
+
+#include <chrono>
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "fastron/experiments/problem_families.h"
+#include "robot_options.h"
+
+namespace fastron::cli {
+namespace {
+
+struct ProblemsCommandOptions {
+  RobotOptions robot;
+  std::string family = "cage", output, group = "arm", tipLink;
+  std::size_t count = 10;
+  std::uint64_t seed = 1;
+  bool noSelfCollision = false;
+};
+
+int runProblems(const ProblemsCommandOptions& o) {
+  const Robot robot = loadRobotFromOptions(o.robot);
+  experiments::ProblemOptions options;
+  options.family = experiments::parseProblemFamily(o.family);
+  options.count = o.count;
+  options.seed = o.seed;
+  options.selfCollision = !o.noSelfCollision;
+  options.tipLink = o.tipLink;
+  const auto start = std::chrono::steady_clock::now();
+  const auto problems = experiments::generateProblems(robot, options);
+  experiments::writeProblems(o.output, robot, problems, o.group);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "wrote " << problems.size() << " '" << o.family << "' problems for " << robot.name()
+            << " to " << o.output << " (sceneNNNN.yaml, requestNNNN.yaml; " << seconds
+            << " s); plan them with: fastron bench motion-bench --problems " << o.output
+            << " --robot " << o.robot.robot << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void addProblemsCommand(CLI::App& app, int& exitCode) {
+  auto o = std::make_shared<ProblemsCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "problems",
+      "Write generated planning problems (MoveIt scene and request files, MotionBenchMaker's "
+      "format): the robot reaches into a cage or an open box placed anew for each problem");
+  addRobotOptions(*cmd, o->robot);
+  cmd->add_option("--family", o->family, "cage or box")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cage", "box"}));
+  cmd->add_option("-n,--count", o->count, "how many problems")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("-o,--output", o->output, "folder to write them to (created)")->required();
+  cmd->add_option("--seed", o->seed, "seed of the placements, starts and goals")
+      ->capture_default_str();
+  cmd->add_option("--group", o->group, "the requests' group_name")->capture_default_str();
+  cmd->add_option("--tip-link", o->tipLink,
+                  "link whose origin reaches the object (default: the child of the last "
+                  "actuated joint)");
+  cmd->add_flag("--no-self-collision", o->noSelfCollision,
+                "start and goal need not be free of the robot's collisions with itself");
+  cmd->callback([o, &exitCode] { exitCode = runProblems(*o); });
+}
+
+}  // namespace fastron::cli
