@@ -14,7 +14,7 @@ namespace {
 struct ProblemsCommandOptions {
   RobotOptions robot;
   std::string family = "cage", output, group = "arm", tipLink;
-  std::size_t count = 10;
+  std::size_t count = 10, samples = experiments::ProblemOptions{}.samplesPerAttempt;
   std::uint64_t seed = 1;
   bool noSelfCollision = false;
 };
@@ -27,6 +27,7 @@ int runProblems(const ProblemsCommandOptions& o) {
   options.seed = o.seed;
   options.selfCollision = !o.noSelfCollision;
   options.tipLink = o.tipLink;
+  options.samplesPerAttempt = o.samples;
   const auto start = std::chrono::steady_clock::now();
   const auto problems = experiments::generateProblems(robot, options);
   experiments::writeProblems(o.output, robot, problems, o.group);
@@ -57,6 +58,11 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", o->output, "folder to write them to (created)")->required();
   cmd->add_option("--seed", o->seed, "seed of the placements, starts and goals")
       ->capture_default_str();
+  cmd->add_option("--samples", o->samples,
+                  "uniform configurations drawn per try at a goal or a start (20 placements of the "
+                  "structure are tried)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--group", o->group, "the requests' group_name")->capture_default_str();
   cmd->add_option("--tip-link", o->tipLink,
                   "link whose origin reaches the object (default: the child of the last "
