@@ -19,11 +19,10 @@ struct Panel {
   double pitch = 0;  // about y, for the box's slanted lid
 };
 
-// Both structures stand on a 0.7 m square base plate, their walls 0.7 m high, in a frame whose
-// origin is under the robot's side of the plate's middle line; the arm reaches in from the robot's
-// side (-x). `structureOrigin` puts that frame where MotionBenchMaker's Panda problems have it
-// relative to the robot: the cage ahead and below the shoulder, the box ahead and well below the
-// base, reached from above.
+// The panels in the frame of MotionBenchMaker's scene descriptions: a 0.7 m square base plate
+// centred 0.8 m ahead, walls 0.7 m high, the robot's side open (-x). `structureOrigin` is where
+// that frame lies relative to the robot, as the benchmark offsets it for the Panda: the cage's
+// floor above the robot's base, the box's well below it, reached from above.
 std::vector<Panel> panels(ProblemFamily family) {
   const Eigen::Vector3d plate(0.7, 0.7, 0.04), side(0.7, 0.04, 0.7), back(0.04, 0.7, 0.7);
   std::vector<Panel> p{{"base", plate, {0.8, 0, 0.44}},
