@@ -64,9 +64,10 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--group", o->group, "the requests' group_name")->capture_default_str();
-  cmd->add_option("--tip-link", o->tipLink,
-                  "link whose origin reaches the object (default: the child of the last "
-                  "actuated joint)");
+  cmd->add_option(
+      "--tip-link", o->tipLink,
+      "link whose origin reaches the object (default: of the child of the last actuated joint "
+      "and the links fixed to it, the farthest from it, e.g. panda_grasptarget)");
   cmd->add_flag("--no-self-collision", o->noSelfCollision,
                 "start and goal need not be free of the robot's collisions with itself");
   cmd->callback([o, &exitCode] { exitCode = runProblems(*o); });
