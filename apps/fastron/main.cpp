@@ -27,10 +27,11 @@ std::string oneLine(std::string text) {
 
 int main(int argc, char** argv) {
   // A model update allocates and frees about a megabyte (the new points, their features, the
-  // trainer's grown matrices). By default glibc gives freed memory at the top of its heap back to
-  // the system, and the next update page-faults it in again: up to half a millisecond of a 7-joint
-  // update on the project's machine (docs/performance.md, "Memory an update gives back"). The
-  // command keeps it; a program using the library can do the same (or set GLIBC_TUNABLES).
+  // trainer's grown matrices). With the command's evaluations between updates, glibc gave freed
+  // memory at the top of its heap back to the system and the next update page-faulted it in again:
+  // up to half a millisecond of a 7-joint update on the project's machine (docs/performance.md,
+  // "Memory an update gives back"; updates alone, back to back, fault nothing). The command keeps
+  // it; a program using the library can do the same (or set GLIBC_TUNABLES).
 #ifdef __GLIBC__
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);

@@ -100,9 +100,7 @@ bool findConfiguration(const Robot& robot, int tip, const FclChecker& checker, s
 // Panda's grasp target between its fingertips, beyond its flange and hand.
 int defaultTip(const Robot& robot) {
   const int child = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints().back())].child;
-  KinematicsData kinematics = makeKinematicsData(robot);
-  const std::vector<double> zero(robot.dof(), 0.0);
-  forwardKinematics(robot, zero.data(), kinematics);
+  const KinematicsData kinematics = kinematicsAtZero(robot);
   const auto& poses = kinematics.linkPoses;
   std::vector<std::uint8_t> onTip(robot.links().size(), 0);
   onTip[static_cast<std::size_t>(child)] = 1;

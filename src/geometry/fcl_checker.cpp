@@ -197,9 +197,7 @@ void FclChecker::setScene(const Scene& scene) {
 
 void FclChecker::placeFixedShapes(Obstacles& world) const {
   const Geometry& geometry = *geometry_;
-  KinematicsData kinematics = makeKinematicsData(robot_);
-  const std::vector<double> anyConfiguration(robot_.dof(), 0.0);
-  forwardKinematics(robot_, anyConfiguration.data(), kinematics, world.robotBase);
+  const KinematicsData kinematics = kinematicsAtZero(robot_, world.robotBase);
   world.fixedObjects.resize(geometry.shapes.size());
   for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
     if (geometry.moves[s] != 0) continue;

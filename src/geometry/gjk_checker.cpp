@@ -115,19 +115,24 @@ bool gjkIntersect(const ConvexBody& a, const ConvexBody& b) {
   return ccdGJKIntersect(&a, &b, &ccd) != 0;
 }
 
+struct GjkChecker::Scratch {
+  KinematicsData kinematics;
+  std::vector<ConvexBody> robot;
+};
+
 struct GjkChecker::World {
   std::vector<ConvexBody> obstacles;
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // pairs a configuration can change
   std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
-  // A robot shape that no configuration moves touches an obstacle or another such shape, in this
-  // scene: every configuration collides (found once here, as in FclChecker).
+  // The robot's shapes placed where every configuration puts the ones that do not move (the
+  // moving ones are placed per check, in Scratch). One of those touches an obstacle or another
+  // such shape, in this scene: every configuration collides (found once here, as in FclChecker).
+  std::vector<ConvexBody> fixedBodies;
   bool fixedShapesCollide = false;
-};
 
-struct GjkChecker::Scratch {
-  KinematicsData kinematics;
-  std::vector<ConvexBody> robot;
+  /// Robot shape `shape` as placed for the configuration in `scratch`, or here if it does not move.
+  const ConvexBody& robotBody(const Scratch& scratch, std::size_t shape, bool moves) const;
 };
 
 GjkChecker::GjkChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -159,11 +164,9 @@ void GjkChecker::setScene(const Scene& scene) {
     next->obstacles.push_back(std::move(body));
   }
   next->allowed = allowedObstacleContacts(robot_, scene);
-  // The shapes that do not move, placed where every configuration puts them.
-  KinematicsData kinematics = makeKinematicsData(robot_);
-  const std::vector<double> anyConfiguration(robot_.dof(), 0.0);
-  forwardKinematics(robot_, anyConfiguration.data(), kinematics, next->robotBase);
-  std::vector<ConvexBody> fixed = robotBodies_;
+  const KinematicsData kinematics = kinematicsAtZero(robot_, next->robotBase);
+  std::vector<ConvexBody>& fixed = next->fixedBodies;
+  fixed = robotBodies_;
   for (std::size_t s = 0; s < fixed.size(); ++s) {
     if (shapeMoves_[s] != 0) continue;
     fixed[s].pose = shapePose(robot_, kinematics, s);
@@ -179,6 +182,11 @@ void GjkChecker::setScene(const Scene& scene) {
     }
   }
   world_.set(std::move(next));
+}
+
+const ConvexBody& GjkChecker::World::robotBody(const Scratch& scratch, std::size_t shape,
+                                               bool moves) const {
+  return moves ? scratch.robot[shape] : fixedBodies[shape];
 }
 
 bool GjkChecker::obstacleTouches(const World& world, const ConvexBody& body,
@@ -216,14 +224,15 @@ bool GjkChecker::collides(const World& world, Scratch& scratch, const double* q)
   forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
   const auto& shapes = robot_.shapes();
   for (std::size_t s = 0; s < shapes.size(); ++s) {
-    // Every shape is placed (a self pair may hold one that does not move); only the moving ones
-    // can meet an obstacle that the scene's set-up did not already rule out.
+    if (shapeMoves_[s] == 0) continue;  // placed and checked by setScene
     scratch.robot[s].pose =
         scratch.kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
-    if (shapeMoves_[s] != 0 && obstacleTouches(world, scratch.robot[s], s)) return true;
+    if (obstacleTouches(world, scratch.robot[s], s)) return true;
   }
   for (const auto& [a, b] : world.selfPairs) {
-    if (gjkIntersect(scratch.robot[a], scratch.robot[b])) return true;
+    if (gjkIntersect(world.robotBody(scratch, a, shapeMoves_[a] != 0),
+                     world.robotBody(scratch, b, shapeMoves_[b] != 0)))
+      return true;
   }
   return false;
 }

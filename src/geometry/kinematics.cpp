@@ -66,6 +66,13 @@ void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data
   }
 }
 
+KinematicsData kinematicsAtZero(const Robot& robot, const Eigen::Isometry3d& base) {
+  KinematicsData data = makeKinematicsData(robot);
+  const std::vector<double> zero(robot.dof(), 0.0);
+  forwardKinematics(robot, zero.data(), data, base);
+  return data;
+}
+
 std::vector<std::uint8_t> shapesMovedByConfiguration(const Robot& robot) {
   std::vector<std::uint8_t> actuated(robot.joints().size(), 0);
   for (const int j : robot.actuatedJoints()) actuated[static_cast<std::size_t>(j)] = 1;

@@ -205,9 +205,12 @@ TEST(Robot, ShapesMovedByConfigurationAreThoseDownstreamOfAnActuatedJoint) {
     for (std::size_t s = 0; s < moves.size(); ++s) {
       const std::string& link =
           baxter.links()[static_cast<std::size_t>(baxter.shapes()[s].link)].name;
-      if (moves[s] == 0) names.push_back(link);
-      if (moves[s] == 0) EXPECT_EQ(largest[s], 0.0) << link;
-      if (moves[s] != 0) EXPECT_GT(largest[s], 1e-3) << link;
+      if (moves[s] == 0) {
+        names.push_back(link);
+        EXPECT_EQ(largest[s], 0.0) << link;
+      } else {
+        EXPECT_GT(largest[s], 1e-3) << link;
+      }
     }
     std::sort(names.begin(), names.end());
     return names;

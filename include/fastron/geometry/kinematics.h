@@ -32,6 +32,12 @@ void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data
 /// joined to it through fixed or held joints, whose pose only the robot's base sets.
 std::vector<std::uint8_t> shapesMovedByConfiguration(const Robot& robot);
 
+/// Every link's pose with the actuated joints at 0 (held joints at their held values): right for
+/// the links no configuration moves (shapesMovedByConfiguration), which checkers place once per
+/// scene.
+KinematicsData kinematicsAtZero(const Robot& robot,
+                                const Eigen::Isometry3d& base = Eigen::Isometry3d::Identity());
+
 /// World pose of a collision shape after forwardKinematics.
 inline Eigen::Isometry3d shapePose(const Robot& robot, const KinematicsData& data,
                                    std::size_t shape) {
