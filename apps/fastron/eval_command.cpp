@@ -1,6 +1,7 @@
 // fastron eval: a model against a labelled dataset, or against FCL on fresh samples of a scene.
 
 #include <algorithm>
+#include <array>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -20,6 +21,7 @@
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
 #include "report_format.h"
 #include "robot_options.h"
@@ -28,11 +30,12 @@ namespace fastron::cli {
 namespace {
 
 struct EvalOptions {
-  std::string model, data, scene;
+  std::string model, data, scene, path;
   RobotOptions robot;
   std::size_t samples = 20000;
   std::uint64_t seed = 2;
-  bool selfCollision = false;
+  double resolution = 0.03;
+  bool selfCollision = false, clearance = false;
 };
 
 constexpr double kTimingSeconds = 0.2;  // each timing repeats the configurations this long
@@ -68,6 +71,36 @@ std::string missesByLink(const Model& model, const FclChecker& fcl, const Datase
   return text;
 }
 
+/// Where the model is wrong about free states, by their distance to the nearest obstacle: for
+/// each band, how many free states lie in it and the share the model calls colliding. A model
+/// that is accurate on average can still close a passage that a planner needs, because the
+/// states there lie close to obstacles (docs/planning.md, "Families beyond the samples").
+std::string freeStatesByClearance(const Model& model, const FclChecker& fcl, const Dataset& data) {
+  constexpr std::array<double, 3> kBounds{0.01, 0.02, 0.05};  // metres
+  constexpr std::array<const char*, 4> kNames{"under 1 cm", "1-2 cm", "2-5 cm", "5 cm or more"};
+  std::array<std::size_t, 4> free{}, calledColliding{};
+  for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
+    if (data.labels[static_cast<std::size_t>(i)] > 0) continue;
+    const Eigen::VectorXd q = data.points.row(i).transpose();
+    const double distance = fcl.distance({q.data(), static_cast<std::size_t>(q.size())});
+    const auto band = static_cast<std::size_t>(
+        std::upper_bound(kBounds.begin(), kBounds.end(), distance) - kBounds.begin());
+    ++free[band];
+    if (model.inCollision(q.data())) ++calledColliding[band];
+  }
+  std::string text;
+  for (std::size_t band = 0; band < free.size(); ++band) {
+    if (band > 0) text += ", ";
+    text += std::string(kNames[band]) + " " + std::to_string(free[band]);
+    if (free[band] > 0) {
+      text += " (" +
+              rate(static_cast<double>(calledColliding[band]) / static_cast<double>(free[band])) +
+              " called colliding)";
+    }
+  }
+  return text;
+}
+
 int runEval(const EvalOptions& o) {
   // --robot with --self-collision alone: a model of the robot's self-collisions (fastron train
   // --robot R --self-collision), against FCL on the robot without obstacles.
@@ -79,6 +112,10 @@ int runEval(const EvalOptions& o) {
         "--self-collision alone: the robot's self-collisions)");
   }
   if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
+  if ((!o.path.empty() || o.clearance) && o.scene.empty()) {
+    throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
+                          " needs --robot and --scene");
+  }
   std::optional<Robot> robot;
   if (!o.robot.robot.empty()) robot = loadRobotFromOptions(o.robot);
   const Model model = robot ? loadModelFor(o.model, *robot) : loadModel(o.model);
@@ -88,8 +125,12 @@ int runEval(const EvalOptions& o) {
   if (!o.scene.empty() || selfAlone) {
     fcl = std::make_shared<const FclChecker>(*robot, selfAlone ? Scene{} : loadScene(o.scene),
                                              CheckerOptions{o.selfCollision});
-    Rng rng(o.seed);
-    data.points = uniformConfigurations(robot->limits(), o.samples, rng);
+    if (o.path.empty()) {
+      Rng rng(o.seed);
+      data.points = uniformConfigurations(robot->limits(), o.samples, rng);
+    } else {
+      data.points = statesAlongPath(readPathCsv(o.path, robot->actuatedJointNames()), o.resolution);
+    }
     data.labels = labelConfigurations(*fcl, data.points);
   } else {
     data = readDataset(o.data);
@@ -117,10 +158,16 @@ int runEval(const EvalOptions& o) {
             << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
             << ", " << describeTerms(model.kernel(), model.featureDim()) << '\n';
   if (fcl) {
-    std::cout << "data        " << data.size() << " uniform configurations of "
-              << (selfAlone ? "the robot without obstacles" : o.scene) << " labelled by FCL (seed "
-              << o.seed << "), "
-              << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
+    std::cout << "data        " << data.size();
+    if (o.path.empty()) {
+      std::cout << " uniform configurations of "
+                << (selfAlone ? std::string("the robot without obstacles") : o.scene)
+                << " labelled by FCL (seed " << o.seed << "), ";
+    } else {
+      std::cout << " states along " << o.path << " (every " << o.resolution
+                << " rad, as a planner checks its edges) in " << o.scene << " labelled by FCL, ";
+    }
+    std::cout << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
                       static_cast<double>(data.size()))
               << " in collision\n";
   } else {
@@ -131,6 +178,10 @@ int runEval(const EvalOptions& o) {
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
   if (fcl) std::cout << "FN by link  " << missesByLink(model, *fcl, data) << '\n';
+  if (fcl && (o.clearance || !o.path.empty())) {
+    std::cout << "clearance   free states by distance to the nearest obstacle: "
+              << freeStatesByClearance(model, *fcl, data) << '\n';
+  }
   std::cout << "query time  " << durationText(query) << " per configuration (features "
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
@@ -157,6 +208,17 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--scene", o->scene,
                   "with --robot: compare with FCL on fresh uniform samples of this scene")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--path", o->path,
+                  "with --scene: the states along this path (CSV as fastron plan --out writes it) "
+                  "instead of uniform samples, with the free states' clearance")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--resolution", o->resolution,
+                  "with --path: joint-space step between the states checked along each edge")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--clearance", o->clearance,
+                "with --scene: also the free states by distance to the nearest obstacle, and the "
+                "share of each the model calls colliding (FCL distances: slow on mesh robots)");
   cmd->add_option("--samples", o->samples, "with --scene: how many samples")
       ->capture_default_str()
       ->check(numberAbove(0));

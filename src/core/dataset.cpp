@@ -10,39 +10,12 @@
 #include <string>
 #include <string_view>
 
+#include "fastron/core/csv_table.h"
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
 
 namespace fastron {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> splitFields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return fields;
-}
-
-/// The whole field as a number (a leading '+' allowed), or nothing.
-std::optional<double> parseNumber(std::string_view field) {
-  if (field.size() > 1 && field.front() == '+') field.remove_prefix(1);
-  double value = 0;
-  const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), value);
-  if (error != std::errc() || end != field.data() + field.size() || field.empty()) return {};
-  return value;
-}
 
 std::int8_t toLabel(double value, const std::string& where) {
   if (value == 1.0) return 1;
@@ -68,58 +41,24 @@ Dataset fromRows(const std::vector<double>& values, std::size_t columns, Labels 
 }  // namespace
 
 Dataset parseCsv(std::string_view csv, const std::string& source) {
-  const std::string& file = source;
-  std::vector<double> values;
-  Labels labels;
-  std::vector<std::string> header;
-  std::size_t columns = 0;
-  bool first = true;
-  // Line by line over the text itself, without copying it.
-  std::size_t lineNo = 0;
-  for (std::size_t begin = 0; begin < csv.size();) {
-    const std::size_t end = std::min(csv.find('\n', begin), csv.size());
-    const std::string_view text = trim(csv.substr(begin, end - begin));
-    begin = end + 1;
-    ++lineNo;
-    if (text.empty()) continue;
-    const std::vector<std::string_view> fields = splitFields(text);
-    const std::string where = file + ":" + std::to_string(lineNo);
-    if (first) {
-      first = false;
-      columns = fields.size();
-      if (columns < 2) {
-        throw FileError(where +
-                        ": need at least one configuration column and a label column, found " +
-                        std::to_string(columns) + " column");
-      }
-      // A header row is one without a single number in it.
-      bool isHeader = true;
-      for (const auto field : fields) isHeader = isHeader && !parseNumber(field);
-      if (isHeader) {
-        for (std::size_t c = 0; c + 1 < fields.size(); ++c) header.emplace_back(fields[c]);
-        continue;
-      }
-    }
-    if (fields.size() != columns) {
-      throw FileError(where + ": " + std::to_string(fields.size()) + " columns, expected " +
-                      std::to_string(columns));
-    }
-    for (std::size_t c = 0; c < columns; ++c) {
-      const std::string at = where + ": column " + std::to_string(c + 1);
-      const auto value = parseNumber(fields[c]);
-      if (!value) throw FileError(at + ": '" + std::string(fields[c]) + "' is not a number");
-      if (!std::isfinite(*value))
-        throw FileError(at + ": value is not finite (" + std::string(fields[c]) + ")");
-      if (c + 1 < columns) {
-        values.push_back(*value);
-      } else {
-        labels.push_back(toLabel(*value, at));
-      }
-    }
+  const CsvTable table = parseCsvTable(csv, source);
+  if (table.columns == 1) {
+    throw FileError(source + ":" + std::to_string(table.firstLine) +
+                    ": need at least one configuration column and a label column, found 1 column");
   }
-  if (labels.empty()) throw FileError(file + ": no data rows");
-  Dataset data = fromRows(values, columns, std::move(labels));
-  data.columnNames = std::move(header);
+  if (table.rows() == 0) throw FileError(source + ": no data rows");
+  Dataset data;
+  const std::size_t dim = table.columns - 1;
+  data.points.resize(static_cast<Eigen::Index>(table.rows()), static_cast<Eigen::Index>(dim));
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    for (std::size_t j = 0; j < dim; ++j) {
+      data.points(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = table.at(i, j);
+    }
+    data.labels.push_back(
+        toLabel(table.at(i, dim), source + ":" + std::to_string(table.lineNumbers[i]) +
+                                      ": column " + std::to_string(table.columns)));
+  }
+  if (!table.header.empty()) data.columnNames.assign(table.header.begin(), table.header.end() - 1);
   return data;
 }
 
@@ -151,7 +90,7 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
     const std::size_t colon = k == std::string::npos ? k : header.find(':', k);
     if (colon == std::string::npos)
       throw FileError(file + ": .npy header has no '" + key + "' field");
-    return trim(std::string_view(header).substr(colon + 1));
+    return trimBlanks(std::string_view(header).substr(colon + 1));
   };
   auto enclosed = [&](std::string_view text, char open, char close, const char* key) {
     const std::size_t end =
@@ -166,7 +105,7 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
   const bool fortran = valueOf("fortran_order").starts_with("True");
   const std::string_view shapeText = enclosed(valueOf("shape"), '(', ')', "shape");
   std::vector<std::size_t> shape;
-  for (const auto field : splitFields(shapeText)) {
+  for (const auto field : splitCsvFields(shapeText)) {
     if (field.empty()) continue;
     std::size_t v = 0;
     const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v);

@@ -1,10 +1,12 @@
 #include "fastron/planning/motion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <string>
 
+#include "fastron/core/csv_table.h"
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
 
@@ -104,6 +106,60 @@ void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNa
     out << '\n';
   }
   writeFileAtomically(file, out.view(), "path file");
+}
+
+JointPath readPathCsv(const std::filesystem::path& file,
+                      const std::vector<std::string>& jointNames) {
+  const std::string source = file.string();
+  const CsvTable table = parseCsvTable(readFile(file, "path file"), source);
+  if (table.firstLine == 0) throw FileError(source + ": no waypoints");
+  const std::string where = source + ":" + std::to_string(table.firstLine);
+  if (!table.header.empty()) {
+    for (std::size_t c = 0; c < std::max(table.columns, jointNames.size()); ++c) {
+      const std::string named = c < table.columns ? table.header[c] : "nothing";
+      const std::string joint = c < jointNames.size() ? jointNames[c] : "no joint";
+      if (named != joint) {
+        throw FileError(where + ": column " + std::to_string(c + 1) + " is '" + named +
+                        "', but the robot's joint " + std::to_string(c + 1) + " is '" + joint +
+                        "' (a path file's header names the robot's joints in order)");
+      }
+    }
+  } else if (table.columns != jointNames.size()) {
+    throw FileError(where + ": " + std::to_string(table.columns) + " columns, but the robot has " +
+                    std::to_string(jointNames.size()) + " joints");
+  }
+  if (table.rows() == 0) throw FileError(source + ": no waypoints");
+  JointPath path;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    path.emplace_back(Eigen::Map<const Eigen::VectorXd>(table.values.data() + i * table.columns,
+                                                        static_cast<Eigen::Index>(table.columns)));
+  }
+  return path;
+}
+
+Configurations statesAlongPath(const JointPath& path, double resolution) {
+  if (path.empty()) return {};
+  const auto dim = path.front().size();
+  checkWaypointSizes(path, static_cast<std::size_t>(dim));
+  std::vector<std::size_t> segments;
+  std::size_t count = 1;
+  for (std::size_t e = 0; e + 1 < path.size(); ++e) {
+    segments.push_back(segmentCount(path[e], path[e + 1], resolution));
+    count += segments.back();
+  }
+  Configurations states(static_cast<Eigen::Index>(count), dim);
+  Eigen::Index row = 0;
+  for (std::size_t e = 0; e < segments.size(); ++e) {
+    for (std::size_t i = 0; i < segments[e]; ++i) {
+      const double t = static_cast<double>(i) / static_cast<double>(segments[e]);
+      for (Eigen::Index j = 0; j < dim; ++j) {  // as motionStates computes them
+        states(row, j) = path[e][j] + t * (path[e + 1][j] - path[e][j]);
+      }
+      ++row;
+    }
+  }
+  states.row(row) = path.back().transpose();
+  return states;
 }
 
 }  // namespace fastron

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "fastron/core/csv_table.h"
 #include "fastron/core/error.h"
 #include "temp_dir.h"
 
@@ -30,6 +31,22 @@ TEST_F(DatasetFiles, ReadsCsvWithHeader) {
   EXPECT_EQ(data.points(1, 0), 0.3);
   EXPECT_EQ(data.labels, (Labels{1, -1}));
   EXPECT_EQ(data.columnNames, (std::vector<std::string>{"q1", "q2"}));
+}
+
+// The table under datasets and path files: the header, and each row's own line in the file.
+TEST(CsvTable, KeepsTheHeaderAndEachRowsLine) {
+  const CsvTable table = parseCsvTable("\n x , y\n1,2\n\n 3 ,+4\r\n", "t.csv");
+  EXPECT_EQ(table.header, (std::vector<std::string>{"x", "y"}));
+  EXPECT_EQ(table.columns, 2u);
+  EXPECT_EQ(table.firstLine, 2u);
+  EXPECT_EQ(table.lineNumbers, (std::vector<std::size_t>{3, 5}));
+  EXPECT_EQ(table.values, (std::vector<double>{1, 2, 3, 4}));
+  EXPECT_EQ(table.at(1, 0), 3);
+  const CsvTable empty = parseCsvTable("\n\n", "e.csv");
+  EXPECT_EQ(empty.rows(), 0u);
+  EXPECT_EQ(empty.firstLine, 0u);
+  EXPECT_THAT(messageOf<FileError>([] { parseCsvTable("1,2\n\n3\n", "t.csv"); }),
+              HasSubstr("t.csv:3: 1 columns, expected 2"));
 }
 
 TEST_F(DatasetFiles, ReadsCsvWithoutHeader) {

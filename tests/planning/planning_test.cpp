@@ -98,6 +98,60 @@ TEST(Motion, StatesCoverTheMotionOnceInBisectionOrder) {
   }
 }
 
+// The states along a path are those a check at that resolution looks at (checkPath's edges cut
+// by segmentCount, motionStates' values), in the path's order, no step longer than the resolution.
+TEST(Motion, StatesAlongAPathAreTheCheckedStatesInOrder) {
+  const JointPath path{vec({0, 0}), vec({0.3, 0.4}), vec({0.3, 0.4}), vec({-0.2, 0.4})};
+  const double resolution = 0.09;
+  const Configurations states = statesAlongPath(path, resolution);
+  ASSERT_EQ(states.rows(), 1 + 6 + 1 + 6);  // ceil(0.5 / 0.09) = 6, a zero-length edge 1
+  EXPECT_EQ(Eigen::VectorXd(states.row(0).transpose()), path.front());
+  EXPECT_EQ(Eigen::VectorXd(states.row(states.rows() - 1).transpose()), path.back());
+  for (Eigen::Index i = 1; i < states.rows(); ++i) {
+    EXPECT_LE((states.row(i) - states.row(i - 1)).norm(), resolution + 1e-12) << "state " << i;
+  }
+  std::vector<double> edge;
+  motionStates(path[0].data(), path[1].data(), 2, 6, edge);
+  std::set<std::pair<double, double>> checked, along;
+  for (std::size_t k = 0; k < edge.size(); k += 2) checked.insert({edge[k], edge[k + 1]});
+  for (Eigen::Index i = 1; i <= 6; ++i) along.insert({states(i, 0), states(i, 1)});
+  EXPECT_EQ(along, checked) << "the same numbers as the verification checks";
+  EXPECT_EQ(statesAlongPath({}, resolution).rows(), 0);
+  EXPECT_THROW(statesAlongPath({vec({0, 0}), vec({0})}, resolution), InvalidArgument);
+}
+
+class PathFiles : public test::TempDir {};
+
+TEST_F(PathFiles, ReadsWhatWritePathCsvWrites) {
+  const JointPath path{vec({0.1, -2.5}), vec({1.0 / 3.0, 1e-17}), vec({3.0, 0.0})};
+  writePathCsv(path, {"a", "b"}, this->path("p.csv"));
+  EXPECT_EQ(readPathCsv(this->path("p.csv"), {"a", "b"}), path);
+  write("bare.csv", "0.5, 1\n\n-1,2\r\n");
+  EXPECT_EQ(readPathCsv(this->path("bare.csv"), {"a", "b"}),
+            (JointPath{vec({0.5, 1}), vec({-1, 2})}));
+}
+
+TEST_F(PathFiles, BadPathFilesNameTheFileLineAndColumn) {
+  const auto error = [&](const std::string& text) {
+    write("p.csv", text);
+    return messageOf<FileError>([&] { readPathCsv(path("p.csv"), {"a", "b"}); });
+  };
+  EXPECT_THAT(error("a,c\n0,0\n"),
+              HasSubstr("p.csv:1: column 2 is 'c', but the robot's joint 2 is 'b'"));
+  EXPECT_THAT(error("a\n0\n"),
+              HasSubstr("p.csv:1: column 2 is 'nothing', but the robot's joint 2 is 'b'"));
+  EXPECT_THAT(error("a,b,c\n0,0,0\n"),
+              HasSubstr("column 3 is 'c', but the robot's joint 3 is 'no joint'"));
+  EXPECT_THAT(error("\n0,0,0\n"), HasSubstr("p.csv:2: 3 columns, but the robot has 2 joints"));
+  EXPECT_THAT(error("a,b\n0,0\n1\n"), HasSubstr("p.csv:3: 1 columns, expected 2"));
+  EXPECT_THAT(error("a,b\n0,x\n"), HasSubstr("p.csv:2: column 2: 'x' is not a number"));
+  EXPECT_THAT(error("a,b\n0,nan\n"), HasSubstr("p.csv:2: column 2: value is not finite"));
+  EXPECT_THAT(error("a,b\n"), HasSubstr("p.csv: no waypoints"));
+  EXPECT_THAT(error(""), HasSubstr("p.csv: no waypoints"));
+  EXPECT_THAT(messageOf<FileError>([&] { readPathCsv(path("absent.csv"), {"a"}); }),
+              HasSubstr("absent.csv: cannot open path file"));
+}
+
 TEST(Motion, CheckPathFindsInvalidWaypointsAndEdges) {
   const auto wall = wallChecker();
   const JointPath path{kStart, vec({-0.5, 0.0}), vec({0.0, 0.0}), vec({0.5, 0.9}), kGoal};

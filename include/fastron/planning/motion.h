@@ -10,6 +10,7 @@
 
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/export.h"
+#include "fastron/core/types.h"
 
 namespace FASTRON_API fastron {
 
@@ -39,6 +40,19 @@ double pathLength(const JointPath& path);
 /// has another length than the names, FileError when the file cannot be written.
 void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNames,
                   const std::filesystem::path& file);
+
+/// Reads a path as writePathCsv writes it: a header of joint names, then one waypoint per row.
+/// The header must name `jointNames` in that order; a file without a header must have one
+/// column per joint. Throws FileError naming the file, and the line and column, of the first
+/// problem: a header naming other joints, a ragged row, a value that is not a finite number, no
+/// waypoint.
+JointPath readPathCsv(const std::filesystem::path& file,
+                      const std::vector<std::string>& jointNames);
+
+/// Every state a check of `path` at `resolution` looks at, in the path's order: each waypoint,
+/// then the interior states of the edge that leaves it (segmentCount segments, as checkPath
+/// cuts them), and the last waypoint. One row per state.
+Configurations statesAlongPath(const JointPath& path, double resolution);
 
 /// What the exact checker says about a path.
 struct PathCheck {
