@@ -5,7 +5,7 @@
 #
 # Builds the Clang fuzz build in build/fuzz (FASTRON_FUZZ_BUILD: another folder, e.g.
 # build/sanitize, which ./dev.sh test makes), then fuzzes each target (default: all) for
-# SECONDS_PER_TARGET (default 420: one hour over the nine readers), FASTRON_FUZZ_PARALLEL at a time
+# SECONDS_PER_TARGET (default 420: 70 minutes over the ten readers), FASTRON_FUZZ_PARALLEL at a time
 # (default: 2 on a machine with two cores or more). The corpus grows in BUILD/fuzz/corpus/NAME and
 # persists between campaigns; crashing inputs land in BUILD/fuzz/findings. Writes
 # BUILD/campaign.md, a table of executions, coverage and findings per target, and
@@ -21,7 +21,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=
   -DFASTRON_BUILD_TESTS=ON -DCMAKE_CXX_FLAGS_RELEASE=-O1 >/dev/null
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-  targets=(csv npy model urdf srdf scene moveit_scene moveit_request robot_catalogue)
+  targets=(csv path npy model urdf srdf scene moveit_scene moveit_request robot_catalogue)
 fi
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]/%/_fuzzer}"
 

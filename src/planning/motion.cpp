@@ -110,8 +110,12 @@ void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNa
 
 JointPath readPathCsv(const std::filesystem::path& file,
                       const std::vector<std::string>& jointNames) {
-  const std::string source = file.string();
-  const CsvTable table = parseCsvTable(readFile(file, "path file"), source);
+  return parsePathCsv(readFile(file, "path file"), file.string(), jointNames);
+}
+
+JointPath parsePathCsv(std::string_view text, const std::string& source,
+                       const std::vector<std::string>& jointNames) {
+  const CsvTable table = parseCsvTable(text, source);
   if (table.firstLine == 0) throw FileError(source + ": no waypoints");
   const std::string where = source + ":" + std::to_string(table.firstLine);
   if (!table.header.empty()) {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
@@ -48,6 +49,9 @@ void writePathCsv(const JointPath& path, const std::vector<std::string>& jointNa
 /// waypoint.
 JointPath readPathCsv(const std::filesystem::path& file,
                       const std::vector<std::string>& jointNames);
+/// The same reader on the text of a file; errors name `source` as they would the file.
+JointPath parsePathCsv(std::string_view text, const std::string& source,
+                       const std::vector<std::string>& jointNames);
 
 /// Every state a check of `path` at `resolution` looks at, in the path's order: each waypoint,
 /// then the interior states of the edge that leaves it (segmentCount segments, as checkPath
