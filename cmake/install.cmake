@@ -17,7 +17,7 @@ install(TARGETS fastron_build_options ${FASTRON_INSTALLED_LAYERS}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS fastron RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY data/robots data/scenes DESTINATION ${FASTRON_SHARE_SUBDIR})
-install(FILES scripts/plot_demo.py scripts/plot_experiments.py
+install(FILES scripts/plot_along_path.py scripts/plot_demo.py scripts/plot_experiments.py
   DESTINATION ${FASTRON_SHARE_SUBDIR}/scripts)
 
 set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/fastron)

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +26,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
+#include "plotting.h"
 #include "report_format.h"
 #include "robot_options.h"
 
@@ -30,12 +34,12 @@ namespace fastron::cli {
 namespace {
 
 struct EvalOptions {
-  std::string model, data, scene, path;
+  std::string model, data, scene, path, out;
   RobotOptions robot;
   std::size_t samples = 20000;
   std::uint64_t seed = 2;
   double resolution = 0.03;
-  bool selfCollision = false, clearance = false;
+  bool selfCollision = false, clearance = false, plot = true;
 };
 
 constexpr double kTimingSeconds = 0.2;  // each timing repeats the configurations this long
@@ -71,34 +75,89 @@ std::string missesByLink(const Model& model, const FclChecker& fcl, const Datase
   return text;
 }
 
+/// Each configuration's distance to the nearest obstacle under FCL (0 for a colliding one).
+std::vector<double> clearances(const FclChecker& fcl, const Dataset& data) {
+  std::vector<double> distance(data.size(), 0.0);
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (data.labels[i] > 0) continue;
+    const Eigen::VectorXd q = data.points.row(static_cast<Eigen::Index>(i)).transpose();
+    distance[i] = fcl.distance({q.data(), static_cast<std::size_t>(q.size())});
+  }
+  return distance;
+}
+
 /// Where the model is wrong about free states, by their distance to the nearest obstacle: for
 /// each band, how many free states lie in it and the share the model calls colliding. A model
 /// that is accurate on average can still close a passage that a planner needs, because the
 /// states there lie close to obstacles (docs/planning.md, "Families beyond the samples").
-std::string freeStatesByClearance(const Model& model, const FclChecker& fcl, const Dataset& data) {
+std::string freeStatesByClearance(const Dataset& data, const std::vector<double>& clearance,
+                                  const std::vector<std::uint8_t>& calledColliding) {
   constexpr std::array<double, 3> kBounds{0.01, 0.02, 0.05};  // metres
   constexpr std::array<const char*, 4> kNames{"under 1 cm", "1-2 cm", "2-5 cm", "5 cm or more"};
-  std::array<std::size_t, 4> free{}, calledColliding{};
-  for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
-    if (data.labels[static_cast<std::size_t>(i)] > 0) continue;
-    const Eigen::VectorXd q = data.points.row(i).transpose();
-    const double distance = fcl.distance({q.data(), static_cast<std::size_t>(q.size())});
+  std::array<std::size_t, 4> free{}, wrong{};
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (data.labels[i] > 0) continue;
     const auto band = static_cast<std::size_t>(
-        std::upper_bound(kBounds.begin(), kBounds.end(), distance) - kBounds.begin());
+        std::upper_bound(kBounds.begin(), kBounds.end(), clearance[i]) - kBounds.begin());
     ++free[band];
-    if (model.inCollision(q.data())) ++calledColliding[band];
+    if (calledColliding[i] != 0) ++wrong[band];
   }
   std::string text;
   for (std::size_t band = 0; band < free.size(); ++band) {
     if (band > 0) text += ", ";
     text += std::string(kNames[band]) + " " + std::to_string(free[band]);
     if (free[band] > 0) {
-      text += " (" +
-              rate(static_cast<double>(calledColliding[band]) / static_cast<double>(free[band])) +
+      text += " (" + rate(static_cast<double>(wrong[band]) / static_cast<double>(free[band])) +
               " called colliding)";
     }
   }
   return text;
+}
+
+/// The states along a path, one row each: where on the path (state index, joint-space distance
+/// from the start), the joint values, FCL's answer, the model's score and answer, the clearance.
+experiments::Table alongPathTable(const Model& model, const Dataset& data,
+                                  const std::vector<std::string>& jointNames,
+                                  const std::vector<double>& clearance) {
+  experiments::Table table;
+  table.columns = {"state", "arc_length"};
+  table.columns.insert(table.columns.end(), jointNames.begin(), jointNames.end());
+  table.columns.insert(table.columns.end(),
+                       {"fcl_collides", "score", "model_collides", "clearance_m"});
+  const auto number = [](double value) {
+    std::ostringstream text;
+    text << std::setprecision(17) << value;
+    return text.str();
+  };
+  double arc = 0;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    if (i > 0) arc += (data.points.row(row) - data.points.row(row - 1)).norm();
+    const Eigen::VectorXd q = data.points.row(row).transpose();
+    std::vector<std::string> cells{std::to_string(i), number(arc)};
+    for (Eigen::Index j = 0; j < q.size(); ++j) cells.push_back(number(q[j]));
+    cells.insert(cells.end(), {data.labels[i] > 0 ? "1" : "0", number(model.score(q.data())),
+                               model.inCollision(q.data()) ? "1" : "0", number(clearance[i])});
+    table.add(std::move(cells));
+  }
+  return table;
+}
+
+/// OUT/along_path.csv and, unless --no-plot, OUT/along_path.png (scripts/plot_along_path.py).
+void writeAlongPath(const EvalOptions& o, const experiments::Table& table) {
+  const std::filesystem::path dir(o.out);
+  std::filesystem::create_directories(dir);
+  table.writeCsv(dir / "along_path.csv");
+  std::cout << "written     " << (dir / "along_path.csv").string();
+  if (o.plot) {
+    const std::string error = runPlotScript("plot_along_path.py", {dir.string()});
+    if (error.empty()) {
+      std::cout << ", " << (dir / "along_path.png").string();
+    } else {
+      std::cerr << "fastron: warning: no plot drawn: " << error << '\n';
+    }
+  }
+  std::cout << '\n';
 }
 
 int runEval(const EvalOptions& o) {
@@ -112,6 +171,7 @@ int runEval(const EvalOptions& o) {
         "--self-collision alone: the robot's self-collisions)");
   }
   if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
+  if (!o.out.empty() && o.path.empty()) throw InvalidArgument("--out needs --path");
   if ((!o.path.empty() || o.clearance) && o.scene.empty()) {
     throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
                           " needs --robot and --scene");
@@ -178,9 +238,18 @@ int runEval(const EvalOptions& o) {
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
   if (fcl) std::cout << "FN by link  " << missesByLink(model, *fcl, data) << '\n';
+  std::optional<experiments::Table> alongPath;
   if (fcl && (o.clearance || !o.path.empty())) {
+    const std::vector<double> clearance = clearances(*fcl, data);
+    std::vector<std::uint8_t> calledColliding(data.size());
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      calledColliding[i] = model.inCollision(data.points.row(static_cast<Eigen::Index>(i)).data());
+    }
     std::cout << "clearance   free states by distance to the nearest obstacle: "
-              << freeStatesByClearance(model, *fcl, data) << '\n';
+              << freeStatesByClearance(data, clearance, calledColliding) << '\n';
+    if (!o.out.empty()) {
+      alongPath = alongPathTable(model, data, robot->actuatedJointNames(), clearance);
+    }
   }
   std::cout << "query time  " << durationText(query) << " per configuration (features "
             << durationText(features) << ", kernel sum "
@@ -191,6 +260,7 @@ int runEval(const EvalOptions& o) {
     std::cout << "FK+FCL      " << durationText(exact) << " per configuration: the model is "
               << times(exact / query) << " faster\n";
   }
+  if (alongPath) writeAlongPath(o, *alongPath);
   return 0;
 }
 
@@ -216,6 +286,10 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                   "with --path: joint-space step between the states checked along each edge")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--out", o->out,
+                  "with --path: folder for along_path.csv (each state: FCL's answer, the model's "
+                  "score and answer, the clearance) and along_path.png");
+  cmd->add_flag("!--no-plot", o->plot, "with --out: skip the PNG plot");
   cmd->add_flag("--clearance", o->clearance,
                 "with --scene: also the free states by distance to the nearest obstacle, and the "
                 "share of each the model calls colliding (FCL distances: slow on mesh robots)");
