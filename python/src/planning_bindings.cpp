@@ -1,12 +1,15 @@
 // Planning with OMPL on a model or an exact checker, and verify-and-repair.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "arrays.h"
 #include "bindings.h"
 #include "fastron/core/error.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/planning/motion.h"
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -202,6 +205,32 @@ void bindPlanning(py::module_& m) {
       },
       py::arg("checker"), py::arg("path"), py::arg("resolution"),
       "True when every waypoint of path (k, d) and every edge, checked at `resolution`, is free.");
+
+  m.def(
+      "states_along_path",
+      [](py::handle path, double resolution) {
+        const ConfigurationRows rows = configurations(path, 0, "path", false);
+        return toArray(statesAlongPath(pathOf(path, rows.cols), resolution));
+      },
+      py::arg("path"), py::arg("resolution"),
+      "Every state a check of path (k, d) at `resolution` looks at, in the path's order: each "
+      "waypoint, then the states of the edge that leaves it (as check_path cuts it).");
+  m.def(
+      "write_path",
+      [](const std::filesystem::path& file, py::handle path, const Robot& robot) {
+        writePathCsv(pathOf(path, robot.dof()), robot.actuatedJointNames(), file);
+      },
+      py::arg("file"), py::arg("path"), py::arg("robot"),
+      "Writes path (k, d) as CSV, a header of the robot's joint names first (fastron plan --out's "
+      "format, read by fastron eval --path).");
+  m.def(
+      "read_path",
+      [](const std::filesystem::path& file, const Robot& robot) {
+        return pathArray(readPathCsv(file, robot.actuatedJointNames()), robot.dof());
+      },
+      py::arg("file"), py::arg("robot"),
+      "Reads a path CSV (fastron plan --out's format) of this robot's joints as a (k, d) array; "
+      "raises FileError naming the file, line and column of a problem.");
 }
 
 }  // namespace fastron::python

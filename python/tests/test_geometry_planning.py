@@ -359,3 +359,24 @@ def test_type_stubs_cover_the_module():
     stubbed = {node.name for node in tree.body if isinstance(node, (ast.ClassDef, ast.FunctionDef))}
     public = {name for name in dir(fastron._fastron) if not name.startswith("_")}
     assert public == stubbed
+
+
+def test_paths_written_read_and_cut_as_the_checks_cut_them(tmp_path, baxter, baxter_fcl):
+    path = np.array([[0.0] * 7, [0.3, 0.4, 0, 0, 0, 0, 0], [0.3, 0.4, 0, 0, 0, 0, -0.5]])
+    fastron.write_path(tmp_path / "p.csv", path, baxter)
+    assert (tmp_path / "p.csv").read_text().startswith(",".join(baxter.joint_names) + "\n")
+    back = fastron.read_path(tmp_path / "p.csv", baxter)
+    assert back.shape == (3, 7) and np.array_equal(back, path)
+    states = fastron.states_along_path(path, 0.09)
+    assert states.shape == (1 + 6 + 6, 7)  # ceil(0.5 / 0.09) = 6 segments per edge
+    assert np.array_equal(states[0], path[0]) and np.array_equal(states[-1], path[-1])
+    assert np.all(np.linalg.norm(np.diff(states, axis=0), axis=1) <= 0.09 + 1e-12)
+    # The states check_path looks at: the path is free exactly when all of them are.
+    assert fastron.check_path(baxter_fcl, path, 0.09) == (not baxter_fcl.in_collision(states).any())
+    (tmp_path / "panda.csv").write_text("panda_joint1\n0\n")
+    with pytest.raises(fastron.FileError, match=r"panda.csv:1: column 1 is 'panda_joint1'"):
+        fastron.read_path(tmp_path / "panda.csv", baxter)
+    with pytest.raises(fastron.InvalidArgument, match="path"):
+        fastron.states_along_path(np.zeros(7), 0.1)
+    with pytest.raises(fastron.InvalidArgument, match="resolution"):
+        fastron.states_along_path(path, 0)
