@@ -26,6 +26,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
+#include "fastron/proxy/parallel_chunks.h"
 #include "plotting.h"
 #include "report_format.h"
 #include "robot_options.h"
@@ -75,14 +76,16 @@ std::string missesByLink(const Model& model, const FclChecker& fcl, const Datase
   return text;
 }
 
-/// Each configuration's distance to the nearest obstacle under FCL (0 for a colliding one).
+/// Each configuration's distance to the nearest obstacle under FCL (0 for a colliding one), on
+/// every core: a distance between meshes takes milliseconds (about 3 ms on the mesh Panda).
 std::vector<double> clearances(const FclChecker& fcl, const Dataset& data) {
   std::vector<double> distance(data.size(), 0.0);
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    if (data.labels[i] > 0) continue;
-    const Eigen::VectorXd q = data.points.row(static_cast<Eigen::Index>(i)).transpose();
-    distance[i] = fcl.distance({q.data(), static_cast<std::size_t>(q.size())});
-  }
+  forEachChunk(data.size(), 8, 0, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (data.labels[i] > 0) continue;
+      distance[i] = fcl.distance({data.points.row(static_cast<Eigen::Index>(i)).data(), fcl.dof()});
+    }
+  });
   return distance;
 }
 
