@@ -108,7 +108,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--queries-per-scene", o->settings.queriesPerScene,
                   "motion-bench: the request plus K-1 random free start/goal pairs per scene, on "
                   "one model")
-      ->check(CLI::PositiveNumber)
+      ->check(numberAbove(0))
       ->capture_default_str();
   cmd->add_flag("--learn-from-verification", o->settings.learnFromVerification,
                 "motion-bench: between a scene's queries, the model learns the exact answers of "
@@ -148,7 +148,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--active-samples", o->settings.activeSamples,
                   "changing: A_max, the active-learning configurations of each update of the "
                   "models on --features (default 2500 for fk, 500 for joints, the paper's)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_flag("--warm-start", o->settings.warmStart,
                 "changing: the models on --features update from their last weights with samples "
                 "around every support point, as in the paper (default for fk: from zero weights, "

@@ -39,11 +39,12 @@ struct EvalOptions {
   RobotOptions robot;
   std::size_t samples = 20000;
   std::uint64_t seed = 2;
-  double resolution = 0.03;
+  std::optional<double> resolution;  ///< with --path; default kPathResolution
   bool selfCollision = false, clearance = false, plot = true;
 };
 
-constexpr double kTimingSeconds = 0.2;  // each timing repeats the configurations this long
+constexpr double kPathResolution = 0.03;  // fastron plan's default edge resolution
+constexpr double kTimingSeconds = 0.2;    // each timing repeats the configurations this long
 constexpr std::size_t kMissLinksShown = 5;
 
 /// "panda_link5 60, panda_hand 19, ...": the robot links of the collisions the model called free,
@@ -175,6 +176,7 @@ int runEval(const EvalOptions& o) {
   }
   if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
   if (!o.out.empty() && o.path.empty()) throw InvalidArgument("--out needs --path");
+  if (o.resolution && o.path.empty()) throw InvalidArgument("--resolution needs --path");
   if ((!o.path.empty() || o.clearance) && o.scene.empty()) {
     throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
                           " needs --robot and --scene");
@@ -192,7 +194,8 @@ int runEval(const EvalOptions& o) {
       Rng rng(o.seed);
       data.points = uniformConfigurations(robot->limits(), o.samples, rng);
     } else {
-      data.points = statesAlongPath(readPathCsv(o.path, robot->actuatedJointNames()), o.resolution);
+      data.points = statesAlongPath(readPathCsv(o.path, robot->actuatedJointNames()),
+                                    o.resolution.value_or(kPathResolution));
     }
     data.labels = labelConfigurations(*fcl, data.points);
   } else {
@@ -227,7 +230,8 @@ int runEval(const EvalOptions& o) {
                 << (selfAlone ? std::string("the robot without obstacles") : o.scene)
                 << " labelled by FCL (seed " << o.seed << "), ";
     } else {
-      std::cout << " states along " << o.path << " (every " << o.resolution
+      std::cout << " states along " << o.path << " (every "
+                << o.resolution.value_or(kPathResolution)
                 << " rad, as a planner checks its edges) in " << o.scene << " labelled by FCL, ";
     }
     std::cout << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
@@ -286,9 +290,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                   "instead of uniform samples, with the free states' clearance")
       ->check(CLI::ExistingFile);
   cmd->add_option("--resolution", o->resolution,
-                  "with --path: joint-space step between the states checked along each edge")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+                  "with --path: joint-space step between the states checked along each edge "
+                  "(default 0.03, as fastron plan's)")
+      ->check(numberAbove(0));
   cmd->add_option("--out", o->out,
                   "with --path: folder for along_path.csv (each state: FCL's answer, the model's "
                   "score and answer, the clearance) and along_path.png");

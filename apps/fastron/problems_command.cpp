@@ -54,7 +54,7 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"cage", "box"}));
   cmd->add_option("-n,--count", o->count, "how many problems")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("-o,--output", o->output, "folder to write them to (created)")->required();
   cmd->add_option("--seed", o->seed, "seed of the placements, starts and goals")
       ->capture_default_str();
@@ -62,7 +62,7 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
                   "uniform configurations drawn per try at a goal or a start (20 placements of the "
                   "structure are tried)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(numberAbove(0));
   cmd->add_option("--group", o->group, "the requests' group_name")->capture_default_str();
   cmd->add_option(
       "--tip-link", o->tipLink,

@@ -122,7 +122,7 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--self-collisions", *survey,
                 "survey which link pairs collide, as MoveIt Setup Assistant does");
   cmd->add_option("--samples", options->samples, "configurations sampled by the survey")
-      ->check(CLI::PositiveNumber)
+      ->check(numberAbove(0))
       ->capture_default_str();
   cmd->add_option("--seed", options->seed, "random seed of the survey")->capture_default_str();
   auto files = std::make_shared<RobotOptions>();  // the robot is the positional name
