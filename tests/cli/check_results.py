@@ -170,6 +170,17 @@ def main():
                 fail(f"no accuracy for a model: {row}")
         if "the trained model's accuracy" not in report:
             fail("report.md does not give the trained model's accuracy")
+        # Along FCL's own path of each request: rates, measured wherever FCL solved the request.
+        rate_columns(rows, ["fcl_path_near_walls", "fcl_path_called_colliding"])
+        for row in rows:
+            measured = not math.isnan(value(row, "fcl_path_near_walls"))
+            fcl_solved = any(r["method"] == "FCL" and r["solved"] == "1" for r in rows
+                             if (r["family"], r["problem"], r["query"]) ==
+                             (row["family"], row["problem"], row["query"]))
+            if measured != (row["query"] == "0" and fcl_solved):
+                fail(f"the path figures are measured on the solved requests only: {row}")
+        if "Along FCL's own path of each request" not in report:
+            fail("report.md does not say where the model stands along FCL's paths")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:
