@@ -104,10 +104,10 @@ std::size_t testPoints(const MotionBenchOptions& o) {
 }
 
 /// Where the model stands along FCL's own path of a request: of the states a check of that path
-/// at `resolution` looks at (every one free), the share within kNearWalls of an obstacle and the
-/// share the model calls colliding. A model is wrong near walls in every family; how much of the
-/// way runs there decides whether a plan on it gets through (docs/planning.md, "Families beyond
-/// the samples"). NaN when FCL found no path.
+/// at `resolution` looks at (the audit's check: free), the share within kNearWalls of an obstacle
+/// and the share the model calls colliding. A model is wrong near walls in every family, and a
+/// plan on it fails where every way to the goal passes near them (docs/planning.md, "Families
+/// beyond the samples"). NaN when FCL found no path.
 constexpr double kNearWalls = 0.02;  // metres
 struct AlongFclPath {
   double nearWalls = std::numeric_limits<double>::quiet_NaN();
@@ -243,7 +243,9 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
       if (query == 0) {
         const auto exact = std::find_if(plans.begin(), plans.end(),
                                         [](const MethodPlan& m) { return m.method == "FCL"; });
-        along = alongFclPath(exact->plan, *calibrated.model, audit, o.resolution);
+        if (exact != plans.end()) {
+          along = alongFclPath(exact->plan, *calibrated.model, audit, o.resolution);
+        }
       }
       const auto addRow = [&](const MethodPlan& each, double modelSupport,
                               const ConfusionCounts& modelQuality, double trainS, double learnS) {
