@@ -36,6 +36,7 @@ namespace {
 
 struct EvalOptions {
   std::string model, data, scene, path, out;
+  std::vector<std::string> allow;  ///< LINK:OBSTACLE pairs that may touch
   RobotOptions robot;
   std::size_t samples = 20000;
   std::uint64_t seed = 2;
@@ -177,6 +178,7 @@ int runEval(const EvalOptions& o) {
   if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
   if (!o.out.empty() && o.path.empty()) throw InvalidArgument("--out needs --path");
   if (o.resolution && o.path.empty()) throw InvalidArgument("--resolution needs --path");
+  if (!o.allow.empty() && o.scene.empty()) throw InvalidArgument("--allow needs --scene");
   if ((!o.path.empty() || o.clearance) && o.scene.empty()) {
     throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
                           " needs --robot and --scene");
@@ -188,8 +190,9 @@ int runEval(const EvalOptions& o) {
   Dataset data;
   std::shared_ptr<const FclChecker> fcl;
   if (!o.scene.empty() || selfAlone) {
-    fcl = std::make_shared<const FclChecker>(*robot, selfAlone ? Scene{} : loadScene(o.scene),
-                                             CheckerOptions{o.selfCollision});
+    Scene scene = selfAlone ? Scene{} : loadScene(o.scene);
+    allowPairs(o.allow, scene);
+    fcl = std::make_shared<const FclChecker>(*robot, scene, CheckerOptions{o.selfCollision});
     if (o.path.empty()) {
       Rng rng(o.seed);
       data.points = uniformConfigurations(robot->limits(), o.samples, rng);
@@ -297,6 +300,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                   "with --path: folder for along_path.csv (each state: FCL's answer, the model's "
                   "score and answer, the clearance) and along_path.png");
   cmd->add_flag("!--no-plot", o->plot, "with --out: skip the PNG plot");
+  addAllowOption(*cmd, o->allow);
   cmd->add_flag("--clearance", o->clearance,
                 "with --scene: also the free states by distance to the nearest obstacle, and the "
                 "share of each the model calls colliding (FCL distances: slow on mesh robots)");

@@ -120,13 +120,7 @@ int runPlan(const PlanOptions& o) {
     goal = configurationFromOption(o.goal, robot, "--goal");
   }
   Scene scene = loadScene(o.scene);
-  for (const std::string& pair : o.allow) {
-    const auto colon = pair.find(':');
-    if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size()) {
-      throw InvalidArgument("--allow '" + pair + "' is not LINK:OBSTACLE");
-    }
-    scene.allowedCollisions.allow(pair.substr(0, colon), pair.substr(colon + 1));
-  }
+  allowPairs(o.allow, scene);
   if (!o.selfModel.empty() && !o.selfCollision) {
     throw InvalidArgument(
         "--self-model needs --self-collision: the final path is checked for self-collisions too");
@@ -238,9 +232,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
   cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");
-  cmd->add_option("--allow", o->allow,
-                  "LINK:OBSTACLE pairs that may touch (e.g. a grasped object and the hand)")
-      ->delimiter(',');
+  addAllowOption(*cmd, o->allow);
   cmd->add_option("--out", o->out,
                   "write the path as CSV (a header of joint names, a waypoint per row)");
   cmd->callback([o, &exitCode] { exitCode = runPlan(*o); });
