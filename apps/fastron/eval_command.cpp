@@ -26,7 +26,6 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
-#include "fastron/proxy/parallel_chunks.h"
 #include "plotting.h"
 #include "report_format.h"
 #include "robot_options.h"
@@ -78,25 +77,12 @@ std::string missesByLink(const Model& model, const FclChecker& fcl, const Datase
   return text;
 }
 
-/// Each configuration's distance to the nearest obstacle under FCL (0 for a colliding one), on
-/// every core: a distance between meshes takes milliseconds (about 3 ms on the mesh Panda).
-std::vector<double> clearances(const FclChecker& fcl, const Dataset& data) {
-  std::vector<double> distance(data.size(), 0.0);
-  forEachChunk(data.size(), 8, 0, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      if (data.labels[i] > 0) continue;
-      distance[i] = fcl.distance({data.points.row(static_cast<Eigen::Index>(i)).data(), fcl.dof()});
-    }
-  });
-  return distance;
-}
-
 /// Where the model is wrong about free states, by their distance to the nearest obstacle: for
 /// each band, how many free states lie in it and the share the model calls colliding. A model
 /// that is accurate on average can still close a passage that a planner needs, because the
 /// states there lie close to obstacles (docs/planning.md, "Families beyond the samples").
 std::string freeStatesByClearance(const Dataset& data, const std::vector<double>& clearance,
-                                  const std::vector<std::uint8_t>& calledColliding) {
+                                  const Eigen::VectorXd& scores) {
   constexpr std::array<double, 3> kBounds{0.01, 0.02, 0.05};  // metres
   constexpr std::array<const char*, 4> kNames{"under 1 cm", "1-2 cm", "2-5 cm", "5 cm or more"};
   std::array<std::size_t, 4> free{}, wrong{};
@@ -105,7 +91,7 @@ std::string freeStatesByClearance(const Dataset& data, const std::vector<double>
     const auto band = static_cast<std::size_t>(
         std::upper_bound(kBounds.begin(), kBounds.end(), clearance[i]) - kBounds.begin());
     ++free[band];
-    if (calledColliding[i] != 0) ++wrong[band];
+    if (scores[static_cast<Eigen::Index>(i)] > 0) ++wrong[band];
   }
   std::string text;
   for (std::size_t band = 0; band < free.size(); ++band) {
@@ -121,8 +107,8 @@ std::string freeStatesByClearance(const Dataset& data, const std::vector<double>
 
 /// The states along a path, one row each: where on the path (state index, joint-space distance
 /// from the start), the joint values, FCL's answer, the model's score and answer, the clearance.
-experiments::Table alongPathTable(const Model& model, const Dataset& data,
-                                  const std::vector<std::string>& jointNames,
+experiments::Table alongPathTable(const Dataset& data, const std::vector<std::string>& jointNames,
+                                  const Eigen::VectorXd& scores,
                                   const std::vector<double>& clearance) {
   experiments::Table table;
   table.columns = {"state", "arc_length"};
@@ -141,8 +127,9 @@ experiments::Table alongPathTable(const Model& model, const Dataset& data,
     const Eigen::VectorXd q = data.points.row(row).transpose();
     std::vector<std::string> cells{std::to_string(i), number(arc)};
     for (Eigen::Index j = 0; j < q.size(); ++j) cells.push_back(number(q[j]));
-    cells.insert(cells.end(), {data.labels[i] > 0 ? "1" : "0", number(model.score(q.data())),
-                               model.inCollision(q.data()) ? "1" : "0", number(clearance[i])});
+    const double score = scores[row];
+    cells.insert(cells.end(), {data.labels[i] > 0 ? "1" : "0", number(score), score > 0 ? "1" : "0",
+                               number(clearance[i])});
     table.add(std::move(cells));
   }
   return table;
@@ -250,15 +237,13 @@ int runEval(const EvalOptions& o) {
   if (fcl) std::cout << "FN by link  " << missesByLink(model, *fcl, data) << '\n';
   std::optional<experiments::Table> alongPath;
   if (fcl && (o.clearance || !o.path.empty())) {
-    const std::vector<double> clearance = clearances(*fcl, data);
-    std::vector<std::uint8_t> calledColliding(data.size());
-    for (std::size_t i = 0; i < data.size(); ++i) {
-      calledColliding[i] = model.inCollision(data.points.row(static_cast<Eigen::Index>(i)).data());
-    }
+    const std::vector<double> clearance = experiments::clearances(*fcl, data.points);
+    // The batch scores, as evaluate() counts the confusion above: one answer per state.
+    const Eigen::VectorXd scores = model.scoreBatch(data.points);
     std::cout << "clearance   free states by distance to the nearest obstacle: "
-              << freeStatesByClearance(data, clearance, calledColliding) << '\n';
+              << freeStatesByClearance(data, clearance, scores) << '\n';
     if (!o.out.empty()) {
-      alongPath = alongPathTable(model, data, robot->actuatedJointNames(), clearance);
+      alongPath = alongPathTable(data, robot->actuatedJointNames(), scores, clearance);
     }
   }
   std::cout << "query time  " << durationText(query) << " per configuration (features "

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "fastron/core/error.h"
+#include "fastron/proxy/parallel_chunks.h"
 
 namespace fastron::experiments {
 
@@ -183,6 +184,16 @@ double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& chec
         return checker.inCollision({x, d});
       },
       minSeconds);
+}
+
+std::vector<double> clearances(const FclChecker& fcl, const Configurations& q) {
+  std::vector<double> distance(static_cast<std::size_t>(q.rows()));
+  forEachChunk(distance.size(), 8, 0, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      distance[i] = fcl.distance({q.row(static_cast<Eigen::Index>(i)).data(), fcl.dof()});
+    }
+  });
+  return distance;
 }
 
 std::string methodRow(const Table& r, const std::string& method, const Table::Filter& where,

@@ -19,7 +19,6 @@
 #include "fastron/planning/motion.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
-#include "fastron/proxy/parallel_chunks.h"
 #include "plan_rows.h"
 
 namespace fastron::experiments {
@@ -103,36 +102,29 @@ std::size_t testPoints(const MotionBenchOptions& o) {
   return o.quick ? 300 : 1000;
 }
 
+constexpr double kNearWalls = 0.02;  // metres: "near a wall" in the report
+
+struct AlongFclPath {
+  double nearWalls = std::numeric_limits<double>::quiet_NaN();
+  double calledColliding = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Where the model stands along FCL's own path of a request: of the states a check of that path
 /// at `resolution` looks at (the audit's check: free), the share within kNearWalls of an obstacle
 /// and the share the model calls colliding. A model is wrong near walls in every family, and a
 /// plan on it fails where every way to the goal passes near them (docs/planning.md, "Families
 /// beyond the samples"). NaN when FCL found no path.
-constexpr double kNearWalls = 0.02;  // metres
-struct AlongFclPath {
-  double nearWalls = std::numeric_limits<double>::quiet_NaN();
-  double calledColliding = std::numeric_limits<double>::quiet_NaN();
-};
 AlongFclPath alongFclPath(const VerifiedPlan& fclPlan, const Model& model, const FclChecker& audit,
                           double resolution) {
   if (!fclPlan.solved()) return {};
   const Configurations states = statesAlongPath(fclPlan.path, resolution);
-  const auto n = static_cast<std::size_t>(states.rows());
-  std::vector<std::uint8_t> near(n, 0);
-  // On every core: a distance between meshes takes milliseconds.
-  forEachChunk(n, 8, 0, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      near[i] = audit.distance({states.row(static_cast<Eigen::Index>(i)).data(), audit.dof()}) <
-                kNearWalls;
-    }
-  });
-  std::size_t nearCount = 0, called = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    nearCount += near[i];
-    called += model.inCollision(states.row(static_cast<Eigen::Index>(i)).data()) ? 1 : 0;
-  }
-  return {static_cast<double>(nearCount) / static_cast<double>(n),
-          static_cast<double>(called) / static_cast<double>(n)};
+  const std::vector<double> clearance = clearances(audit, states);
+  const Eigen::VectorXd scores = model.scoreBatch(states);
+  const auto n = static_cast<double>(states.rows());
+  return {static_cast<double>(std::count_if(clearance.begin(), clearance.end(),
+                                            [](double d) { return d < kNearWalls; })) /
+              n,
+          static_cast<double>((scores.array() > 0).count()) / n};
 }
 
 /// trainStatic; the seconds it took.
