@@ -59,8 +59,9 @@ TrainingCase trainingCase(const benchmark::State& state) {
   return c;
 }
 
-void BM_Train(benchmark::State& state) {
-  const TrainingCase c = trainingCase(state);
+void train(benchmark::State& state, bool floatColumns) {
+  TrainingCase c = trainingCase(state);
+  c.params.floatGramColumns = floatColumns;
   UpdateReport report;
   for (auto _ : state) {
     state.PauseTiming();  // Algorithm 1 only, as BM_TrainReference
@@ -74,6 +75,10 @@ void BM_Train(benchmark::State& state) {
   state.counters["iterations"] = static_cast<double>(report.iterations);
   state.counters["gram_columns"] = static_cast<double>(report.gramColumnsComputed);
 }
+
+void BM_Train(benchmark::State& state) {
+  train(state, true);
+}
 BENCHMARK(BM_Train)
     ->ArgsProduct({{1000, 2000, 5000, 10000, 20000}, {2, 4, 7}, {0}})
     ->ArgsProduct({{8000}, {7, 9, 18, 27}, {0}})
@@ -81,6 +86,17 @@ BENCHMARK(BM_Train)
     ->Args({5000, 3, 0})
     ->Args({5000, 5, 0})
     ->Args({5000, 6, 0})
+    ->ArgNames({"N", "d", "terms"})
+    ->Unit(benchmark::kMillisecond);
+
+// Algorithm 1 with double Gram columns (TrainParams::floatGramColumns false) where BM_Train's
+// are float: a rational-quadratic kernel of up to 12 features.
+void BM_TrainDoubleColumns(benchmark::State& state) {
+  train(state, false);
+}
+BENCHMARK(BM_TrainDoubleColumns)
+    ->ArgsProduct({{8000}, {7, 9}, {0}})
+    ->ArgsProduct({{3000, 8000}, {12}, {1}})
     ->ArgNames({"N", "d", "terms"})
     ->Unit(benchmark::kMillisecond);
 

@@ -201,6 +201,56 @@ void column(const double* x, const float* xf, std::size_t rows, std::size_t feat
   }
 }
 
+/// The rational-quadratic term of a register of squared distances, in float.
+inline Floats termOf(Floats r2, Floats halfGammas) {
+  const Floats t = mulAdd(r2, halfGammas, splat(1.0f));
+  return 1 / (t * t);
+}
+
+/// A rational-quadratic Gram column in float (TrainParams::floatGramColumns): a register of
+/// kWidth rows at a time, twice the rows of a double register, from the float features. The last
+/// rows go through a padded register, so every value is computed in a lane alike and depends on
+/// its row alone (the two cores' halves of an iteration then give the column of one core).
+void columnInFloat(const float* x, std::size_t rows, std::size_t features, std::size_t i,
+                   std::size_t from, std::size_t to, const GramKernel& kernel, double* k) {
+  const std::size_t n = to - from;
+  float xi[kMaxGramFeatures];
+  for (std::size_t c = 0; c < features; ++c) xi[c] = x[c * rows + i];
+  const std::size_t block = kernel.block == 0 ? features : kernel.block;
+  const Floats halfGammas = splat(static_cast<float>(0.5 * kernel.gamma));
+  const Floats wholeWeights = splat(static_cast<float>(kernel.wholeWeight));
+  const Floats pointWeights = splat(static_cast<float>(kernel.pointWeight));
+  // The kernel of a register of rows whose feature c is feature(c).
+  const auto valueOf = [&](const auto& feature) {
+    Floats whole = {}, points = {};
+    for (std::size_t g = 0; g < features; g += block) {
+      Floats r2 = {};
+      for (std::size_t c = g; c < g + block; ++c) {
+        const Floats t = feature(c) - splat(xi[c]);
+        r2 = mulAdd(t, t, r2);
+      }
+      if (kernel.block == 0) return termOf(r2, halfGammas);
+      whole += r2;
+      points += termOf(r2, halfGammas);
+    }
+    return wholeWeights * termOf(whole, halfGammas) + pointWeights * points;
+  };
+  std::size_t j = 0;
+  for (; j + kWidth <= n; j += kWidth) {
+    const Floats value = valueOf([&](std::size_t c) { return load(x + c * rows + from + j); });
+    for (std::size_t l = 0; l < kWidth; ++l) k[j + l] = value[l];
+  }
+  if (j == n) return;
+  float last[kMaxGramFeatures * kWidth];  // the last rows, then copies of x_i
+  for (std::size_t c = 0; c < features; ++c) {
+    for (std::size_t l = 0; l < kWidth; ++l) {
+      last[c * kWidth + l] = j + l < n ? x[c * rows + from + j + l] : xi[c];
+    }
+  }
+  const Floats value = valueOf([&](std::size_t c) { return load(last + c * kWidth); });
+  for (std::size_t l = 0; j + l < n; ++l) k[j + l] = value[l];
+}
+
 /// The kernel between a register of points (xj: one register per feature) and one point s, each
 /// lane as kernelOfDifferences computes it. For addSums, which reuses xj over the whole support
 /// set; columnByRow keeps its own loops, which load each feature where they use it: built on this
@@ -293,7 +343,7 @@ double addAndFindWorst(double* f, const double* y, std::size_t n, const double* 
 }  // namespace
 
 namespace FASTRON_SIMD_NAMESPACE {
-const GramPasses kGramPasses{&column, &addSums, &addAndFindWorst};
+const GramPasses kGramPasses{&column, &columnInFloat, &addSums, &addAndFindWorst};
 }
 
 }  // namespace fastron::detail

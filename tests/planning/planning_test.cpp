@@ -571,10 +571,15 @@ TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
   EXPECT_TRUE(fallback.wholePathReplanned);
   EXPECT_TRUE(
       pathIsFree(fallback.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
-  // A model, trained on the wall, that predicts a collision at a start just beside it.
+  // A model, trained on the wall, that predicts a collision at a start just beside it (at some
+  // height: where its boundary bulges out depends on its support points).
   const auto model = wallModel();
-  Eigen::VectorXd beside = vec({-0.2, -0.8});
-  while (beside[0] < -0.1 && !model->inCollision(beside.data())) beside[0] += 0.001;
+  Eigen::VectorXd beside = vec({-0.2, -0.9});
+  for (; beside[1] < 0.4; beside[1] += 0.1) {
+    for (beside[0] = -0.2; beside[0] < -0.1 && !model->inCollision(beside.data());)
+      beside[0] += 0.001;
+    if (beside[0] < -0.1) break;
+  }
   ASSERT_LT(beside[0], -0.1) << "the model predicts no collision beside the wall";
   const VerifiedPlan fromModel = planVerified(model, wall, limits, beside, kGoal, options);
   ASSERT_TRUE(fromModel.solved()) << fromModel.failure;
