@@ -81,8 +81,8 @@ void BM_Train(benchmark::State& state) {
 }
 BENCHMARK(BM_Train)
     ->ArgsProduct({{1000, 2000, 5000, 10000, 20000}, {2, 4, 7}, {0}})
-    ->ArgsProduct({{8000}, {7, 9, 18, 27}, {0}})
-    ->ArgsProduct({{8000}, {9, 12, 18, 27}, {1}})
+    ->ArgsProduct({{8000}, {7, 9, 15, 18, 27}, {0}})
+    ->ArgsProduct({{8000}, {9, 12, 15, 18, 27}, {1}})
     ->Args({5000, 3, 0})
     ->Args({5000, 5, 0})
     ->Args({5000, 6, 0})
@@ -95,8 +95,8 @@ void BM_TrainDoubleColumns(benchmark::State& state) {
   train(state, false);
 }
 BENCHMARK(BM_TrainDoubleColumns)
-    ->ArgsProduct({{8000}, {7, 9}, {0}})
-    ->ArgsProduct({{3000, 8000}, {12}, {1}})
+    ->ArgsProduct({{8000}, {7, 9, 15, 18, 27}, {0}})
+    ->ArgsProduct({{3000, 8000}, {12, 15, 18, 27}, {1}})
     ->ArgNames({"N", "d", "terms"})
     ->Unit(benchmark::kMillisecond);
 
@@ -174,8 +174,8 @@ void BM_TrainReference(benchmark::State& state) {
   state.counters["iterations"] = static_cast<double>(report.iterations);
 }
 BENCHMARK(BM_TrainReference)
-    ->ArgsProduct({{8000}, {7, 9, 18, 27}, {0}})
-    ->ArgsProduct({{8000}, {9, 12, 18, 27}, {1}})
+    ->ArgsProduct({{8000}, {7, 9, 15, 18, 27}, {0}})
+    ->ArgsProduct({{8000}, {9, 12, 15, 18, 27}, {1}})
     ->ArgNames({"N", "d", "terms"})
     ->Unit(benchmark::kMillisecond);
 

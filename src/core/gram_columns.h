@@ -25,12 +25,6 @@ struct GramKernel {
   double wholeWeight = 1, pointWeight = 0;  ///< Kernel::wholeWeight(), pointWeight(features)
 };
 
-/// Up to this many features a rational-quadratic Gram column may be computed in float
-/// (TrainParams::floatGramColumns): sixteen rows per AVX-512 register instead of eight; Algorithm 1
-/// at N 3000, d 12 with point terms took 1.09 against 1.51 ms (`BM_TrainOnThreads`, pinned).
-/// Beyond it the double path reads one feature block at a time (gram_columns_impl.h).
-inline constexpr std::size_t kFloatColumnFeatures = 12;
-
 /// A bound on |k - K| for every value k of columnInFloat, K being the exact kernel of the same
 /// (float) features, in units of float's rounding unit u = 2^-24. Per term of b coordinates: the
 /// differences, squares and fused sums give r2 within (b + 2) u relative (all terms positive), the
@@ -66,9 +60,10 @@ struct GramPasses {
                  std::size_t i, std::size_t from, std::size_t to, const GramKernel& kernel,
                  double* k);
   /// The same column of a rational-quadratic kernel computed in float from xf (column-major,
-  /// rows x features, features <= kFloatColumnFeatures), each value within
-  /// floatColumnError(kernel, features) of the exact kernel of the same features, and depending
-  /// on its row alone. For TrainParams::floatGramColumns.
+  /// rows x features), each value within floatColumnError(kernel, features) of the exact kernel
+  /// of the same features, and depending on its row alone. For TrainParams::floatGramColumns:
+  /// sixteen rows per AVX-512 register instead of eight (docs/performance.md, "Float Gram columns
+  /// with exact signs").
   void (*columnInFloat)(const float* xf, std::size_t rows, std::size_t features, std::size_t i,
                         std::size_t from, std::size_t to, const GramKernel& kernel, double* k);
   /// f[j - from] += sum_s weights[s] K(support_s, x_j) for the rows j in [from, to) of x

@@ -93,6 +93,14 @@ inline double mulAdd(double a, double b, double c) {
   return a * b + c;
 #endif
 }
+/// The same for one float.
+inline float mulAdd(float a, float b, float c) {
+#ifdef __FMA__
+  return __builtin_fmaf(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
 inline Floats lanesOf(Floats v) {
   return v;
 }

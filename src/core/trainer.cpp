@@ -33,18 +33,18 @@ void checkLabels(std::span<const std::int8_t> labels, const char* what) {
 
 // F is summed in double: it is compared against 0 (Claim 1) and the revert safeguard counts signs.
 // Gram columns are double, or float where TrainParams::floatGramColumns applies (a
-// rational-quadratic kernel of up to 12 features: sixteen rows per AVX-512 register instead of
-// eight). A float value lies within columnError_ of the exact kernel (floatColumnError in
-// gram_columns.h derives the bound), so each update of F by delta times a column moves it at most
-// |delta| columnError_ from K alpha; fError_ adds these up. Margins larger than fError_ have their
-// exact sign; the few smaller ones are computed again exactly (settleSigns) before an update
-// decides anything that must be exact: whether it converged (Claim 1: if a margin turns out not
-// positive, the iterations go on), the revert safeguard's counts, the misclassified count. The
-// choices in between (the most negative margin, the redundant point, delta) may differ from the
-// double columns' where two margins are within the bound of each other: the guarantees are the
-// same, the support set may differ in such a tie. Double columns, one pass per feature column
-// over contiguous memory then the kernel, took 8.5 us for 10000 x 7 on the project's machine,
-// against 113-225 us for Eigen expressions that allocated a fresh column each time.
+// rational-quadratic kernel: sixteen rows per AVX-512 register instead of eight). A float value
+// lies within columnError_ of the exact kernel (floatColumnError in gram_columns.h derives the
+// bound), so each update of F by delta times a column moves it at most |delta| columnError_ from K
+// alpha; fError_ adds these up. Margins larger than fError_ have their exact sign; the few smaller
+// ones are computed again exactly (settleSigns) before an update decides anything that must be
+// exact: whether it converged (Claim 1: if a margin turns out not positive, the iterations go on),
+// the revert safeguard's counts, the misclassified count. The choices in between (the most negative
+// margin, the redundant point, delta) may differ from the double columns' where two margins are
+// within the bound of each other: the guarantees are the same, the support set may differ in such a
+// tie. Double columns, one pass per feature column over contiguous memory then the kernel, took 8.5
+// us for 10000 x 7 on the project's machine, against 113-225 us for Eigen expressions that
+// allocated a fresh column each time.
 
 /// `kernel` as the per-path passes read it.
 detail::GramKernel gramKernel(const Kernel& kernel, Eigen::Index features) {
@@ -194,10 +194,9 @@ Trainer::Trainer(FeatureMap features, TrainParams params)
   }
   q_.resize(0, static_cast<Eigen::Index>(dim()));
   x_.resize(0, static_cast<Eigen::Index>(features_.featureDim()));
-  const std::size_t d = features_.featureDim();
-  if (params_.floatGramColumns && params_.kernel.type == KernelType::RationalQuadratic &&
-      d <= detail::kFloatColumnFeatures) {
-    columnError_ = detail::floatColumnError(gramKernel(params_.kernel, x_.cols()), d);
+  if (params_.floatGramColumns && params_.kernel.type == KernelType::RationalQuadratic) {
+    columnError_ =
+        detail::floatColumnError(gramKernel(params_.kernel, x_.cols()), features_.featureDim());
   }
 }
 

@@ -32,8 +32,8 @@ struct TrainParams {
   /// training stopped early and lost accuracy in 5 and 7 of two batches of 600 runs beside two
   /// busy loops, none of 1200 at 1e5 (docs/algorithms.md).
   double maxWeightOverBeta = 1e5;
-  /// Algorithm 1's Gram columns in float where that applies (a rational-quadratic kernel of up to
-  /// 12 features; others stay double): about 1.4 times faster training at 12 features. F then
+  /// Algorithm 1's Gram columns in float for a rational-quadratic kernel (a Gaussian's stay
+  /// double): training 1.3-1.9 times faster at 7 to 27 features (docs/performance.md). F then
   /// differs from K alpha by at most Trainer::hypothesisErrorBound(), and before an update
   /// stops, every margin whose sign that bound leaves open is computed again exactly, so Claim 1,
   /// the misclassified count and the revert safeguard stay exact (trainer.cpp). false: double
