@@ -200,6 +200,7 @@ int trainOnScene(const TrainOptions& o) {
   ProxyParams params;
   params.train = withOptions(sceneTrainParams(features.kind(), o.selfCollision), o);
   params.seed = o.seed;
+  params.relabelSupport = false;  // the scene stands still
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n";
   if (selfAlone) {
     std::cout << "scene         none: a model of the robot's self-collisions alone\n";

@@ -237,6 +237,7 @@ ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed)
 ProxyParams forStaticScene(ProxyParams params) {
   params = withWarmStart(params);
   params.activeLearning.maxSamples = 500;
+  params.relabelSupport = false;
   return params;
 }
 

@@ -101,9 +101,13 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   const Configurations calibration =
       uniformConfigurations(limits(), params_.calibrationSamples, rng_);
   const auto support = static_cast<Eigen::Index>(trainer_.size());
-  Configurations learnt(support + fresh.rows(),
-                        static_cast<Eigen::Index>(features_.configurationDim()));
-  learnt << trainer_.configurations(), fresh;
+  // The support set is labelled again unless the world stands still (relabelSupport).
+  const Eigen::Index relabelled = params_.relabelSupport ? support : 0;
+  Configurations learnt = fresh;
+  if (relabelled > 0) {
+    learnt.resize(relabelled + fresh.rows(), Eigen::NoChange);
+    learnt << trainer_.configurations(), fresh;
+  }
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
@@ -143,8 +147,8 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   };
   // Forgotten first, so that relabel has no weight to correct (a Gram column per flipped point).
   if (params_.coldStart) trainer_.forgetWeights();
-  trainer_.relabel({labels.data(), static_cast<std::size_t>(support)});
-  trainer_.addPoints(fresh, Labels(labels.begin() + support, labels.end()), onLabelThreads());
+  if (relabelled > 0) trainer_.relabel({labels.data(), static_cast<std::size_t>(relabelled)});
+  trainer_.addPoints(fresh, Labels(labels.begin() + relabelled, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
   // Algorithm 1 on two cores needs the other core: then the held-out labelling ends first.
   const bool trainOnTwoCores = trainThreads != 1 && trainer_.size() >= Trainer::kRowsToShareUpdate;

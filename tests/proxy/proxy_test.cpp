@@ -251,6 +251,30 @@ TEST(ProxyCollisionDetector, SameSeedSameModel) {
               a->supportConfigurations() != c->supportConfigurations());
 }
 
+// In a world that stands still the support set's labels cannot change: without relabelling it,
+// steps make the same model with as many fewer oracle calls as the support set has points.
+TEST(ProxyCollisionDetector, AWorldThatStandsStillNeedsNoRelabelling) {
+  MovingBalls world(3, 5);
+  ProxyParams relabelling = params(10, 7);
+  relabelling.coldStart = false;
+  ProxyParams still = relabelling;
+  still.relabelSupport = false;
+  ProxyCollisionDetector a(world.checker(3), JointLimits::unitBox(3), relabelling);
+  ProxyCollisionDetector b(world.checker(3), JointLimits::unitBox(3), still);
+  a.initialize(1500);
+  b.initialize(1500);
+  for (int t = 0; t < 3; ++t) {
+    const std::size_t support = b.model()->supportCount();
+    ASSERT_EQ(a.model()->supportCount(), support);
+    const StepReport withRelabelling = a.step(), without = b.step();
+    EXPECT_EQ(withRelabelling.labelled, without.labelled + support) << "step " << t;
+    EXPECT_EQ(a.model()->supportConfigurations(), b.model()->supportConfigurations());
+    EXPECT_EQ(a.model()->weights(), b.model()->weights());
+  }
+  // Where the world moves, relabelling is what keeps the model up to date: the default.
+  EXPECT_TRUE(ProxyParams{}.relabelSupport);
+}
+
 // Learning from verification: the answers given to addObservations are learned at the next step,
 // and (Algorithm 1 converging) every one of them is then classified as labelled. Here they are
 // deliberately the model's own misses, so they must change its answers.
