@@ -48,7 +48,7 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
                             std::optional<double> wholeShare, bool selfCollisionLabels,
                             std::size_t maxSupport, std::optional<std::size_t> activeSamples,
                             std::optional<bool> coldStart, unsigned labelThreads,
-                            std::size_t calibrationSamples) {
+                            std::size_t calibrationSamples, bool relabelSupport) {
   const std::shared_ptr<const CollisionChecker> checker =
       oracleOf(oracle, features.configurationDim());
   ProxyParams params = defaultProxyParams(features.kind(), selfCollisionLabels);
@@ -63,6 +63,7 @@ DetectorHolder makeDetector(py::handle oracle, const FeatureMap& features, std::
   params.seed = seed;
   params.labelThreads = labellingThreads(*checker, labelThreads);
   params.calibrationSamples = calibrationSamples;
+  params.relabelSupport = relabelSupport;
   return DetectorHolder(new ProxyCollisionDetector(checker, features, params));
 }
 
@@ -179,6 +180,7 @@ void bindProxy(py::module_& m) {
            py::arg("self_collision_labels") = false, py::arg("max_support_points") = 3000,
            py::arg("active_samples") = py::none(), py::arg("cold_start") = py::none(),
            py::arg("label_threads") = 0, py::arg("calibration_samples") = 1000,
+           py::arg("relabel_support") = true,
            "features: a FeatureMap (robot_features(robot), or FeatureMap.joint_scaling(limits)); "
            "gamma, beta and the kernel's point terms (kernel_block, kernel_whole_share) default "
            "to the values tuned for the kind of features, as do active_samples (new points per "
@@ -186,7 +188,9 @@ void bindProxy(py::module_& m) {
            "fifth of the new points around support points; False: the paper's update): 2500 "
            "and True for task-space features, 500 and False for joints; self_collision_labels=True "
            "(an oracle that checks the robot against itself) selects those tuned for such "
-           "labels.")
+           "labels. relabel_support=False: a world that stands still, whose support points keep "
+           "their labels: each step labels only its new points (the same model, fewer oracle "
+           "calls).")
       .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),
            py::call_guard<py::gil_scoped_release>(),
            "Labels `samples` uniform configurations and trains the first model.")

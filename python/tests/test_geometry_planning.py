@@ -129,6 +129,25 @@ def test_updates_from_zero_weights_or_the_last_ones():
         assert not model.in_collision(np.array([-0.4, 0])), cold  # the disc left it
 
 
+def test_a_world_that_stands_still_needs_no_relabelling():
+    # The same model with as many fewer oracle calls per step as the support set has points.
+    def disc(q):
+        return bool(np.hypot(q[0], q[1]) < 0.5)
+
+    features = fastron.FeatureMap.joint_scaling(fastron.JointLimits([-2, -2], [2, 2]))
+    made = []
+    for relabel in (True, False):
+        detector = fastron.ProxyCollisionDetector(disc, features, gamma=30, beta=5,
+                                                  active_samples=400, cold_start=False,
+                                                  calibration_samples=0, relabel_support=relabel)
+        detector.initialize(1500)
+        support = detector.model().support_count
+        made.append((support, detector.step().labelled, detector.model()))
+    (support, relabelling, a), (_, still, b) = made
+    assert relabelling == still + support
+    np.testing.assert_array_equal(a.weights, b.weights)
+
+
 def test_oracle_faults_keep_the_last_good_model():
     broken = {"on": False}
 
