@@ -366,24 +366,37 @@ struct ReferenceCase {
   double wholeShare = 0;
 };
 
+/// A case's seeded data, its settings (double columns) and the scalar reference trained on them.
+struct ReferenceRun {
+  Configurations q;
+  Labels y;
+  TrainParams params;
+  ReferenceTraining reference;
+};
+
+ReferenceRun referenceRun(const ReferenceCase& c) {
+  ReferenceRun run;
+  run.q = test::uniformPoints(c.n, c.dim, 91);
+  // Balls in at most 7 coordinates (features beyond them stand for task-space ones, which
+  // depend on 7 joints; in 12 dimensions a ball world is all one class).
+  const std::size_t ballDim = std::min<std::size_t>(c.dim, 7);
+  run.y = test::BallWorld::random(ballDim, 4, 0.3 * std::sqrt(static_cast<double>(ballDim)), 92)
+              .label(run.q.leftCols(static_cast<Eigen::Index>(ballDim)));
+  run.params = uncapped(c.gamma, c.beta, c.block, c.wholeShare);
+  run.params.maxSupportPoints = c.cap;
+  run.params.floatGramColumns = false;
+  // On the features as a Trainer stores them: rounded to float (trainer.cpp).
+  const Eigen::MatrixXd features =
+      FeatureMap::jointScaling(JointLimits::unitBox(c.dim)).map(run.q).cast<float>().cast<double>();
+  run.reference = trainReference(features, run.y, run.params);
+  return run;
+}
+
 class AgainstReference : public ::testing::TestWithParam<ReferenceCase> {};
 
 TEST_P(AgainstReference, SameSupportSetAndWeights) {
   const auto c = GetParam();
-  const Configurations q = test::uniformPoints(c.n, c.dim, 91);
-  // Balls in at most 7 coordinates (features beyond them stand for task-space ones, which
-  // depend on 7 joints; in 12 dimensions a ball world is all one class).
-  const std::size_t ballDim = std::min<std::size_t>(c.dim, 7);
-  const Labels y =
-      test::BallWorld::random(ballDim, 4, 0.3 * std::sqrt(static_cast<double>(ballDim)), 92)
-          .label(q.leftCols(static_cast<Eigen::Index>(ballDim)));
-  TrainParams p = uncapped(c.gamma, c.beta, c.block, c.wholeShare);
-  p.maxSupportPoints = c.cap;
-  p.floatGramColumns = false;
-  // On the features as a Trainer stores them: rounded to float (trainer.cpp).
-  const Eigen::MatrixXd features =
-      FeatureMap::jointScaling(JointLimits::unitBox(c.dim)).map(q).cast<float>().cast<double>();
-  const ReferenceTraining reference = trainReference(features, y, p);
+  const auto [q, y, p, reference] = referenceRun(c);
   // Algorithm 1's passes run on the active SIMD path (gram_columns_impl.h): each must match.
   const test::SimdPathGuard guard;
   for (const SimdPath path : supportedSimdPaths()) {
@@ -420,17 +433,8 @@ TEST_P(AgainstReference, SameSupportSetAndWeights) {
 // within its bound. The support set stays close to the reference's.
 TEST_P(AgainstReference, FloatColumnsKeepItsGuarantees) {
   const auto c = GetParam();
-  const Configurations q = test::uniformPoints(c.n, c.dim, 91);
-  const std::size_t ballDim = std::min<std::size_t>(c.dim, 7);
-  const Labels y =
-      test::BallWorld::random(ballDim, 4, 0.3 * std::sqrt(static_cast<double>(ballDim)), 92)
-          .label(q.leftCols(static_cast<Eigen::Index>(ballDim)));
-  TrainParams p = uncapped(c.gamma, c.beta, c.block, c.wholeShare);
-  p.maxSupportPoints = c.cap;
-  p.floatGramColumns = false;
-  const Eigen::MatrixXd features =
-      FeatureMap::jointScaling(JointLimits::unitBox(c.dim)).map(q).cast<float>().cast<double>();
-  const ReferenceTraining reference = trainReference(features, y, p);
+  const auto [q, y, doubleColumns, reference] = referenceRun(c);
+  TrainParams p = doubleColumns;
   p.floatGramColumns = true;
   const test::SimdPathGuard guard;
   for (const SimdPath path : supportedSimdPaths()) {
