@@ -114,6 +114,17 @@ py::tuple trainScene(
 }  // namespace
 
 void bindProxy(py::module_& m) {
+  m.def(
+      "answers_missed_by",
+      [](const Model& model, py::handle x, py::handle y) {
+        const ConfigurationRows rows = configurations(x, model.dim(), "X", false);
+        const Dataset missed = answersMissedBy(
+            model, Dataset{Configurations(rows.matrix()), labels(y, rows.rows, "y"), {}});
+        return py::make_tuple(toArray(missed.points), toArray(missed.labels));
+      },
+      py::arg("model"), py::arg("X"), py::arg("y"),
+      "The rows of (X, y) whose label the model gets wrong, as (X, y): the answers worth "
+      "learning from a verified plan (plan.exact_answers).");
   m.def("train_scene", &trainScene, py::arg("oracle"), py::arg("features"),
         py::arg("samples") = kSceneSamples, py::kw_only(),
         py::arg("accuracy") = HeldOutTargets{}.accuracy,
@@ -219,8 +230,17 @@ void bindProxy(py::module_& m) {
                 Dataset{Configurations(rows.matrix()), labels(y, rows.rows, "y"), {}});
           },
           py::arg("X"), py::arg("y"),
-          "Exact answers the caller already has, learned at the next step (e.g. a verified "
-          "plan's missed answers).")
+          "Exact answers the caller already has, learned at the next step() or "
+          "learn_observations() (e.g. a verified plan's answers that answers_missed_by keeps).")
+      .def("learn_observations", &ProxyCollisionDetector::learnObservations,
+           py::call_guard<py::gil_scoped_release>(),
+           "Learns the waiting observations now, asking the oracle nothing (no relabelling, no "
+           "active learning): for a scene that has not moved since the last step. The report's "
+           "`observed` counts them; nothing waiting, no new model.")
+      .def_property_readonly(
+          "dropped_observations", &ProxyCollisionDetector::droppedObservations,
+          "Observations dropped because 20000 were already waiting (each step or "
+          "learn_observations() takes them).")
       .def(
           "start_background",
           [](ProxyCollisionDetector& d, double minPeriod) {

@@ -399,3 +399,43 @@ def test_paths_written_read_and_cut_as_the_checks_cut_them(tmp_path, baxter, bax
         fastron.states_along_path(np.zeros(7), 0.1)
     with pytest.raises(fastron.InvalidArgument, match="resolution"):
         fastron.states_along_path(path, 0)
+
+
+def test_a_detector_learns_the_answers_its_plans_got_wrong(baxter):
+    # The loop of docs/planning.md, "Learn from verification", in a scene that stands still:
+    # plan on the model, keep the exact answers it got wrong, learn them without the oracle.
+    scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
+    fcl = fastron.FclChecker(baxter, scene)
+    detector = fastron.ProxyCollisionDetector(fcl, fastron.robot_features(baxter), seed=5,
+                                              relabel_support=False, calibration_samples=0)
+    detector.initialize(400)  # a small model, so that its plans meet its mistakes
+    model = detector.model()
+    x = uniform(baxter.limits, 400, seed=13)
+    free = x[~fcl.in_collision(x)]
+    answers_x, answers_y = [], []
+    for i in range(6):
+        plan = fastron.plan_verified(model, fcl, free[2 * i], free[2 * i + 1], resolution=0.05,
+                                     time_limit=5)
+        answers_x.append(plan.exact_answers[0])
+        answers_y.append(plan.exact_answers[1])
+    all_x, all_y = np.concatenate(answers_x), np.concatenate(answers_y)
+    missed_x, missed_y = fastron.answers_missed_by(model, all_x, all_y)
+    wrong = model.in_collision(all_x) != (all_y > 0)
+    assert len(missed_y) == int(wrong.sum()) > 0
+    assert np.array_equal(missed_x, all_x[wrong]) and np.array_equal(missed_y, all_y[wrong])
+
+    version = detector.model_version
+    detector.add_observations(missed_x, missed_y)
+    report = detector.learn_observations()
+    assert report.observed == len(missed_y) and report.labelled == 0  # no oracle call
+    assert detector.model_version == version + 1
+    # Claim 1 over the support set and the observations: every one is learned.
+    assert report.update.stop_reason == "converged" and report.update.misclassified == 0
+    learned = detector.model().in_collision(missed_x) == (missed_y > 0)
+    assert learned.mean() >= 0.95, learned.mean()
+    assert detector.dropped_observations == 0
+    nothing = detector.learn_observations()  # nothing waiting: no new model
+    assert nothing.observed == 0 and detector.model_version == version + 1
+
+    with pytest.raises(fastron.InvalidArgument, match="X"):
+        fastron.answers_missed_by(model, np.zeros((3, 6)), np.ones(3))
