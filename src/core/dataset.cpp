@@ -195,6 +195,22 @@ Dataset rowsOf(const Dataset& data, const std::vector<Eigen::Index>& index) {
   return out;
 }
 
+void append(Dataset& data, const Dataset& rows) {
+  if (rows.size() == 0) return;
+  if (data.size() == 0) {
+    data.points = rows.points;
+    data.labels = rows.labels;
+    return;
+  }
+  if (rows.dim() != data.dim()) {
+    throw InvalidArgument("cannot append rows of " + std::to_string(rows.dim()) +
+                          " columns to a dataset of " + std::to_string(data.dim()));
+  }
+  data.points.conservativeResize(data.points.rows() + rows.points.rows(), Eigen::NoChange);
+  data.points.bottomRows(rows.points.rows()) = rows.points;
+  data.labels.insert(data.labels.end(), rows.labels.begin(), rows.labels.end());
+}
+
 DatasetSplit splitHoldout(const Dataset& data, double heldOut, std::uint64_t seed) {
   if (!(heldOut >= 0 && heldOut < 1))
     throw InvalidArgument("the held-out share must be in [0, 1), got " + std::to_string(heldOut));

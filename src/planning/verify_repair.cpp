@@ -72,19 +72,17 @@ void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const Join
   }
 }
 
-}  // namespace
-
-VerifiedPlan verifyAndRepair(const JointPath& path,
-                             const std::shared_ptr<const CollisionChecker>& exact,
-                             const JointLimits& limits, const PlannerOptions& options) {
+/// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it).
+VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>& known,
+                           const std::shared_ptr<const CollisionChecker>& exact,
+                           const JointLimits& limits, const PlannerOptions& options) {
   constexpr int kRounds = 3;  // a repaired stretch is planned on the exact checker, so one suffices
-  checkExact(exact, limits);
-  validate(options);
   VerifiedPlan result;
   result.path = path;
   for (int round = 0; round < kRounds; ++round) {
     auto began = Clock::now();
-    const PathCheck check = checkPathParallel(*exact, result.path, options.resolution);
+    const PathCheck check =
+        round == 0 && known ? *known : checkPathParallel(*exact, result.path, options.resolution);
     result.verifyTime += Clock::now() - began;
     if (check.valid()) {
       result.status = PlanStatus::Solved;
@@ -144,6 +142,16 @@ VerifiedPlan verifyAndRepair(const JointPath& path,
   result.status = PlanStatus::Timeout;
   result.failure = "the path still collided after " + std::to_string(kRounds) + " repair rounds";
   return result;
+}
+
+}  // namespace
+
+VerifiedPlan verifyAndRepair(const JointPath& path,
+                             const std::shared_ptr<const CollisionChecker>& exact,
+                             const JointLimits& limits, const PlannerOptions& options) {
+  checkExact(exact, limits);
+  validate(options);
+  return repairChecked(path, std::nullopt, exact, limits, options);
 }
 
 namespace {
@@ -252,6 +260,88 @@ VerifiedPlan planVerified(const CalibratedModel& model,
   }
   VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options);
   result.exactAnswers = recorder->take();
+  return result;
+}
+
+VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
+                                  const std::shared_ptr<const CollisionChecker>& exact,
+                                  const JointLimits& limits, const Eigen::VectorXd& start,
+                                  const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  checkExact(exact, limits);
+  validate(options);
+  const auto recorder = std::make_shared<RecordingChecker>(exact);
+  Dataset answers;  // of the rounds that learned
+  std::chrono::nanoseconds planTime{0}, simplifyTime{0}, verifyTime{0}, learnTime{0};
+  std::size_t relearned = 0;
+  bool substituteEnds = false;
+  VerifiedPlan result;
+  JointPath lastPath;  // the last path on the model that verification found colliding
+  PathCheck lastCheck;
+  PlannerOptions roundOptions = options;
+  for (unsigned round = 0;; ++round) {
+    const CalibratedModel model = proxy.calibratedModel();
+    const ApproximatePlan attempt =
+        planApproximately(model.model, recorder, limits, start, goal, roundOptions);
+    planTime += attempt.plan.time;
+    simplifyTime += attempt.plan.simplifyTime;
+    substituteEnds = substituteEnds || attempt.substituteEnds;
+    if (!attempt.plan.solved() && round > 0) {
+      // What the model learned closed its way: repair the last path instead, as planVerified
+      // would have.
+      result = repairChecked(lastPath, lastCheck, recorder, limits, options);
+      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      break;
+    }
+    if (!attempt.plan.solved()) {
+      // The model closes the way: the hybrid, then the exact checker, as planVerified does.
+      std::vector<CollisionSource> chain;
+      if (model.calibration.colliding + model.calibration.free > 0) {
+        chain.emplace_back(
+            std::make_shared<HybridChecker>(model.model, recorder, model.calibration.band));
+      }
+      result = planAndRepair(chain, recorder, limits, start, goal, options);
+      break;
+    }
+    if (round == options.learningRounds) {
+      result = verifyAndRepair(attempt.plan.path, recorder, limits, options);
+      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      break;
+    }
+    const auto verifyBegan = Clock::now();
+    const PathCheck check = checkPathParallel(*recorder, attempt.plan.path, options.resolution);
+    verifyTime += Clock::now() - verifyBegan;
+    if (check.valid()) {
+      result.status = PlanStatus::Solved;
+      result.path = attempt.plan.path;
+      result.plannedOn = sourceName(model.model);
+      break;
+    }
+    if (round == 0) {
+      // A plan on the corrected model gets the first one's time a few times over (at least 50
+      // ms), not the whole share: when what it learned closes the way, searching on costs more
+      // than repairing the last path.
+      const double box =
+          std::max(0.05, 4 * std::chrono::duration<double>(attempt.plan.time).count());
+      roundOptions.approximateShare = std::min(options.approximateShare, box / options.timeLimit);
+    }
+    lastPath = attempt.plan.path;
+    lastCheck = check;
+    const auto learnBegan = Clock::now();
+    const Dataset recorded = recorder->take();
+    proxy.addObservations(answersMissedBy(*model.model, recorded));
+    proxy.learnObservations();
+    append(answers, recorded);
+    learnTime += Clock::now() - learnBegan;
+    ++relearned;
+  }
+  result.planTime += planTime + learnTime;
+  result.simplifyTime += simplifyTime;
+  result.learnTime = learnTime;
+  result.verifyTime += verifyTime;
+  result.relearned = relearned;
+  result.substituteEnds = result.substituteEnds || substituteEnds;
+  append(answers, recorder->take());
+  result.exactAnswers = std::move(answers);
   return result;
 }
 

@@ -105,9 +105,7 @@ HeldOutTraining trainToHeldOutTargets(const CollisionChecker& oracle, const Feat
       learned.labels = labelsAt(level, learned.points);
     }
     if (level > 0) fresh.labels = labelsAt(level, fresh.points);
-    learned.points.conservativeResize(learned.points.rows() + fresh.points.rows(), Eigen::NoChange);
-    learned.points.bottomRows(fresh.points.rows()) = fresh.points;
-    learned.labels.insert(learned.labels.end(), fresh.labels.begin(), fresh.labels.end());
+    append(learned, fresh);
   }
 }
 

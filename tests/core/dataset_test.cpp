@@ -189,6 +189,24 @@ TEST_F(DatasetFiles, ParsesFromMemoryAsFromAFile) {
   EXPECT_EQ(fromText.columnNames, fromFile.columnNames);
 }
 
+TEST(DatasetAppend, AppendsRowsWithTheirLabels) {
+  Dataset first{Configurations::Random(3, 2), {1, -1, 1}, {}};
+  const Dataset second{Configurations::Random(2, 2), {-1, -1}, {}};
+  Dataset all;
+  append(all, first);  // an empty dataset takes the rows' columns
+  append(all, second);
+  append(all, Dataset{});  // nothing to append
+  ASSERT_EQ(all.size(), 5u);
+  ASSERT_EQ(all.points.rows(), 5);
+  EXPECT_EQ(all.points.topRows(3), first.points);
+  EXPECT_EQ(all.points.bottomRows(2), second.points);
+  EXPECT_EQ(all.labels, (Labels{1, -1, 1, -1, -1}));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                append(first, Dataset{Configurations::Zero(1, 3), {1}, {}});
+              }),
+              HasSubstr("cannot append rows of 3 columns to a dataset of 2"));
+}
+
 TEST(DatasetSplit, HoldsOutAShareAndKeepsFileOrderWithoutOne) {
   Dataset data;
   data.points = Configurations::Random(10, 2);

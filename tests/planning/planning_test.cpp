@@ -312,6 +312,66 @@ TEST_F(Planning, VerifiedPlansReturnEveryExactAnswer) {
   EXPECT_GT(repaired, 0u) << "the test needs plans through the missed half";
 }
 
+// A model that learned a wall without its lower half plans through it; with learning from
+// verification it learns the exact answers it got wrong and plans again before anything is
+// repaired, and keeps what it learned.
+TEST_F(Planning, AModelLearnsFromVerificationAndPlansAgain) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  const auto halfWall = std::make_shared<FunctionChecker>("half wall", 2, [](const double* q) {
+    return std::abs(q[0]) < 0.1 && q[1] > -0.2 && q[1] < 0.5;
+  });
+  const JointLimits limits = JointLimits::unitBox(2);
+  ProxyParams params;
+  params.train = {.kernel = {.gamma = 30}, .beta = 10};
+  params.calibrationSamples = 0;
+  params.relabelSupport = false;
+  ProxyCollisionDetector proxy(halfWall, limits, params);
+  proxy.initialize(1500);
+  const auto first = proxy.calibratedModel();
+  ASSERT_FALSE(first.model->inCollision(vec({0, -0.8}).data())) << "the model must miss the half";
+
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5, .learningRounds = 3};
+  exact->resetCallCount();
+  const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_TRUE(
+      pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+  EXPECT_GE(plan.relearned, 1u) << "the first model's path crosses the missed half";
+  EXPECT_LE(plan.relearned, options.learningRounds);
+  EXPECT_EQ(proxy.calibratedModel().version, first.version + plan.relearned);
+  EXPECT_GT(plan.learnTime.count(), 0);
+  EXPECT_LE(plan.learnTime, plan.planTime);
+  // Every exact answer of every round, and nothing else.
+  EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+  for (std::size_t i = 0; i < plan.exactAnswers.size(); ++i) {
+    const double* q = plan.exactAnswers.points.row(static_cast<Eigen::Index>(i)).data();
+    ASSERT_EQ(plan.exactAnswers.labels[i], inWall(q) ? 1 : -1);
+  }
+  // The proxy keeps what it learned: where the paths crossed the missed half, the model now
+  // says "collides" (the first one said "free" everywhere there).
+  const auto collidingInMissedHalf = [](const Model& model) {
+    int count = 0;
+    for (double y = -0.99; y < -0.2; y += 0.02) {
+      for (const double x : {-0.05, 0.0, 0.05}) count += model.inCollision(vec({x, y}).data());
+    }
+    return count;
+  };
+  EXPECT_EQ(collidingInMissedHalf(*first.model), 0);
+  EXPECT_GT(collidingInMissedHalf(*proxy.model()), 0);
+
+  // No learning rounds: the model's first path is repaired, as planVerified does, and the proxy
+  // learns nothing.
+  ProxyCollisionDetector unlearned(halfWall, limits, params);
+  unlearned.initialize(1500);
+  const VerifiedPlan repaired =
+      planVerifiedLearning(unlearned, exact, limits, kStart, kGoal,
+                           PlannerOptions{.resolution = 0.01, .timeLimit = 5, .learningRounds = 0});
+  ASSERT_TRUE(repaired.solved()) << repaired.failure;
+  EXPECT_EQ(repaired.relearned, 0u);
+  EXPECT_GT(repaired.invalidStretches, 0u);
+  EXPECT_EQ(unlearned.calibratedModel().version, 1u);
+}
+
 // A source that closes the only passage finds no path however long it searches: the exact
 // fallback starts after approximateShare of the time limit, not after all of it.
 TEST_F(Planning, HopelessApproximatePlansAreTimeBoxed) {

@@ -36,6 +36,10 @@ Dataset parseNpy(std::string_view bytes, const std::string& source);
 /// The rows of `data` at `index`, in that order (column names kept).
 Dataset rowsOf(const Dataset& data, const std::vector<Eigen::Index>& index);
 
+/// Appends the rows of `rows` to `data` (an empty `data` takes `rows`' columns). Throws
+/// InvalidArgument when both have rows and their column counts differ.
+void append(Dataset& data, const Dataset& rows);
+
 /// A random share `heldOut` (in [0, 1)) of the rows for validation, the rest for training. With
 /// nothing held out the training rows keep the data's order (the same model as training on the
 /// whole file); otherwise the rows are shuffled with `seed` first. Throws InvalidArgument on a

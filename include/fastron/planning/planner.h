@@ -46,6 +46,9 @@ struct PlannerOptions {
   /// costs more than the whole plan: with a quarter of the limit (the earlier rule), two repaired
   /// stretches of `bench plan` took 2.0 and 2.5 s where FCL plans a whole motion in 3-8 ms.
   double stretchShare = 0.02;
+  /// planVerifiedLearning: how many times a model whose path verification finds colliding learns
+  /// the exact answers it got wrong and plans again, before its last path is repaired.
+  unsigned learningRounds = 3;
 };
 
 /// Throws InvalidArgument naming the field when an option is out of range.

@@ -21,9 +21,14 @@ struct VerifiedPlan {
   JointPath path;
   std::chrono::nanoseconds planTime{0};      ///< the approximate checker's plan, simplified
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
-  std::chrono::nanoseconds verifyTime{0};    ///< exact checks of the plan, and of the repaired path
-  std::chrono::nanoseconds repairTime{0};    ///< replanning of the invalid stretches
-  std::size_t invalidStretches = 0;          ///< stretches cut out and replanned
+  /// of planTime: the model learning from verification between its plans (planVerifiedLearning)
+  std::chrono::nanoseconds learnTime{0};
+  std::chrono::nanoseconds verifyTime{0};  ///< exact checks of the plan, and of the repaired path
+  std::chrono::nanoseconds repairTime{0};  ///< replanning of the invalid stretches
+  std::size_t invalidStretches = 0;        ///< stretches cut out and replanned
+  /// planVerifiedLearning: plans on the model that verification found colliding, after each of
+  /// which the model learned and planned again
+  std::size_t relearned = 0;
   /// The whole motion was planned on the exact checker: the approximate plan failed, or one of
   /// its stretches could not be bridged.
   bool wholePathReplanned = false;
@@ -76,6 +81,20 @@ VerifiedPlan planVerified(const CalibratedModel& model,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options);
+
+/// For a scene that stands still: plans on `proxy`'s latest model as planVerified above, but when
+/// verification finds the model's path colliding, the model first learns the exact answers it
+/// got wrong (answersMissedBy, addObservations, learnObservations: no oracle call) and plans again
+/// on the new model, up to options.learningRounds times; the last path is repaired as above. When
+/// the first plan on the model fails, the hybrid and then the exact checker plan as above; a plan
+/// on a corrected model gets at most four times the first plan's time (at least 50 ms, at most
+/// the share) and, when it fails, the last path is repaired. The proxy keeps what it learned for
+/// later queries; every exact answer of every round is in `exactAnswers`.
+/// Not while the proxy updates in the background: what it learns must be of the world as it is.
+VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
+                                  const std::shared_ptr<const CollisionChecker>& exact,
+                                  const JointLimits& limits, const Eigen::VectorXd& start,
+                                  const Eigen::VectorXd& goal, const PlannerOptions& options);
 
 /// A plan made on the exact checker itself, as a VerifiedPlan whose verify and repair times are
 /// 0 (there is nothing to verify), so that it compares with planVerified's results.
