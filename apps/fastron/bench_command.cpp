@@ -117,7 +117,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 "motion-bench with --self-collision: also plan on a self-collision model learned "
                 "once for the robot beside each scene's obstacle model (method 'Fastron split')");
   cmd->add_flag("--self-collision", o->settings.selfCollision,
-                "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped)");
+                "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped); "
+                "adds method 'Fastron obstacles': a model of each scene's obstacles alone that "
+                "learns from its plans' verification");
   cmd->add_option("--time-limit", o->settings.timeLimit, "planning experiments: seconds per query")
       ->check(numberAbove(0));
   cmd->add_option("--resolution", o->settings.resolution,

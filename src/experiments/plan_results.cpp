@@ -44,8 +44,8 @@ Table PlanRows::table() const {
   table.columns = queryColumns;
   for (const char* column :
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
-        "total_s", "path_length", "waypoints", "stretches", "fallback", "exact_ends",
-        "collides_fcl", "exact_share", "planned_on"}) {
+        "total_s", "path_length", "waypoints", "stretches", "relearned", "relearn_s", "fallback",
+        "exact_ends", "collides_fcl", "exact_share", "planned_on"}) {
     table.columns.emplace_back(column);
   }
   table.columns.insert(table.columns.end(), figureColumns.begin(), figureColumns.end());
@@ -71,6 +71,8 @@ Table PlanRows::table() const {
         cell(o.pathLength),
         std::to_string(o.waypoints),
         std::to_string(o.repairedStretches),
+        std::to_string(o.relearned),
+        cell(o.learnSeconds),
         flag(o.wholeMotionReplanned),
         flag(o.substituteEnds),
         o.collidesUnderAudit ? cell(*o.collidesUnderAudit ? 1.0 : 0.0) : cell(std::nan("")),

@@ -24,6 +24,8 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   o.totalSeconds = inSeconds(plan.totalTime());
   o.waypoints = plan.path.size();
   o.repairedStretches = plan.invalidStretches;
+  o.relearned = plan.relearned;
+  o.learnSeconds = inSeconds(plan.learnTime);
   o.wholeMotionReplanned = plan.wholePathReplanned;
   o.substituteEnds = plan.substituteEnds;
   o.exactShare = method.exactShare;

@@ -160,13 +160,25 @@ def main():
     elif name == "motion-bench":
         # The split model plans only with --self-model, whose run reports its training.
         split = "Fastron split: obstacle model per scene" in report
-        check_plans(rows, ["Fastron", "Hybrid", "FCL"] + (["Fastron split"] if split else []))
+        # The obstacle model plans whenever self-collision is checked (then the split may too).
+        obstacles = "Fastron obstacles: a model of the scene's obstacles alone" in report
+        check_plans(rows, ["Fastron", "Hybrid", "FCL"] + (["Fastron split"] if split else []) +
+                    (["Fastron obstacles"] if obstacles else []))
         if split != any(r["method"] == "Fastron split" for r in rows):
             fail("report.md and results.csv disagree about the split model")
+        if split and not obstacles:
+            fail("the split model's run has no obstacle model row")
+        for row in rows:
+            relearned = value(row, "relearned")
+            if row["method"] != "Fastron obstacles" and (relearned != 0 or value(row, "relearn_s") != 0):
+                fail(f"only the obstacle model learns within a query: {row}")
+            if relearned > 3 or (relearned > 0 and not 0 < value(row, "relearn_s") <= value(row, "plan_s")):
+                fail(f"learning rounds out of place: {row}")
         # Every model's accuracy and TPR beside its speed, scored against FCL per scene.
         rate_columns([r for r in rows if r["method"] != "FCL"], ["accuracy", "tpr"])
         for row in rows:
-            if row["method"] in ("Fastron", "Fastron split") and math.isnan(value(row, "accuracy")):
+            if row["method"] in ("Fastron", "Fastron split", "Fastron obstacles") and math.isnan(
+                    value(row, "accuracy")):
                 fail(f"no accuracy for a model: {row}")
         if "the trained model's accuracy" not in report:
             fail("report.md does not give the trained model's accuracy")

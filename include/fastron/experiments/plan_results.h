@@ -27,6 +27,10 @@ struct PlanOutcome {
   double pathLength = std::nan("");  ///< joint space; NaN unless solved
   std::size_t waypoints = 0;
   std::size_t repairedStretches = 0;
+  /// plans on the model that verification found colliding and the model learned from before
+  /// planning again (planVerifiedLearning)
+  std::size_t relearned = 0;
+  double learnSeconds = 0;            ///< of planSeconds: that learning
   bool wholeMotionReplanned = false;  ///< the motion was planned again on the exact checker
   bool substituteEnds = false;        ///< planned between substitutes of start and goal
   /// The final path re-checked by an FCL checker the planner never used; empty unless solved.
