@@ -235,6 +235,7 @@ class VerifiedPlan:
     repair_seconds: float
     total_seconds: float
     invalid_stretches: int
+    relearned: int
     whole_path_replanned: bool
     exact_answers: tuple[npt.NDArray[np.float64], npt.NDArray[np.int8]]
 
@@ -247,7 +248,8 @@ def plan(source: Source, start: ArrayLike, goal: ArrayLike, *,
 def plan_verified(approximate: Union[Source, ProxyCollisionDetector], exact: CollisionChecker,
                   start: ArrayLike, goal: ArrayLike, *, limits: Optional[JointLimits] = None,
                   planner: str = "RRTConnect", range: float = 0.0, resolution: float = 0.02,
-                  time_limit: float = 10.0, simplify_time: float = 0.1) -> VerifiedPlan: ...
+                  time_limit: float = 10.0, simplify_time: float = 0.1,
+                  learning_rounds: int = 0) -> VerifiedPlan: ...
 def check_path(checker: CollisionChecker, path: ArrayLike, resolution: float) -> bool: ...
 def states_along_path(path: ArrayLike, resolution: float) -> npt.NDArray[np.float64]: ...
 def write_path(file: Path, path: ArrayLike, robot: Robot) -> None: ...

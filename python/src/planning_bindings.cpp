@@ -78,7 +78,7 @@ struct PythonVerifiedPlan {
   std::string status, failure, plannedOn;
   py::array_t<double> path;
   double planSeconds = 0, verifySeconds = 0, repairSeconds = 0;
-  std::size_t invalidStretches = 0;
+  std::size_t invalidStretches = 0, relearned = 0;
   bool wholePathReplanned = false;
   py::array_t<double> exactX;
   py::array_t<std::int8_t> exactY;
@@ -93,6 +93,7 @@ PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
           inSeconds(plan.verifyTime),
           inSeconds(plan.repairTime),
           plan.invalidStretches,
+          plan.relearned,
           plan.wholePathReplanned,
           toArray(plan.exactAnswers.points),
           toArray(plan.exactAnswers.labels)};
@@ -129,6 +130,9 @@ void bindPlanning(py::module_& m) {
                                return p.planSeconds + p.verifySeconds + p.repairSeconds;
                              })
       .def_readonly("invalid_stretches", &PythonVerifiedPlan::invalidStretches)
+      .def_readonly("relearned", &PythonVerifiedPlan::relearned,
+                    "Paths on the model that verification found colliding and the detector "
+                    "learned from before planning again (learning_rounds).")
       .def_readonly("whole_path_replanned", &PythonVerifiedPlan::wholePathReplanned)
       .def_property_readonly(
           "exact_answers",
@@ -168,14 +172,24 @@ void bindPlanning(py::module_& m) {
       "plan_verified",
       [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
          py::handle goal, std::optional<JointLimits> limits, const std::string& planner,
-         double range, double resolution, double timeLimit, double simplifyTime) {
-        const PlannerOptions options =
+         double range, double resolution, double timeLimit, double simplifyTime,
+         unsigned learningRounds) {
+        PlannerOptions options =
             plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
+        options.learningRounds = learningRounds;
         const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
         VerifiedPlan plan;
-        if (py::isinstance<ProxyCollisionDetector>(approximate)) {
+        if (learningRounds > 0) {
+          if (!py::isinstance<ProxyCollisionDetector>(approximate)) {
+            throw InvalidArgument("learning_rounds: only a ProxyCollisionDetector learns, got " +
+                                  typeName(approximate));
+          }
+          auto& detector = approximate.cast<ProxyCollisionDetector&>();
+          py::gil_scoped_release released;
+          plan = planVerifiedLearning(detector, exact, l, a, b, options);
+        } else if (py::isinstance<ProxyCollisionDetector>(approximate)) {
           // A detector gives its calibrated band: a model that closes a passage is retried as a
           // hybrid of model and exact checker before planning on the exact one.
           const CalibratedModel model =
@@ -192,9 +206,13 @@ void bindPlanning(py::module_& m) {
       py::arg("approximate"), py::arg("exact"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
       py::arg("resolution") = 0.02, py::arg("time_limit") = 10.0, py::arg("simplify_time") = 0.1,
+      py::arg("learning_rounds") = 0u,
       "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "
       "or a checker), then verifies every edge with `exact` and replans the stretches that "
-      "collide: a solved plan's path never collides under `exact` at `resolution`.");
+      "collide: a solved plan's path never collides under `exact` at `resolution`. "
+      "learning_rounds=N (a detector of a scene that stands still): when verification finds the "
+      "model's path colliding, the detector first learns the answers its model got wrong and "
+      "plans again, up to N times, before repairing.");
 
   m.def(
       "check_path",

@@ -401,24 +401,17 @@ def test_paths_written_read_and_cut_as_the_checks_cut_them(tmp_path, baxter, bax
         fastron.states_along_path(path, 0)
 
 
-def test_a_detector_learns_the_answers_its_plans_got_wrong(baxter):
-    # The loop of docs/planning.md, "Learn from verification", in a scene that stands still:
-    # plan on the model, keep the exact answers it got wrong, learn them without the oracle.
+def test_a_detector_learns_the_answers_its_model_got_wrong(baxter):
+    # The loop of docs/planning.md, "Learning from verification in one scene": keep the exact
+    # answers the model got wrong and learn them without asking the oracle.
     scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
     fcl = fastron.FclChecker(baxter, scene)
     detector = fastron.ProxyCollisionDetector(fcl, fastron.robot_features(baxter), seed=5,
                                               relabel_support=False, calibration_samples=0)
-    detector.initialize(400)  # a small model, so that its plans meet its mistakes
+    detector.initialize(400)  # a small model, wrong about some of the answers below
     model = detector.model()
-    x = uniform(baxter.limits, 400, seed=13)
-    free = x[~fcl.in_collision(x)]
-    answers_x, answers_y = [], []
-    for i in range(6):
-        plan = fastron.plan_verified(model, fcl, free[2 * i], free[2 * i + 1], resolution=0.05,
-                                     time_limit=5)
-        answers_x.append(plan.exact_answers[0])
-        answers_y.append(plan.exact_answers[1])
-    all_x, all_y = np.concatenate(answers_x), np.concatenate(answers_y)
+    all_x = uniform(baxter.limits, 2000, seed=13)
+    all_y = np.where(fcl.in_collision(all_x), 1, -1).astype(np.int8)
     missed_x, missed_y = fastron.answers_missed_by(model, all_x, all_y)
     wrong = model.in_collision(all_x) != (all_y > 0)
     assert len(missed_y) == int(wrong.sum()) > 0
@@ -439,3 +432,36 @@ def test_a_detector_learns_the_answers_its_plans_got_wrong(baxter):
 
     with pytest.raises(fastron.InvalidArgument, match="X"):
         fastron.answers_missed_by(model, np.zeros((3, 6)), np.ones(3))
+
+
+def test_plan_verified_learns_within_a_query(baxter):
+    # learning_rounds: the detector learns what verification found wrong before repairing. Its
+    # model knows one of the three boxes; each query's straight line, free on the model, crosses
+    # another.
+    scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
+    fcl = fastron.FclChecker(baxter, scene)
+    one_box = fastron.Scene()
+    one_box.add_box("box1", [0.2] * 3, scene.position("box1"))
+    detector = fastron.ProxyCollisionDetector(fastron.FclChecker(baxter, one_box),
+                                              fastron.robot_features(baxter), seed=5,
+                                              relabel_support=False, calibration_samples=0)
+    detector.initialize(2000)
+    x = uniform(baxter.limits, 600, seed=13)
+    free = x[~fcl.in_collision(x)]
+    queries = [(a, b) for a, b in zip(free[0::2], free[1::2])
+               if not fastron.check_path(fcl, np.array([a, b]), 0.05)
+               and not detector.model().in_collision(np.linspace(a, b, 50)).any()][:4]
+    assert len(queries) == 4
+    relearned = 0
+    for start, goal in queries:
+        version = detector.model_version
+        plan = fastron.plan_verified(detector, fcl, start, goal, resolution=0.05, time_limit=5,
+                                     learning_rounds=2)
+        assert plan.solved, plan
+        assert fastron.check_path(fcl, plan.path, 0.05)
+        assert 0 <= plan.relearned <= 2
+        assert detector.model_version == version + plan.relearned
+        relearned += plan.relearned
+    assert relearned > 0, "the model's paths must meet the boxes it does not know"
+    with pytest.raises(fastron.InvalidArgument, match="only a ProxyCollisionDetector learns"):
+        fastron.plan_verified(detector.model(), fcl, free[0], free[1], learning_rounds=1)
