@@ -324,15 +324,23 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
           std::max(0.05, 4 * std::chrono::duration<double>(attempt.plan.time).count());
       roundOptions.approximateShare = std::min(options.approximateShare, box / options.timeLimit);
     }
-    lastPath = attempt.plan.path;
-    lastCheck = check;
     const auto learnBegan = Clock::now();
     const Dataset recorded = recorder->take();
-    proxy.addObservations(answersMissedBy(*model.model, recorded));
-    proxy.learnObservations();
+    const Dataset missed = answersMissedBy(*model.model, recorded);
     append(answers, recorded);
+    if (missed.size() == 0) {
+      // Verification's states all answered as the model does (the planner looked at others):
+      // learning would change nothing, so the path is repaired.
+      result = repairChecked(attempt.plan.path, check, recorder, limits, options);
+      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      break;
+    }
+    proxy.addObservations(missed);
+    proxy.learnObservations();
     learnTime += Clock::now() - learnBegan;
     ++relearned;
+    lastPath = attempt.plan.path;
+    lastCheck = check;
   }
   result.planTime += planTime + learnTime;
   result.simplifyTime += simplifyTime;

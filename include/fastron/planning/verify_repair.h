@@ -91,6 +91,7 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// the share) and, when it fails, the last path is repaired. The proxy keeps what it learned for
 /// later queries; every exact answer of every round is in `exactAnswers`.
 /// Not while the proxy updates in the background: what it learns must be of the world as it is.
+/// Throws Error before proxy.initialize().
 VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
                                   const std::shared_ptr<const CollisionChecker>& exact,
                                   const JointLimits& limits, const Eigen::VectorXd& start,
