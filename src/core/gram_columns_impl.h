@@ -116,6 +116,30 @@ void columnByRow(const double* x, std::size_t rows, std::size_t features, std::s
 // 15.8 ms for all of Algorithm 1). Widened to double, each value is the double the Trainer holds.
 constexpr std::size_t kBlock = 256;
 
+/// One control point's rational-quadratic term for `size` rows from row `first`, in one pass over
+/// its three feature columns g, g + 1, g + 2 (N 8000, d 18, share 1/3: all of Algorithm 1 in 13.2
+/// ms against 20.5 ms in separate passes; d 27: 18.8 against 31.3): the squared distance to row i
+/// added to `whole`, its term to `points`. In double (columnByFeature) or in float
+/// (columnInFloatByFeature), each value from the float features as stored.
+template <class Real>
+void addControlPointTerms(const float* x, std::size_t rows, std::size_t g, std::size_t i,
+                          std::size_t first, std::size_t size, Real halfGamma,
+                          Real* __restrict whole, Real* __restrict points) {
+  // __restrict: the sums are the caller's own arrays, which the feature columns never overlap (as
+  // local arrays in the loop before, they vectorised without run-time overlap checks).
+  const float* __restrict v0 = x + g * rows + first;
+  const float* __restrict v1 = v0 + rows;
+  const float* __restrict v2 = v1 + rows;
+  const Real x0 = x[g * rows + i], x1 = x[(g + 1) * rows + i], x2 = x[(g + 2) * rows + i];
+  for (std::size_t j = 0; j < size; ++j) {
+    const Real t0 = Real(v0[j]) - x0, t1 = Real(v1[j]) - x1, t2 = Real(v2[j]) - x2;
+    const Real d2 = mulAdd(t2, t2, mulAdd(t1, t1, mulAdd(t0, t0, Real(0))));
+    whole[j] += d2;
+    const Real t = mulAdd(halfGamma, d2, Real(1));
+    points[j] += 1 / (t * t);
+  }
+}
+
 /// The term of each of `size` squared distances, in place (one loop per kernel type, the formulas
 /// of kernelOfSquaredDistance: a branch inside would stop the loop vectorising).
 void termsInPlace(double* r2, std::size_t size, KernelType type, double gamma) {
@@ -140,21 +164,7 @@ void columnByFeature(const float* x, std::size_t rows, std::size_t features, std
     for (std::size_t j = 0; j < size; ++j) whole[j] = points[j] = 0;
     for (std::size_t g = 0; g < features; g += block) {
       if (block == 3 && kernel.type == KernelType::RationalQuadratic) {
-        // A control point's term in one pass over its three coordinates: N 8000, d 18, share 1/3,
-        // all of Algorithm 1 in 13.2 ms against 20.5 ms in separate passes (d 27: 18.8 against
-        // 31.3).
-        const float* v0 = x + g * rows + from + begin;
-        const float* v1 = v0 + rows;
-        const float* v2 = v1 + rows;
-        const double x0 = x[g * rows + i], x1 = x[(g + 1) * rows + i], x2 = x[(g + 2) * rows + i];
-        const double halfGamma = 0.5 * kernel.gamma;
-        for (std::size_t j = 0; j < size; ++j) {
-          const double t0 = double(v0[j]) - x0, t1 = double(v1[j]) - x1, t2 = double(v2[j]) - x2;
-          const double d2 = mulAdd(t2, t2, mulAdd(t1, t1, mulAdd(t0, t0, 0.0)));
-          whole[j] += d2;
-          const double t = mulAdd(halfGamma, d2, 1);
-          points[j] += 1 / (t * t);
-        }
+        addControlPointTerms(x, rows, g, i, from + begin, size, 0.5 * kernel.gamma, whole, points);
         continue;
       }
       for (std::size_t j = 0; j < size; ++j) r2[j] = 0;
@@ -259,18 +269,8 @@ void columnInFloatByFeature(const float* x, std::size_t rows, std::size_t featur
     float whole[kBlock], points[kBlock], r2[kBlock];
     for (std::size_t j = 0; j < size; ++j) whole[j] = points[j] = 0;
     for (std::size_t g = 0; g < features; g += block) {
-      if (block == 3) {  // a control point's term in one pass over its three coordinates
-        const float* v0 = x + g * rows + from + begin;
-        const float* v1 = v0 + rows;
-        const float* v2 = v1 + rows;
-        const float x0 = x[g * rows + i], x1 = x[(g + 1) * rows + i], x2 = x[(g + 2) * rows + i];
-        for (std::size_t j = 0; j < size; ++j) {
-          const float t0 = v0[j] - x0, t1 = v1[j] - x1, t2 = v2[j] - x2;
-          const float d2 = mulAdd(t2, t2, mulAdd(t1, t1, mulAdd(t0, t0, 0.0f)));
-          whole[j] += d2;
-          const float t = mulAdd(halfGamma, d2, 1.0f);
-          points[j] += 1 / (t * t);
-        }
+      if (block == 3) {
+        addControlPointTerms(x, rows, g, i, from + begin, size, halfGamma, whole, points);
         continue;
       }
       for (std::size_t j = 0; j < size; ++j) r2[j] = 0;

@@ -333,15 +333,21 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
         return (!where || where(row)) && row.method == method && row.queryValue("query") == "0";
       };
     };
+    const auto rowsOf = [&](const std::string& method) -> RowFilter {
+      return [&, method](const PlanRow& row) {
+        return (!where || where(row)) && row.method == method;
+      };
+    };
     const double train = statistic(firstQueryOf("Fastron"), figure("train_s"), true);
     const auto total = [&](const std::string& method, bool median) {
-      return statistic(
-          [&](const PlanRow& row) {
-            return (!where || where(row)) && row.method == method && row.outcome.solved;
-          },
-          [](const PlanRow& row) { return row.outcome.totalSeconds; }, median);
+      const RowFilter of = rowsOf(method);
+      return statistic([&](const PlanRow& row) { return of(row) && row.outcome.solved; },
+                       [](const PlanRow& row) { return row.outcome.totalSeconds; }, median);
     };
-    const double share = train / static_cast<double>(o.queriesPerScene);
+    // The median total of `method`'s plans plus a scene's training shared by its queries.
+    const auto endToEnd = [&](const std::string& method, double trainSeconds) {
+      return total(method, true) + trainSeconds / static_cast<double>(o.queriesPerScene);
+    };
     char line[640];
     std::snprintf(
         line, sizeof line,
@@ -353,10 +359,9 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
         durationText(train).c_str(), statistic(firstQueryOf("Fastron"), figure("support"), true),
         statistic(firstQueryOf("Fastron"), figure("accuracy"), false),
         statistic(firstQueryOf("Fastron"), figure("tpr"), false), testPoints(o), o.queriesPerScene,
-        o.queriesPerScene == 1 ? "y" : "ies", durationText(total("Fastron", true) + share).c_str(),
-        durationText(total("Hybrid", true) + share).c_str(),
-        durationText(total("FCL", true)).c_str(),
-        total("FCL", true) / (total("Fastron", true) + share));
+        o.queriesPerScene == 1 ? "y" : "ies", durationText(endToEnd("Fastron", train)).c_str(),
+        durationText(endToEnd("Hybrid", train)).c_str(), durationText(total("FCL", true)).c_str(),
+        total("FCL", true) / endToEnd("Fastron", train));
     out << '\n' << line;
     // Along FCL's paths of the requests (NaN where FCL found none).
     const auto along = [&](const char* name) {
@@ -378,8 +383,7 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
     const RowFilter split = firstQueryOf("Fastron split");
     if (std::any_of(r.rows.begin(), r.rows.end(), split)) {
       const double splitTrain = statistic(split, figure("train_s"), true);
-      const double splitTotal = total("Fastron split", true);
-      const double endToEnd = splitTotal + splitTrain / static_cast<double>(o.queriesPerScene);
+      const double splitEndToEnd = endToEnd("Fastron split", splitTrain);
       std::snprintf(line, sizeof line,
                     "Fastron split: obstacle model per scene median %s (|S| median %.0f; with "
                     "the self-collision model, accuracy %.3f and TPR %.3f on the same "
@@ -389,14 +393,13 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
                     statistic(split, figure("accuracy"), false),
                     statistic(split, figure("tpr"), false),
                     durationText(statistic(split, figure("self_train_s"), true)).c_str(),
-                    durationText(endToEnd).c_str(), total("FCL", true) / endToEnd);
+                    durationText(splitEndToEnd).c_str(), total("FCL", true) / splitEndToEnd);
       out << line;
     }
     const RowFilter obstacles = firstQueryOf("Fastron obstacles");
     if (std::any_of(r.rows.begin(), r.rows.end(), obstacles)) {
-      const double train = statistic(obstacles, figure("train_s"), true);
-      const double endToEnd =
-          total("Fastron obstacles", true) + train / static_cast<double>(o.queriesPerScene);
+      const double obstaclesTrain = statistic(obstacles, figure("train_s"), true);
+      const double obstaclesEndToEnd = endToEnd("Fastron obstacles", obstaclesTrain);
       const auto relearned = [](const PlanRow& row) {
         return static_cast<double>(row.outcome.relearned);
       };
@@ -407,16 +410,12 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "on the obstacles' labels of the same configurations); when verification finds its "
           "path colliding it learns the answers it got wrong and plans again, up to %u times "
           "(mean %.2f times a query); end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
-          durationText(train).c_str(), statistic(obstacles, figure("support"), true),
+          durationText(obstaclesTrain).c_str(), statistic(obstacles, figure("support"), true),
           statistic(obstacles, figure("accuracy"), false),
           statistic(obstacles, figure("tpr"), false),
           plannerOptions(o, PlannerType::RrtConnect).learningRounds,
-          statistic(
-              [&](const PlanRow& row) {
-                return (!where || where(row)) && row.method == "Fastron obstacles";
-              },
-              relearned, false),
-          durationText(endToEnd).c_str(), total("FCL", true) / endToEnd);
+          statistic(rowsOf("Fastron obstacles"), relearned, false),
+          durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);
       out << line;
     }
     return out.str();

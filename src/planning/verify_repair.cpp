@@ -278,6 +278,13 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   JointPath lastPath;  // the last path on the model that verification found colliding
   PathCheck lastCheck;
   PlannerOptions roundOptions = options;
+  // Repairs `path` on the exact checker (its first check given when known), as planVerified does.
+  const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check,
+                          const CalibratedModel& model) {
+    VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options);
+    repaired.plannedOn = repaired.wholePathReplanned ? exact->name() : sourceName(model.model);
+    return repaired;
+  };
   for (unsigned round = 0;; ++round) {
     const CalibratedModel model = proxy.calibratedModel();
     const ApproximatePlan attempt =
@@ -288,8 +295,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     if (!attempt.plan.solved() && round > 0) {
       // What the model learned closed its way: repair the last path instead, as planVerified
       // would have.
-      result = repairChecked(lastPath, lastCheck, recorder, limits, options);
-      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      result = repair(lastPath, lastCheck, model);
       break;
     }
     if (!attempt.plan.solved()) {
@@ -303,8 +309,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       break;
     }
     if (round == options.learningRounds) {
-      result = verifyAndRepair(attempt.plan.path, recorder, limits, options);
-      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      result = repair(attempt.plan.path, std::nullopt, model);
       break;
     }
     const auto verifyBegan = Clock::now();
@@ -331,8 +336,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     if (missed.size() == 0) {
       // Verification's states all answered as the model does (the planner looked at others):
       // learning would change nothing, so the path is repaired.
-      result = repairChecked(attempt.plan.path, check, recorder, limits, options);
-      result.plannedOn = result.wholePathReplanned ? exact->name() : sourceName(model.model);
+      result = repair(attempt.plan.path, check, model);
       break;
     }
     proxy.addObservations(missed);

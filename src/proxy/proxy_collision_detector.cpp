@@ -103,11 +103,10 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   const auto support = static_cast<Eigen::Index>(trainer_.size());
   // The support set is labelled again unless the world stands still (relabelSupport).
   const Eigen::Index relabelled = params_.relabelSupport ? support : 0;
-  Configurations learnt = fresh;
-  if (relabelled > 0) {
-    learnt.resize(relabelled + fresh.rows(), Eigen::NoChange);
-    learnt << trainer_.configurations(), fresh;
-  }
+  Configurations learnt(relabelled + fresh.rows(),
+                        static_cast<Eigen::Index>(features_.configurationDim()));
+  learnt.topRows(relabelled) = trainer_.configurations().topRows(relabelled);
+  learnt.bottomRows(fresh.rows()) = fresh;
   const auto labelStart = Clock::now();
   report.sampleTime = labelStart - start;
 
