@@ -63,6 +63,37 @@ std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
   return std::nullopt;
 }
 
+/// The last state that `source` finds free walking in order from `from` towards `to` at
+/// `resolution`, before the first one it finds colliding (`from` itself when the first step
+/// collides; `to` when none does). The caller knows `from` to be free.
+Eigen::VectorXd lastFreeToward(const CollisionSource& source, const Eigen::VectorXd& from,
+                               const Eigen::VectorXd& to, double resolution) {
+  const auto dim = static_cast<std::size_t>(from.size());
+  const std::size_t n = segmentCount(from, to, resolution);
+  std::vector<double> states(n * dim);
+  for (std::size_t k = 1; k <= n; ++k) {
+    const double t = static_cast<double>(k) / static_cast<double>(n);
+    Eigen::Map<Eigen::VectorXd>(states.data() + (k - 1) * dim, from.size()) =
+        from + t * (to - from);
+  }
+  const std::size_t first = firstCollision(source, states.data(), n, dim);
+  if (first == n) return to;
+  return first == 0 ? from
+                    : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
+                          states.data() + (first - 1) * dim, from.size()));
+}
+
+/// How far (joint units) a bridge's search may go beyond the box its ends span, on every side.
+constexpr double kBridgeMargin = 0.3;
+
+/// The joint limits of a bridge's search: the box the ends span, grown by `margin` on every side,
+/// within `limits`.
+JointLimits aroundEnds(const JointLimits& limits, const Eigen::VectorXd& a,
+                       const Eigen::VectorXd& b, double margin) {
+  return {(a.cwiseMin(b).array() - margin).matrix().cwiseMax(limits.lower()),
+          (a.cwiseMax(b).array() + margin).matrix().cwiseMin(limits.upper())};
+}
+
 void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const JointLimits& limits) {
   if (!exact) throw InvalidArgument("verify and repair: the exact checker is a null pointer");
   if (exact->dof() != limits.dim()) {
@@ -116,9 +147,20 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
       // A stretch is short, so it gets options.stretchShare of the time; a waypoint the
       // approximate plan left in a pocket of free space may have no short way out, and then the
       // whole motion is planned again on the exact checker.
+      // The bridge joins the free states next to the stretch's first and last collisions, not
+      // its waypoints: a simplified path's edges are long, and a plan between their ends
+      // replans what was free of the motion too.
+      const Eigen::VectorXd from = lastFreeToward(exact, old[i], old[i + 1], options.resolution);
+      const Eigen::VectorXd to = lastFreeToward(exact, old[j], old[j - 1], options.resolution);
       PlannerOptions stretchOptions = options;
       stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
-      const PlanResult bridge = planMotion(exact, limits, old[i], old[j], stretchOptions);
+      // Searched near its ends first: with the whole joint range the planner's samples and long
+      // default edges wander far from a graze, and each exact edge check costs milliseconds on
+      // a mesh robot (box family: repairs of 0.09-0.29 s, as long as FCL's whole plans); then in
+      // the whole range, for an obstacle whose way round lies farther out.
+      PlanResult bridge =
+          planMotion(exact, aroundEnds(limits, from, to, kBridgeMargin), from, to, stretchOptions);
+      if (!bridge.solved()) bridge = planMotion(exact, limits, from, to, stretchOptions);
       if (!bridge.solved()) {
         const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);
         if (!whole.solved()) {
@@ -133,7 +175,9 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
         result.wholePathReplanned = true;
         break;
       }
+      if (!from.isApprox(old[i])) repaired.push_back(from);
       repaired.insert(repaired.end(), bridge.path.begin() + 1, bridge.path.end());
+      if (!to.isApprox(old[j])) repaired.push_back(old[j]);
       i = j;
     }
     result.path = std::move(repaired);
@@ -299,13 +343,10 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       break;
     }
     if (!attempt.plan.solved()) {
-      // The model closes the way: the hybrid, then the exact checker, as planVerified does.
-      std::vector<CollisionSource> chain;
-      if (model.calibration.colliding + model.calibration.free > 0) {
-        chain.emplace_back(
-            std::make_shared<HybridChecker>(model.model, recorder, model.calibration.band));
-      }
-      result = planAndRepair(chain, recorder, limits, start, goal, options);
+      // The model closes the way: the exact checker plans the whole motion. (No hybrid stage
+      // between, unlike planVerified: on the generated box and cage families it found a path in
+      // 4 of about 38 such queries and spent its whole share, 1 s, on the others.)
+      result = planAndRepair({}, recorder, limits, start, goal, options);
       break;
     }
     if (round == options.learningRounds) {

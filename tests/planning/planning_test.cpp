@@ -522,8 +522,19 @@ TEST_F(Planning, RepairsAWaypointInsideAnObstacle) {
   EXPECT_TRUE(repaired.path.back().isApprox(kGoal));
   EXPECT_TRUE(
       pathIsFree(repaired.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
-  // The valid parts are kept: the path still starts with the first two waypoints.
+  // The valid parts are kept: the path still starts with the first two waypoints, and the
+  // invalid edges up to the last free states before the wall (|x| < 0.1) on either side: the
+  // bridge joins those, not the waypoints, so it replans only what collided.
   EXPECT_TRUE(repaired.path[1].isApprox(broken[1]));
+  const Eigen::VectorXd& before = repaired.path[2];
+  EXPECT_NEAR(before[1], 0.0, 1e-12);
+  EXPECT_GE(before[0], -0.1 - options.resolution);
+  EXPECT_LE(before[0], -0.1);
+  const Eigen::VectorXd& after = repaired.path[repaired.path.size() - 3];
+  EXPECT_NEAR(after[1], 0.0, 1e-12);
+  EXPECT_GE(after[0], 0.1);
+  EXPECT_LE(after[0], 0.1 + options.resolution);
+  EXPECT_TRUE(repaired.path[repaired.path.size() - 2].isApprox(broken[3]));
 }
 
 TEST_F(Planning, RepairsAnEdgeThatCutsACorner) {

@@ -49,11 +49,12 @@ struct VerifiedPlan {
 };
 
 /// Checks `path` (start to goal) with `exact` at options.resolution (checkPathParallel: every
-/// core, bisection order); cuts out each invalid stretch
-/// (from the last valid waypoint before it to the first valid one after it), replans it with the
-/// same planner on `exact` (options.stretchShare of the time limit; when that fails, the whole
-/// motion with the full limit), splices the pieces and checks the whole path again (up to three
-/// rounds). planTime is left 0.
+/// core, bisection order); cuts out each invalid stretch (from the last free state before its
+/// first collision to the first free state after its last one, walking the edges at
+/// options.resolution), bridges it with the same planner on `exact` within the box those two
+/// states span grown by 0.3 joint units, then within the joint limits (options.stretchShare of
+/// the time limit each; when both fail, the whole motion with the full time limit), splices the
+/// pieces and checks the whole path again (up to three rounds). planTime is left 0.
 VerifiedPlan verifyAndRepair(const JointPath& path,
                              const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
@@ -86,7 +87,8 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// verification finds the model's path colliding, the model first learns the exact answers it
 /// got wrong (answersMissedBy, addObservations, learnObservations: no oracle call) and plans again
 /// on the new model, up to options.learningRounds times; the last path is repaired as above. When
-/// the first plan on the model fails, the hybrid and then the exact checker plan as above; a plan
+/// the first plan on the model fails, the exact checker plans the whole motion (no hybrid step:
+/// after a model that learns, it rarely found a path, docs/planning.md); a plan
 /// on a corrected model gets at most four times the first plan's time (at least 50 ms, at most
 /// the share) and, when it fails, the last path is repaired. The proxy keeps what it learned for
 /// later queries; every exact answer of every round is in `exactAnswers`.
