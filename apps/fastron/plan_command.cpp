@@ -60,13 +60,14 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
 }
 
 /// A detector of the scene's obstacles trained here on `oracle` (FCL without self-collision),
-/// with the calibrated band of the hybrid when `band`. `what` says what it models, for the report.
+/// without a calibrated band (nothing plans a hybrid on it). `what` says what it models, for the
+/// report.
 std::unique_ptr<ProxyCollisionDetector> trainObstacleModel(
     const PlanOptions& o, const Robot& robot, const std::shared_ptr<const FclChecker>& oracle,
-    bool band, const std::string& what) {
+    const std::string& what) {
   const FeatureMap features = featuresFromOptions(o.features, robot);
-  ProxyParams params = forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed));
-  if (!band) params = withoutBand(params);
+  ProxyParams params =
+      withoutBand(forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed)));
   if (o.gamma) params.train.kernel.gamma = *o.gamma;
   if (o.beta) params.train.beta = *o.beta;
   auto proxy = std::make_unique<ProxyCollisionDetector>(oracle, features, params);
@@ -91,7 +92,7 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
                        : trainObstacleModel(o, robot,
                                             std::make_shared<const FclChecker>(
                                                 robot, scene, CheckerOptions{false, o.padding}),
-                                            false, "of the obstacles, ")
+                                            "of the obstacles, ")
                              ->model();
   const auto both =
       std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
@@ -161,12 +162,12 @@ int runPlan(const PlanOptions& o) {
     // to verification, and the model learns what verification finds it got wrong before
     // anything is repaired (docs/planning.md, "Fastron obstacles": on the mesh Panda 9-27x FCL
     // on both samples, where a model of obstacles and self-collisions together reached 1.4-20x).
-    // It plans on the model, then on the hybrid, then on FCL.
+    // It plans on the model, then on FCL (no hybrid step, so no band to calibrate).
     const auto obstacles = o.selfCollision ? std::make_shared<const FclChecker>(
                                                  robot, scene, CheckerOptions{false, o.padding})
                                            : fcl;
     const auto detector =
-        trainObstacleModel(o, robot, obstacles, true, o.selfCollision ? "of the obstacles, " : "");
+        trainObstacleModel(o, robot, obstacles, o.selfCollision ? "of the obstacles, " : "");
     PlannerOptions learning = options;
     learning.learningRounds = o.learningRounds;
     plan = planVerifiedLearning(*detector, fcl, limits, start, goal, learning);

@@ -199,9 +199,10 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::shared_ptr<const CollisionChecker> split;
     if (o.selfCollision) {
       const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
+      // No band: neither planVerifiedLearning nor the split plans on a hybrid.
       obstacles = std::make_unique<ProxyCollisionDetector>(
           obstacleFcl, features,
-          forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p)));
+          withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))));
       obstaclesTrain = train(*obstacles, samples, updates);
       const std::shared_ptr<const Model> obstacleModel = obstacles->model();
       obstaclesSupport = static_cast<double>(obstacleModel->supportCount());
