@@ -339,7 +339,18 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
         return (!where || where(row)) && row.method == method;
       };
     };
-    const double train = statistic(firstQueryOf("Fastron"), figure("train_s"), true);
+    // A method's model over the scenes: medians of training time and |S|, means of accuracy and
+    // TPR (each scene's first query, as trained).
+    struct ModelFigures {
+      double train, support, accuracy, tpr;
+    };
+    const auto modelOf = [&](const RowFilter& firstQueries) {
+      return ModelFigures{statistic(firstQueries, figure("train_s"), true),
+                          statistic(firstQueries, figure("support"), true),
+                          statistic(firstQueries, figure("accuracy"), false),
+                          statistic(firstQueries, figure("tpr"), false)};
+    };
+    const ModelFigures fastron = modelOf(firstQueryOf("Fastron"));
     const auto total = [&](const std::string& method, bool median) {
       const RowFilter of = rowsOf(method);
       return statistic([&](const PlanRow& row) { return of(row) && row.outcome.solved; },
@@ -350,19 +361,19 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       return total(method, true) + trainSeconds / static_cast<double>(o.queriesPerScene);
     };
     char line[640];
-    std::snprintf(
-        line, sizeof line,
-        "Training per scene: median %s (|S| median %.0f; the trained model's accuracy "
-        "%.3f and TPR %.3f, means over scenes, against FCL on %zu fresh uniform "
-        "configurations per scene). End-to-end per query with %zu "
-        "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
-        "FCL %s (FCL / Fastron %.2fx).\n",
-        durationText(train).c_str(), statistic(firstQueryOf("Fastron"), figure("support"), true),
-        statistic(firstQueryOf("Fastron"), figure("accuracy"), false),
-        statistic(firstQueryOf("Fastron"), figure("tpr"), false), testPoints(o), o.queriesPerScene,
-        o.queriesPerScene == 1 ? "y" : "ies", durationText(endToEnd("Fastron", train)).c_str(),
-        durationText(endToEnd("Hybrid", train)).c_str(), durationText(total("FCL", true)).c_str(),
-        total("FCL", true) / endToEnd("Fastron", train));
+    std::snprintf(line, sizeof line,
+                  "Training per scene: median %s (|S| median %.0f; the trained model's accuracy "
+                  "%.3f and TPR %.3f, means over scenes, against FCL on %zu fresh uniform "
+                  "configurations per scene). End-to-end per query with %zu "
+                  "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
+                  "FCL %s (FCL / Fastron %.2fx).\n",
+                  durationText(fastron.train).c_str(), fastron.support, fastron.accuracy,
+                  fastron.tpr, testPoints(o), o.queriesPerScene,
+                  o.queriesPerScene == 1 ? "y" : "ies",
+                  durationText(endToEnd("Fastron", fastron.train)).c_str(),
+                  durationText(endToEnd("Hybrid", fastron.train)).c_str(),
+                  durationText(total("FCL", true)).c_str(),
+                  total("FCL", true) / endToEnd("Fastron", fastron.train));
     out << '\n' << line;
     // Along FCL's paths of the requests (NaN where FCL found none).
     const auto along = [&](const char* name) {
@@ -383,24 +394,22 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
     out << line;
     const RowFilter split = firstQueryOf("Fastron split");
     if (std::any_of(r.rows.begin(), r.rows.end(), split)) {
-      const double splitTrain = statistic(split, figure("train_s"), true);
-      const double splitEndToEnd = endToEnd("Fastron split", splitTrain);
+      const ModelFigures model = modelOf(split);
+      const double splitEndToEnd = endToEnd("Fastron split", model.train);
       std::snprintf(line, sizeof line,
                     "Fastron split: obstacle model per scene median %s (|S| median %.0f; with "
                     "the self-collision model, accuracy %.3f and TPR %.3f on the same "
                     "configurations), the robot's self-collision model %s once; end-to-end per "
                     "query %s without the self-collision model (FCL / Fastron split %.2fx).\n",
-                    durationText(splitTrain).c_str(), statistic(split, figure("support"), true),
-                    statistic(split, figure("accuracy"), false),
-                    statistic(split, figure("tpr"), false),
+                    durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
                     durationText(statistic(split, figure("self_train_s"), true)).c_str(),
                     durationText(splitEndToEnd).c_str(), total("FCL", true) / splitEndToEnd);
       out << line;
     }
     const RowFilter obstacles = firstQueryOf("Fastron obstacles");
     if (std::any_of(r.rows.begin(), r.rows.end(), obstacles)) {
-      const double obstaclesTrain = statistic(obstacles, figure("train_s"), true);
-      const double obstaclesEndToEnd = endToEnd("Fastron obstacles", obstaclesTrain);
+      const ModelFigures model = modelOf(obstacles);
+      const double obstaclesEndToEnd = endToEnd("Fastron obstacles", model.train);
       const auto relearned = [](const PlanRow& row) {
         return static_cast<double>(row.outcome.relearned);
       };
@@ -411,9 +420,7 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "on the obstacles' labels of the same configurations); when verification finds its "
           "path colliding it learns the answers it got wrong and plans again, up to %u times "
           "(mean %.2f times a query); end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
-          durationText(obstaclesTrain).c_str(), statistic(obstacles, figure("support"), true),
-          statistic(obstacles, figure("accuracy"), false),
-          statistic(obstacles, figure("tpr"), false),
+          durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
           plannerOptions(o, PlannerType::RrtConnect).learningRounds,
           statistic(rowsOf("Fastron obstacles"), relearned, false),
           durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);

@@ -68,19 +68,13 @@ std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
 /// collides; `to` when none does). The caller knows `from` to be free.
 Eigen::VectorXd lastFreeToward(const CollisionSource& source, const Eigen::VectorXd& from,
                                const Eigen::VectorXd& to, double resolution) {
+  // Rows 0..n: `from`, the states a check of this motion at `resolution` looks at, `to`.
+  const Configurations states = statesAlongPath({from, to}, resolution);
   const auto dim = static_cast<std::size_t>(from.size());
-  const std::size_t n = segmentCount(from, to, resolution);
-  std::vector<double> states(n * dim);
-  for (std::size_t k = 1; k <= n; ++k) {
-    const double t = static_cast<double>(k) / static_cast<double>(n);
-    Eigen::Map<Eigen::VectorXd>(states.data() + (k - 1) * dim, from.size()) =
-        from + t * (to - from);
-  }
-  const std::size_t first = firstCollision(source, states.data(), n, dim);
-  if (first == n) return to;
-  return first == 0 ? from
-                    : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
-                          states.data() + (first - 1) * dim, from.size()));
+  const auto n = static_cast<std::size_t>(states.rows()) - 1;
+  // Checked from row 1 on, so row `first` is the last free state (`to` when none collides).
+  const std::size_t first = firstCollision(source, states.data() + dim, n, dim);
+  return states.row(static_cast<Eigen::Index>(first)).transpose();
 }
 
 /// How far (joint units) a bridge's search may go beyond the box its ends span, on every side.
@@ -144,12 +138,11 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
       std::size_t j = i + 1;
       while (contains(check.invalidWaypoints, j)) ++j;
       ++result.invalidStretches;
-      // A stretch is short, so it gets options.stretchShare of the time; a waypoint the
-      // approximate plan left in a pocket of free space may have no short way out, and then the
-      // whole motion is planned again on the exact checker.
       // The bridge joins the free states next to the stretch's first and last collisions, not
       // its waypoints: a simplified path's edges are long, and a plan between their ends
-      // replans what was free of the motion too.
+      // replans what was free of the motion too. It is short, so it gets options.stretchShare of
+      // the time; a waypoint the approximate plan left in a pocket of free space may have no
+      // short way out, and then the whole motion is planned again on the exact checker.
       const Eigen::VectorXd from = lastFreeToward(exact, old[i], old[i + 1], options.resolution);
       const Eigen::VectorXd to = lastFreeToward(exact, old[j], old[j - 1], options.resolution);
       PlannerOptions stretchOptions = options;
@@ -323,34 +316,34 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   PathCheck lastCheck;
   PlannerOptions roundOptions = options;
   // Repairs `path` on the exact checker (its first check given when known), as planVerified does.
-  const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check,
-                          const CalibratedModel& model) {
+  const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
     VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options);
-    repaired.plannedOn = repaired.wholePathReplanned ? exact->name() : sourceName(model.model);
+    repaired.plannedOn = repaired.wholePathReplanned ? exact->name() : sourceName(proxy.model());
     return repaired;
   };
   for (unsigned round = 0;; ++round) {
-    const CalibratedModel model = proxy.calibratedModel();
+    const std::shared_ptr<const Model> model = proxy.model();
     const ApproximatePlan attempt =
-        planApproximately(model.model, recorder, limits, start, goal, roundOptions);
+        planApproximately(model, recorder, limits, start, goal, roundOptions);
     planTime += attempt.plan.time;
     simplifyTime += attempt.plan.simplifyTime;
     substituteEnds = substituteEnds || attempt.substituteEnds;
     if (!attempt.plan.solved() && round > 0) {
       // What the model learned closed its way: repair the last path instead, as planVerified
       // would have.
-      result = repair(lastPath, lastCheck, model);
+      result = repair(lastPath, lastCheck);
       break;
     }
     if (!attempt.plan.solved()) {
       // The model closes the way: the exact checker plans the whole motion. (No hybrid stage
       // between, unlike planVerified: on the generated box and cage families it found a path in
-      // 4 of about 38 such queries and spent its whole share, 1 s, on the others.)
+      // 7 of 63 such queries, 5 of them one box request, and spent its whole share, 1 s, on the
+      // others.)
       result = planAndRepair({}, recorder, limits, start, goal, options);
       break;
     }
     if (round == options.learningRounds) {
-      result = repair(attempt.plan.path, std::nullopt, model);
+      result = repair(attempt.plan.path, std::nullopt);
       break;
     }
     const auto verifyBegan = Clock::now();
@@ -359,7 +352,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     if (check.valid()) {
       result.status = PlanStatus::Solved;
       result.path = attempt.plan.path;
-      result.plannedOn = sourceName(model.model);
+      result.plannedOn = sourceName(model);
       break;
     }
     if (round == 0) {
@@ -372,12 +365,12 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     }
     const auto learnBegan = Clock::now();
     const Dataset recorded = recorder->take();
-    const Dataset missed = answersMissedBy(*model.model, recorded);
+    const Dataset missed = answersMissedBy(*model, recorded);
     append(answers, recorded);
     if (missed.size() == 0) {
       // Verification's states all answered as the model does (the planner looked at others):
       // learning would change nothing, so the path is repaired.
-      result = repair(attempt.plan.path, check, model);
+      result = repair(attempt.plan.path, check);
       break;
     }
     proxy.addObservations(missed);
