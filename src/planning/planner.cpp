@@ -73,6 +73,10 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("approximateShare must be in (0, 1], got " +
                           std::to_string(options.approximateShare));
   }
+  if (!(options.modelShare > 0) || !(options.modelShare <= 1)) {
+    throw InvalidArgument("modelShare must be in (0, 1], got " +
+                          std::to_string(options.modelShare));
+  }
   if (!(options.simplifyTime >= 0) || !std::isfinite(options.simplifyTime)) {
     throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
                           std::to_string(options.simplifyTime));

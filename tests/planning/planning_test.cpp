@@ -439,6 +439,49 @@ TEST_F(Planning, AModelThatClosesThePassageFallsBackToItsHybridBeforeTheExactChe
                InvalidArgument);
 }
 
+// A model that learns and closes the gap: its first plan is time-boxed to modelShare, then a
+// hybrid that trusts only the model's "free" asks the exact checker about every "collides" and
+// finds the gap, before the exact checker would plan the whole motion.
+TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAboutEveryCollision) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const JointLimits limits = JointLimits::unitBox(2);
+  ProxyParams params;
+  params.train = {.kernel = {.gamma = 30}, .beta = 10};
+  params.calibrationSamples = 0;
+  params.relabelSupport = false;
+  ProxyCollisionDetector proxy(closed, limits, params);  // learns a world without the gap
+  proxy.initialize(1500);
+  const std::shared_ptr<const Model> model = proxy.model();
+  ASSERT_TRUE(model->inCollision(vec({0, 0.8}).data())) << "the model must close the gap";
+
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  exact->resetCallCount();
+  const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_EQ(plan.plannedOn, "Fastron+wall");
+  EXPECT_FALSE(plan.wholePathReplanned);
+  EXPECT_EQ(plan.relearned, 0u) << "the model found no path to learn from";
+  EXPECT_GE(plan.planTime, std::chrono::milliseconds(90)) << "the model's 0.1 s, all of it";
+  EXPECT_LT(plan.planTime, std::chrono::milliseconds(1500)) << "0.1 s and 1 s at most";
+  EXPECT_TRUE(
+      pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+  // Every exact answer is recorded, and the hybrid asked in the gap, where the model says
+  // "collides".
+  EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+  std::size_t inGap = 0;
+  for (std::size_t i = 0; i < plan.exactAnswers.size(); ++i) {
+    const double* x = plan.exactAnswers.points.row(static_cast<Eigen::Index>(i)).data();
+    EXPECT_EQ(plan.exactAnswers.labels[i], inWall(x) ? 1 : -1);
+    inGap += std::abs(x[0]) < 0.1 && x[1] >= 0.5 && model->inCollision(x) ? 1 : 0;
+  }
+  EXPECT_GT(inGap, 0u) << "the hybrid asked the exact checker in the gap";
+  EXPECT_THROW(validate(PlannerOptions{.modelShare = 0}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
+}
+
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
