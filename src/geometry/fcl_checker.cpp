@@ -22,7 +22,29 @@ namespace {
 
 using FclGeometry = std::shared_ptr<fcl::CollisionGeometryd>;
 
-FclGeometry toFcl(const Shape& shape) {
+/// A mesh's bounding-volume hierarchy for collision checks or for distances. Collision checks use
+/// OBBs: for a mesh against a box FCL fits the box's bounding volume anew on every test, which for
+/// an OBBRSS hierarchy is an eigen-decomposition of the box's corners (a third of a mesh Panda's
+/// checks near boxes), and for an OBB is the box's own frame. FCL computes no distance between
+/// OBBs, so distances use an OBBRSS hierarchy of the same triangles.
+enum class Hierarchy { Collision, Distance };
+
+template <class BoundingVolume>
+FclGeometry meshHierarchy(const TriangleMesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<BoundingVolume>>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+                           static_cast<std::size_t>(t[2]));
+  }
+  model->beginModel();
+  model->addSubModel(mesh.vertices, triangles);
+  model->endModel();
+  return model;
+}
+
+FclGeometry toFcl(const Shape& shape, Hierarchy hierarchy) {
   return std::visit(
       Overloaded{
           [](const Box& b) -> FclGeometry { return std::make_shared<fcl::Boxd>(b.size); },
@@ -34,21 +56,24 @@ FclGeometry toFcl(const Shape& shape) {
           [](const Capsule& c) -> FclGeometry {
             return std::make_shared<fcl::Capsuled>(c.radius, c.length);
           },
-          [](const Mesh& m) -> FclGeometry {
-            auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-            std::vector<fcl::Triangle> triangles;
-            triangles.reserve(m.mesh->triangles.size());
-            for (const auto& t : m.mesh->triangles) {
-              triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
-                                     static_cast<std::size_t>(t[2]));
-            }
-            model->beginModel();
-            model->addSubModel(m.mesh->vertices, triangles);
-            model->endModel();
-            return model;
+          [&](const Mesh& m) -> FclGeometry {
+            return hierarchy == Hierarchy::Collision ? meshHierarchy<fcl::OBBd>(*m.mesh)
+                                                     : meshHierarchy<fcl::OBBRSSd>(*m.mesh);
           },
       },
       shape);
+}
+
+/// A shape's geometry for collision checks and for distances: the same object for a primitive.
+struct FclGeometries {
+  FclGeometry collision, distance;
+};
+
+FclGeometries geometriesOf(const Shape& shape) {
+  FclGeometries g{toFcl(shape, Hierarchy::Collision), nullptr};
+  g.distance =
+      std::holds_alternative<Mesh>(shape) ? toFcl(shape, Hierarchy::Distance) : g.collision;
+  return g;
 }
 
 fcl::Transform3d toFcl(const Eigen::Isometry3d& pose) {
@@ -95,9 +120,9 @@ bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b)
 }  // namespace
 
 struct FclChecker::Geometry {
-  std::vector<FclGeometry> shapes;  // one per robot shape, padded
-  std::vector<std::uint8_t> moves;  // shapesMovedByConfiguration
-  std::vector<std::size_t> moving;  // the shapes that move, in shape order
+  std::vector<FclGeometries> shapes;  // one per robot shape, padded
+  std::vector<std::uint8_t> moves;    // shapesMovedByConfiguration
+  std::vector<std::size_t> moving;    // the shapes that move, in shape order
 };
 
 struct FclChecker::Scratch {
@@ -128,7 +153,9 @@ struct FclChecker::Obstacles {
   }
   // Mesh obstacles' FCL geometry by mesh, kept from one scene to the next (the mesh is held so
   // that its address cannot name another mesh later).
-  std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, FclGeometry>> meshes;
+  std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, FclGeometries>>
+      meshes;
+  std::vector<FclGeometry> distanceShapes;  // of each obstacle, for distance()
 };
 
 FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -136,7 +163,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
         auto s = std::make_unique<Scratch>();
         s->kinematics = makeKinematicsData(robot_);
         for (const auto& g : geometry_->shapes)
-          s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g));
+          s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g.collision));
         return s;
       }) {
   if (robot_.dof() == 0)
@@ -144,7 +171,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   auto geometry = std::make_shared<Geometry>();
   geometry->moves = shapesMovedByConfiguration(robot_);
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    geometry->shapes.push_back(toFcl(paddedShape(robot_, s, options_)));
+    geometry->shapes.push_back(geometriesOf(paddedShape(robot_, s, options_)));
     if (geometry->moves[s] != 0) geometry->moving.push_back(s);
   }
   geometry_ = std::move(geometry);
@@ -157,21 +184,21 @@ void FclChecker::setScene(const Scene& scene) {
   auto next = std::make_shared<Obstacles>();
   next->robotBase = scene.robotBase;
   const std::shared_ptr<const Obstacles> previous = obstacles_.get();  // null in the constructor
-  const auto geometryOf = [&](const Shape& shape) -> FclGeometry {
+  const auto geometryOf = [&](const Shape& shape) -> FclGeometries {
     const auto* mesh = std::get_if<Mesh>(&shape);
-    if (mesh == nullptr) return toFcl(shape);  // primitives cost nothing to make
+    if (mesh == nullptr) return geometriesOf(shape);  // primitives cost nothing to make
     if (const auto kept = next->meshes.find(mesh->mesh.get()); kept != next->meshes.end()) {
       return kept->second.second;
     }
-    FclGeometry geometry;
+    FclGeometries geometry;
     if (previous) {
       if (const auto kept = previous->meshes.find(mesh->mesh.get());
           kept != previous->meshes.end()) {
         geometry = kept->second.second;
       }
     }
-    if (!geometry) {
-      geometry = toFcl(shape);
+    if (!geometry.collision) {
+      geometry = geometriesOf(shape);
       ++meshBuilds_;
     }
     next->meshes.emplace(mesh->mesh.get(), std::make_pair(mesh->mesh, geometry));
@@ -180,12 +207,14 @@ void FclChecker::setScene(const Scene& scene) {
   std::vector<fcl::CollisionObjectd*> raw;
   for (std::size_t i = 0; i < scene.obstacles().size(); ++i) {
     const Obstacle& o = scene.obstacles()[i];
-    auto object = std::make_unique<fcl::CollisionObjectd>(geometryOf(o.shape), toFcl(o.pose));
+    const FclGeometries geometry = geometryOf(o.shape);
+    auto object = std::make_unique<fcl::CollisionObjectd>(geometry.collision, toFcl(o.pose));
     object->computeAABB();
     object->setUserData(reinterpret_cast<void*>(i + 1));
     raw.push_back(object.get());
     next->objects.push_back(std::move(object));
     next->names.push_back(o.name);
+    next->distanceShapes.push_back(geometry.distance);
   }
   next->manager.registerObjects(raw);
   next->manager.setup();
@@ -202,7 +231,7 @@ void FclChecker::placeFixedShapes(Obstacles& world) const {
   for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
     if (geometry.moves[s] != 0) continue;
     world.fixedObjects[s] = std::make_unique<fcl::CollisionObjectd>(
-        geometry.shapes[s], toFcl(shapePose(robot_, kinematics, s)));
+        geometry.shapes[s].collision, toFcl(shapePose(robot_, kinematics, s)));
     world.fixedObjects[s]->computeAABB();
   }
   for (std::size_t s = 0; s < geometry.shapes.size() && !world.fixedContact; ++s) {
@@ -313,11 +342,13 @@ double FclChecker::distance(std::span<const double> q) const {
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    const fcl::CollisionObjectd& object = world->robotObject(*scratch, s);
+    const fcl::Transform3d& pose = world->robotObject(*scratch, s).getTransform();
+    const fcl::CollisionGeometryd* shape = geometry_->shapes[s].distance.get();
     for (std::size_t o = 0; o < world->objects.size(); ++o) {
       if (!world->allowed.empty() && world->allowed[s * world->objects.size() + o] != 0) continue;
       fcl::DistanceResultd result;
-      fcl::distance(&object, world->objects[o].get(), request, result);
+      fcl::distance(shape, pose, world->distanceShapes[o].get(), world->objects[o]->getTransform(),
+                    request, result);
       best = std::min(best, std::max(0.0, result.min_distance));
     }
   }

@@ -81,6 +81,8 @@ TEST(Checkers, EveryShapePairTouchesWhereHandComputed) {
         const std::string pair = robotShape.name + " vs " + obstacleShape.name;
         EXPECT_FALSE(fcl.inCollision(apart)) << "FCL " << pair;
         EXPECT_FALSE(gjk.inCollision(apart)) << "GJK " << pair;
+        // Meshes are checked on an OBB hierarchy and measured on an OBBRSS one.
+        EXPECT_NEAR(fcl.distance(apart), gap, 1e-4) << "FCL " << pair;  // libccd: 8e-6
         EXPECT_TRUE(fcl.inCollision(overlapping)) << "FCL " << pair;
         EXPECT_TRUE(gjk.inCollision(overlapping)) << "GJK " << pair;
         EXPECT_TRUE(gjk.inCollision(centred)) << "GJK " << pair;
@@ -89,6 +91,11 @@ TEST(Checkers, EveryShapePairTouchesWhereHandComputed) {
     }
   }
   EXPECT_EQ(pairs, 25u);
+  // A mesh wholly inside a box touches none of its faces, and still collides: FCL tests the
+  // mesh's triangles against the box as a solid.
+  Scene big;
+  big.add({"big", Box{Eigen::Vector3d(1, 1, 1)}, Eigen::Isometry3d::Identity(), std::nullopt});
+  EXPECT_TRUE(FclChecker(slider(Mesh{cubeMesh(0.2)}), big).inCollision(std::vector<double>{0.1}));
 }
 
 TEST(Checkers, RotatedObstaclesAndEnds) {
