@@ -159,10 +159,11 @@ int runPlan(const PlanOptions& o) {
                         start, goal, options);
   } else {
     // A model trained here learns the obstacles alone: self-collisions, when checked, are left
-    // to verification, and the model learns what verification finds it got wrong before
-    // anything is repaired (docs/planning.md, "Fastron obstacles": on the mesh Panda 9-27x FCL
-    // on both samples, where a model of obstacles and self-collisions together reached 1.4-20x).
-    // It plans on the model, then on FCL (no hybrid step, so no band to calibrate).
+    // to verification (docs/planning.md, "Fastron obstacles": on the mesh Panda 9-27x FCL on
+    // both samples, where a model of obstacles and self-collisions together reached 1.4-20x).
+    // It plans on the model, then on a hybrid asking FCL about every "collides", then on FCL
+    // (no calibrated band needed); with --learning-rounds N it learns what verification found
+    // it got wrong and plans again before repairing.
     const auto obstacles = o.selfCollision ? std::make_shared<const FclChecker>(
                                                  robot, scene, CheckerOptions{false, o.padding})
                                            : fcl;

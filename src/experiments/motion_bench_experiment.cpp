@@ -360,7 +360,7 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
     const auto endToEnd = [&](const std::string& method, double trainSeconds) {
       return total(method, true) + trainSeconds / static_cast<double>(o.queriesPerScene);
     };
-    char line[640];
+    char line[800];
     std::snprintf(line, sizeof line,
                   "Training per scene: median %s (|S| median %.0f; the trained model's accuracy "
                   "%.3f and TPR %.3f, means over scenes, against FCL on %zu fresh uniform "
@@ -413,16 +413,23 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       const auto relearned = [](const PlanRow& row) {
         return static_cast<double>(row.outcome.relearned);
       };
+      const unsigned rounds = plannerOptions(o, PlannerType::RrtConnect).learningRounds;
+      char learning[160] = "its colliding paths are repaired at once";
+      if (rounds > 0) {
+        std::snprintf(learning, sizeof learning,
+                      "when verification finds its path colliding it learns the answers it got "
+                      "wrong and plans again, up to %u times (mean %.2f times a query)",
+                      rounds, statistic(rowsOf("Fastron obstacles"), relearned, false));
+      }
       std::snprintf(
           line, sizeof line,
           "Fastron obstacles: a model of the scene's obstacles alone (self-collisions left to "
           "verification), trained in a median %s (|S| median %.0f; accuracy %.3f and TPR %.3f "
-          "on the obstacles' labels of the same configurations); when verification finds its "
-          "path colliding it learns the answers it got wrong and plans again, up to %u times "
-          "(mean %.2f times a query); end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
+          "on the obstacles' labels of the same configurations); when it finds no path within "
+          "%.0f%% of the time limit, a hybrid asking FCL about each \"collides\" plans; %s; "
+          "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
           durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
-          plannerOptions(o, PlannerType::RrtConnect).learningRounds,
-          statistic(rowsOf("Fastron obstacles"), relearned, false),
+          100 * plannerOptions(o, PlannerType::RrtConnect).modelShare, learning,
           durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);
       out << line;
     }
