@@ -199,7 +199,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::shared_ptr<const CollisionChecker> split;
     if (o.selfCollision) {
       const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
-      // No band: neither planVerifiedLearning nor the split plans on a hybrid.
+      // No band: planVerifiedLearning's hybrid asks FCL about every "collides", and the split
+      // plans on no hybrid.
       obstacles = std::make_unique<ProxyCollisionDetector>(
           obstacleFcl, features,
           withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))));
