@@ -414,7 +414,8 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       const auto relearned = [](const PlanRow& row) {
         return static_cast<double>(row.outcome.relearned);
       };
-      const unsigned rounds = plannerOptions(o, PlannerType::RrtConnect).learningRounds;
+      const PlannerOptions planner = plannerOptions(o, PlannerType::RrtConnect);
+      const unsigned rounds = planner.learningRounds;
       char learning[160] = "its colliding paths are repaired at once";
       if (rounds > 0) {
         std::snprintf(learning, sizeof learning,
@@ -430,8 +431,8 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "%.0f%% of the time limit, a hybrid asking FCL about each \"collides\" plans; %s; "
           "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
           durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
-          100 * plannerOptions(o, PlannerType::RrtConnect).modelShare, learning,
-          durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);
+          100 * planner.modelShare, learning, durationText(obstaclesEndToEnd).c_str(),
+          total("FCL", true) / obstaclesEndToEnd);
       out << line;
     }
     return out.str();

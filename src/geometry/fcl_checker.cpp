@@ -23,10 +23,11 @@ namespace {
 using FclGeometry = std::shared_ptr<fcl::CollisionGeometryd>;
 
 /// A mesh's bounding-volume hierarchy for collision checks or for distances. Collision checks use
-/// OBBs: for a mesh against a box FCL fits the box's bounding volume anew on every test, which for
-/// an OBBRSS hierarchy is an eigen-decomposition of the box's corners (a third of a mesh Panda's
-/// checks near boxes), and for an OBB is the box's own frame. FCL computes no distance between
-/// OBBs, so distances use an OBBRSS hierarchy of the same triangles.
+/// OBBs: for a mesh against a box FCL computes the box's bounding volume anew on every test, which
+/// for an OBBRSS hierarchy is an eigen-decomposition of the box's corners and for an OBB is the
+/// box's own frame (the mesh Panda's checks in a cage scene: 20.5 µs with OBBRSS, 3.3-4.3 µs with
+/// OBB). FCL computes no distance between OBBs, so distances use an OBBRSS hierarchy of the same
+/// triangles, built beside it (no start-up cost measurable in `fastron check`).
 enum class Hierarchy { Collision, Distance };
 
 template <class BoundingVolume>

@@ -36,9 +36,10 @@ struct PlannerOptions {
   /// shortcutting, B-spline smoothing; every change checked with the same collision source as the
   /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
   double simplifyTime = 0.1;
-  /// planVerified: the share of timeLimit that planning on the approximate source may take before
-  /// the motion is planned on the exact checker instead. A model that closes a passage finds no
-  /// path however long it searches; this bounds what that costs.
+  /// planVerified: the share of timeLimit that planning on the approximate source, and then on
+  /// its hybrid, may each take before the motion is planned on the exact checker instead
+  /// (planVerifiedLearning: its hybrid's share). A model that closes a passage finds no path
+  /// however long it searches; this bounds what that costs.
   double approximateShare = 0.1;
   /// planVerifiedLearning: the share of timeLimit that its first plan on the model alone may take
   /// before a hybrid that asks the exact checker about every "collides" plans instead (for

@@ -93,8 +93,8 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// calibrated band does not reach that far, docs/planning.md), its path verified and repaired;
 /// only then does `exact` plan the whole motion. A plan on a corrected model gets at most four
 /// times the first plan's time (at least 50 ms, at most approximateShare) and, when it fails,
-/// the last path is repaired. The proxy keeps what it learned for
-/// later queries; every exact answer of every round is in `exactAnswers`.
+/// the last path is repaired. The proxy keeps what it learned for later queries; every exact
+/// answer of every round is in `exactAnswers`.
 /// Not while the proxy updates in the background: what it learns must be of the world as it is.
 /// Throws Error before proxy.initialize().
 VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
