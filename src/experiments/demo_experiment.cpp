@@ -98,7 +98,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
                        std::to_string(model->supportCount()) + ", accuracy " +
                        cell(counts.accuracy()).substr(0, 5) + ", plans";
     for (const MethodPlan& each :
-         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, tick)) {
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, o.seed, tick)) {
       const auto& [method, plan, exactShare] = each;
       if (method == "Fastron" && o.learnFromVerification) {
         proxy.addObservations(answersMissedBy(*model, plan.exactAnswers));

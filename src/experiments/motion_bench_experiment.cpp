@@ -238,8 +238,9 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
           {"problem", problem.id},
           {"query", std::to_string(query)},
           {"note", query == 0 ? note : ""}};
-      const std::vector<MethodPlan> plans = planWithEachChecker(
-          calibrated, nullptr, fcl, limits, from, to, options, p * o.queriesPerScene + query);
+      const std::size_t turn = p * o.queriesPerScene + query;
+      const std::vector<MethodPlan> plans =
+          planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options, o.seed, turn);
       // Measured on the request only: its distances cost about a second per path on a mesh robot.
       AlongFclPath along;
       if (query == 0) {
@@ -271,6 +272,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         addRow(each, support, quality, trainSeconds, learnSeconds);
       }
       if (split) {
+        seedPlanners(o.seed, turn);
         addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
                obstaclesSupport, splitQuality, obstaclesTrain, 0);
       }
@@ -278,6 +280,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         // Scored as it plans this query: on the obstacles' labels, its oracle's.
         const std::shared_ptr<const Model> model = obstacles->model();
         const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
+        seedPlanners(o.seed, turn);
         addRow({"Fastron obstacles",
                 planVerifiedLearning(*obstacles, fcl, limits, from, to, options), 0},
                static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);

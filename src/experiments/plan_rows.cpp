@@ -43,7 +43,8 @@ std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const 
                                             const CheckerPtr& fcl, const JointLimits& limits,
                                             const Eigen::VectorXd& start,
                                             const Eigen::VectorXd& goal,
-                                            const PlannerOptions& options, std::size_t turn) {
+                                            const PlannerOptions& options, std::uint64_t seed,
+                                            std::size_t turn) {
   using Plan = std::function<MethodPlan()>;
   std::vector<Plan> methods;
   methods.emplace_back([&] {
@@ -70,6 +71,7 @@ std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const 
   std::vector<MethodPlan> plans(methods.size());
   for (std::size_t k = 0; k < methods.size(); ++k) {
     const std::size_t m = (turn + k) % methods.size();
+    seedPlanners(seed, turn);
     plans[m] = methods[m]();
   }
   return plans;

@@ -39,11 +39,14 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
 /// and repaired with FCL, and FCL itself, on one query; returned in that order. Hybrid only when
 /// the band was calibrated; GJK only when given. The methods take turns at planning first: method
 /// `turn` mod their count first (pass the query's index), so that none always meets cold caches.
+/// Before each method plans, seedPlanners(seed, turn): a run repeats its plans, and two builds
+/// compared on one seed differ only where their checkers' answers or their speed do.
 std::vector<MethodPlan> planWithEachChecker(const CalibratedModel& model, const CheckerPtr& gjk,
                                             const CheckerPtr& fcl, const JointLimits& limits,
                                             const Eigen::VectorXd& start,
                                             const Eigen::VectorXd& goal,
-                                            const PlannerOptions& options, std::size_t turn);
+                                            const PlannerOptions& options, std::uint64_t seed,
+                                            std::size_t turn);
 
 bool freeUnder(const CollisionChecker& checker, const Eigen::VectorXd& q);
 

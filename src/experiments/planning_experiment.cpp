@@ -47,8 +47,8 @@ PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
       for (std::size_t k = 0; k < o.planners.size(); ++k) {
         const PlannerType type = o.planners[k];
         const PlannerOptions options = plannerOptions(o, type);
-        for (const MethodPlan& each :
-             planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial + k)) {
+        for (const MethodPlan& each : planWithEachChecker(calibrated, gjk, fcl, limits, start, goal,
+                                                          options, seed, trial + k)) {
           results.rows.push_back({{{"case", name}, {"trial", std::to_string(trial)}},
                                   plannerName(type),
                                   each.method,

@@ -58,7 +58,7 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
         sampleReaching(inShelf(0.34, 0.46), limits, rng, "the higher shelf, collision-free");
     const PlannerOptions options = plannerOptions(o, PlannerType::Rrt);
     for (const MethodPlan& each :
-         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, trial)) {
+         planWithEachChecker(calibrated, gjk, fcl, limits, start, goal, options, o.seed, trial)) {
       results.rows.push_back({{{"trial", std::to_string(trial)}},
                               "RRT",
                               each.method,

@@ -76,7 +76,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
     const CalibratedModel calibrated = proxy.calibratedModel();
     const auto& model = calibrated.model;
     const auto plans =
-        planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options, tick);
+        planWithEachChecker(calibrated, gjk, fcl, limits, current, goal, options, o.seed, tick);
     for (const MethodPlan& each : plans) {
       results.rows.push_back({{{"tick", std::to_string(tick)}},
                               "RRT",

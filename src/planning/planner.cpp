@@ -10,6 +10,7 @@
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
 #include <cctype>
@@ -81,6 +82,15 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
                           std::to_string(options.simplifyTime));
   }
+}
+
+void seedPlanners(std::uint64_t seed, std::uint64_t query) {
+  // splitmix64 of both: OMPL takes a non-zero 32-bit seed.
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ULL + query + 1;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(z >> 32) | 1U);
 }
 
 ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptions& options) {

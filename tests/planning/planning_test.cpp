@@ -482,6 +482,55 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
 }
 
+// A learning model that finds both ends colliding, with no free state near them to plan from:
+// the hybrid, which asks the exact checker about them, plans from the true ends.
+TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  const auto aroundEnds =
+      std::make_shared<FunctionChecker>("around the ends", 2, [](const double* q) {
+        return std::hypot(q[0] - kStart[0], q[1] - kStart[1]) < 1.9 || std::abs(q[0]) < 0.1;
+      });
+  const JointLimits limits = JointLimits::unitBox(2);
+  ProxyParams params;
+  params.train = {.kernel = {.gamma = 30}, .beta = 10};
+  params.calibrationSamples = 0;
+  params.relabelSupport = false;
+  ProxyCollisionDetector proxy(aroundEnds, limits, params);
+  proxy.initialize(1500);
+  ASSERT_TRUE(proxy.model()->inCollision(kStart.data()));
+  ASSERT_TRUE(proxy.model()->inCollision(kGoal.data()));
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_EQ(plan.plannedOn, "Fastron+wall");
+  EXPECT_FALSE(plan.wholePathReplanned);
+  EXPECT_TRUE(
+      pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+}
+
+// Seeded planners repeat their plans; another query's seed gives another plan.
+TEST_F(Planning, SeededPlannersRepeatTheirPlans) {
+  const auto exact = wallChecker();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const auto planOf = [&](std::uint64_t query, PlannerType type) {
+    seedPlanners(7, query);
+    const PlanResult plan = planMotion(exact, limits, kStart, kGoal,
+                                       {.type = type, .resolution = 0.01, .timeLimit = 5});
+    EXPECT_TRUE(plan.solved());
+    return plan.path;
+  };
+  for (const PlannerType type : {PlannerType::RrtConnect, PlannerType::Rrt}) {
+    const JointPath first = planOf(3, type);
+    const JointPath again = planOf(3, type);
+    ASSERT_EQ(first.size(), again.size()) << plannerName(type);
+    for (std::size_t i = 0; i < first.size(); ++i) {
+      EXPECT_EQ(first[i], again[i]) << plannerName(type) << ", waypoint " << i;
+    }
+    EXPECT_NE(pathLength(first), pathLength(planOf(4, type))) << plannerName(type);
+  }
+}
+
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

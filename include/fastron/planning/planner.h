@@ -63,6 +63,13 @@ struct PlannerOptions {
 /// Throws InvalidArgument naming the field when an option is out of range.
 void validate(const PlannerOptions& options);
 
+/// Seeds OMPL's generator of seeds (ompl::RNG::setSeed, process-wide) from a run's seed and a
+/// query's index, so that the planners and simplifiers made next draw the same random numbers in
+/// every run: a plan whose checker gives the same answers is then the same plan (unless a time
+/// limit cuts it short). OMPL logs an error when its generators have already been used; this
+/// re-seeding is what that message warns about and what is wanted here.
+void seedPlanners(std::uint64_t seed, std::uint64_t query);
+
 /// A planner of the given type on `si`; with a problem from makeProblemDefinition it stops at its
 /// first solution (BIT*: stop-on-solution-improvement is set here).
 ompl::base::PlannerPtr makePlanner(const ompl::base::SpaceInformationPtr& si,
