@@ -10,6 +10,7 @@
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include <algorithm>
@@ -90,7 +91,12 @@ void seedPlanners(std::uint64_t seed, std::uint64_t query) {
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
   z ^= z >> 31;
+  // OMPL logs an error when it re-seeds after its first generators; silenced, since library code
+  // does not print and re-seeding is the point.
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(z >> 32) | 1U);
+  ompl::msg::setLogLevel(level);
 }
 
 ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptions& options) {

@@ -529,6 +529,21 @@ TEST_F(Planning, SeededPlannersRepeatTheirPlans) {
     }
     EXPECT_NE(pathLength(first), pathLength(planOf(4, type))) << plannerName(type);
   }
+  // Re-seeding after OMPL's first generators, which OMPL reports as an error, logs nothing.
+  struct Recorder final : ompl::msg::OutputHandler {
+    std::vector<std::string> lines;
+    void log(const std::string& text, ompl::msg::LogLevel, const char*, int) override {
+      lines.push_back(text);
+    }
+  } recorder;
+  ompl::msg::useOutputHandler(&recorder);
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  seedPlanners(7, 5);
+  EXPECT_THAT(recorder.lines, ::testing::IsEmpty());
+  EXPECT_EQ(ompl::msg::getLogLevel(), ompl::msg::LOG_WARN) << "the caller's level is restored";
+  ompl::msg::setLogLevel(level);
+  ompl::msg::restorePreviousOutputHandler();
 }
 
 TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {

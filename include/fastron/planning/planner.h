@@ -66,8 +66,7 @@ void validate(const PlannerOptions& options);
 /// Seeds OMPL's generator of seeds (ompl::RNG::setSeed, process-wide) from a run's seed and a
 /// query's index, so that the planners and simplifiers made next draw the same random numbers in
 /// every run: a plan whose checker gives the same answers is then the same plan (unless a time
-/// limit cuts it short). OMPL logs an error when its generators have already been used; this
-/// re-seeding is what that message warns about and what is wanted here.
+/// limit cuts it short). OMPL's error about re-seeding after its first generators is silenced.
 void seedPlanners(std::uint64_t seed, std::uint64_t query);
 
 /// A planner of the given type on `si`; with a problem from makeProblemDefinition it stops at its
