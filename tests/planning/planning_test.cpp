@@ -68,6 +68,16 @@ bool pathIsFree(const JointPath& path, double resolution, const Collides& collid
   return !path.empty();
 }
 
+/// The proxies of the learning tests: a narrow kernel for the wall's sharp edges, no calibrated
+/// band, and support points not relabelled, so that a model learns only what it is told.
+ProxyParams learningProxyParams() {
+  ProxyParams params;
+  params.train = {.kernel = {.gamma = 30}, .beta = 10};
+  params.calibrationSamples = 0;
+  params.relabelSupport = false;
+  return params;
+}
+
 class Planning : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { ompl::msg::noOutputHandler(); }  // tests print nothing of OMPL's
@@ -321,11 +331,7 @@ TEST_F(Planning, AModelLearnsFromVerificationAndPlansAgain) {
     return std::abs(q[0]) < 0.1 && q[1] > -0.2 && q[1] < 0.5;
   });
   const JointLimits limits = JointLimits::unitBox(2);
-  ProxyParams params;
-  params.train = {.kernel = {.gamma = 30}, .beta = 10};
-  params.calibrationSamples = 0;
-  params.relabelSupport = false;
-  ProxyCollisionDetector proxy(halfWall, limits, params);
+  ProxyCollisionDetector proxy(halfWall, limits, learningProxyParams());
   proxy.initialize(1500);
   const auto first = proxy.calibratedModel();
   ASSERT_FALSE(first.model->inCollision(vec({0, -0.8}).data())) << "the model must miss the half";
@@ -361,7 +367,7 @@ TEST_F(Planning, AModelLearnsFromVerificationAndPlansAgain) {
 
   // No learning rounds: the model's first path is repaired, as planVerified does, and the proxy
   // learns nothing.
-  ProxyCollisionDetector unlearned(halfWall, limits, params);
+  ProxyCollisionDetector unlearned(halfWall, limits, learningProxyParams());
   unlearned.initialize(1500);
   const VerifiedPlan repaired =
       planVerifiedLearning(unlearned, exact, limits, kStart, kGoal,
@@ -447,11 +453,8 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
   const JointLimits limits = JointLimits::unitBox(2);
-  ProxyParams params;
-  params.train = {.kernel = {.gamma = 30}, .beta = 10};
-  params.calibrationSamples = 0;
-  params.relabelSupport = false;
-  ProxyCollisionDetector proxy(closed, limits, params);  // learns a world without the gap
+  ProxyCollisionDetector proxy(closed, limits,
+                               learningProxyParams());  // learns a world without the gap
   proxy.initialize(1500);
   const std::shared_ptr<const Model> model = proxy.model();
   ASSERT_TRUE(model->inCollision(vec({0, 0.8}).data())) << "the model must close the gap";
@@ -482,8 +485,8 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
 }
 
-// A learning model that finds both ends colliding, with no free state near them to plan from:
-// the hybrid, which asks the exact checker about them, plans from the true ends.
+// A learning model that finds both ends colliding, with no state it finds free within reach of
+// the start to plan from: the hybrid, which asks the exact checker about the ends, plans from them.
 TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {
   const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
   const auto aroundEnds =
@@ -491,11 +494,7 @@ TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {
         return std::hypot(q[0] - kStart[0], q[1] - kStart[1]) < 1.9 || std::abs(q[0]) < 0.1;
       });
   const JointLimits limits = JointLimits::unitBox(2);
-  ProxyParams params;
-  params.train = {.kernel = {.gamma = 30}, .beta = 10};
-  params.calibrationSamples = 0;
-  params.relabelSupport = false;
-  ProxyCollisionDetector proxy(aroundEnds, limits, params);
+  ProxyCollisionDetector proxy(aroundEnds, limits, learningProxyParams());
   proxy.initialize(1500);
   ASSERT_TRUE(proxy.model()->inCollision(kStart.data()));
   ASSERT_TRUE(proxy.model()->inCollision(kGoal.data()));
