@@ -110,6 +110,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "one model")
       ->check(numberAbove(0))
       ->capture_default_str();
+  cmd->add_option("--samples", o->settings.samples,
+                  "motion-bench: uniform samples of each scene's models before active learning "
+                  "(default 5000; --quick 1500)")
+      ->check(numberAbove(0));
+  cmd->add_option("--updates", o->settings.updates,
+                  "motion-bench: active-learning updates of each scene's models after those "
+                  "samples, and of --self-model's (default 3; --quick 1)");
   cmd->add_flag("--learn-from-verification", o->settings.learnFromVerification,
                 "motion-bench: between a scene's queries, the model learns the exact answers of "
                 "the last plan's verification and repair that it got wrong");
@@ -132,10 +139,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", o->settings.seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);  // changing, sweep and the planning experiments
   cmd->add_option("--gamma", o->settings.gamma,
-                  "changing: kernel width of the models on --features")
+                  "changing: kernel width of the models on --features; motion-bench: of each "
+                  "scene's models")
       ->check(numberAbove(0));
   cmd->add_option("--beta", o->settings.beta,
-                  "changing: conditional bias of the models on --features")
+                  "changing: conditional bias of the models on --features; motion-bench: of each "
+                  "scene's models")
       ->check(numberAbove(1, true));
   cmd->add_option("--kernel-block", o->settings.kernelBlock,
                   "changing: features per kernel point term of the models on --features (0: "

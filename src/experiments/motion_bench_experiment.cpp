@@ -132,6 +132,21 @@ double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t upd
   return inSeconds(trainStatic(proxy, samples, updates).total);
 }
 
+std::size_t trainingSamples(const MotionBenchOptions& o) {
+  return o.trainingPoints.value_or(o.quick ? 1500 : 5000);
+}
+
+std::size_t trainingUpdates(const MotionBenchOptions& o) {
+  return o.updates.value_or(o.quick ? 1 : 3);
+}
+
+/// A scene model's parameters with the options' kernel width and conditional bias, if given.
+ProxyParams withKernelOptions(ProxyParams params, const MotionBenchOptions& o) {
+  if (o.gamma) params.train.kernel.gamma = *o.gamma;
+  if (o.beta) params.train.beta = *o.beta;
+  return params;
+}
+
 }  // namespace
 
 PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
@@ -150,8 +165,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     throw InvalidArgument("motion-bench: a self-collision model needs self-collision checked");
   }
   // The robot's self-collision model, learned once: self-collision does not depend on the scene.
-  const std::size_t samples = o.quick ? 1500 : o.trainingPoints;
-  const std::size_t updates = o.quick ? 1 : o.updates;
+  const std::size_t samples = trainingSamples(o);
+  const std::size_t updates = trainingUpdates(o);
   std::shared_ptr<const CollisionChecker> selfModel;
   double selfTrainSeconds = 0;
   if (o.selfModel) {
@@ -177,8 +192,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
     const FclChecker audit(robot, scene, checking);
 
-    const ProxyParams params =
-        forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision));
+    const ProxyParams params = withKernelOptions(
+        forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision)), o);
     ProxyCollisionDetector proxy(fcl, features, params);
     const double trainSeconds = train(proxy, samples, updates);
     CalibratedModel calibrated = proxy.calibratedModel();
@@ -203,7 +218,9 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
       // plans on no hybrid.
       obstacles = std::make_unique<ProxyCollisionDetector>(
           obstacleFcl, features,
-          withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))));
+          withKernelOptions(
+              withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))),
+              o));
       obstaclesTrain = train(*obstacles, samples, updates);
       const std::shared_ptr<const Model> obstacleModel = obstacles->model();
       obstaclesSupport = static_cast<double>(obstacleModel->supportCount());
@@ -296,9 +313,10 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
      << featureSentence(o.features) << " Robot " << o.robot
      << (o.srdf.empty() ? "" : " with the disabled collisions of " + o.srdf.string())
      << (o.selfCollision ? ", self-collision checked by FCL" : ", self-collision not checked")
-     << "; for each problem Fastron is trained on the scene ("
-     << (o.quick ? 1500 : o.trainingPoints) << " samples, then " << (o.quick ? 1 : o.updates)
-     << " active-learning updates) and RRT-Connect plans with Fastron and Hybrid (verified and "
+     << "; for each problem Fastron is trained on the scene (" << trainingSamples(o)
+     << " samples, then " << trainingUpdates(o) << " active-learning updates"
+     << (o.gamma ? ", gamma " + cell(*o.gamma) : "") << (o.beta ? ", beta " + cell(*o.beta) : "")
+     << ") and RRT-Connect plans with Fastron and Hybrid (verified and "
         "repaired with FCL) and with FCL, "
      << o.queriesPerScene << " quer" << (o.queriesPerScene == 1 ? "y" : "ies")
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "

@@ -163,7 +163,8 @@ std::vector<Experiment> makeRegistry() {
                  }});
   all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
                  planningAnd({"problems", "robot", "package-path", "srdf", "self-collision",
-                              "self-model", "queries-per-scene", "learn-from-verification"}),
+                              "self-model", "queries-per-scene", "learn-from-verification",
+                              "samples", "updates", "gamma", "beta"}),
                  [](const ExperimentSettings& s, const Progress& progress) {
                    if (s.problems.empty()) {
                      throw InvalidArgument(
@@ -180,6 +181,10 @@ std::vector<Experiment> makeRegistry() {
                    o.queriesPerScene = s.queriesPerScene;
                    o.selfModel = s.selfModel;
                    o.learnFromVerification = s.learnFromVerification;
+                   o.trainingPoints = s.samples;
+                   o.updates = s.updates;
+                   if (s.gamma > 0) o.gamma = s.gamma;
+                   if (s.beta > 0) o.beta = s.beta;
                    const PlanRows plans = runMotionBench(o, progress);
                    return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
                  }});

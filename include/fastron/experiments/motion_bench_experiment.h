@@ -2,6 +2,7 @@
 // MoveIt benchmark problems (MotionBenchMaker's scene and request files) for the Panda.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,14 @@ struct MotionBenchOptions {
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
   std::uint64_t seed = 1;
   bool quick = false;
-  std::size_t trainingPoints = 5000;  ///< initial samples of each scene's model
-  std::size_t updates = 3;            ///< active-learning updates after them
+  /// Uniform samples of each scene's models before active learning (unset: 5000, quick 1500).
+  std::optional<std::size_t> trainingPoints;
+  /// Active-learning updates of each scene's models after them, and of the self-collision model
+  /// (unset: 3, quick 1).
+  std::optional<std::size_t> updates;
+  /// Kernel width and conditional bias of each scene's models (unset: the features' defaults,
+  /// defaultTrainParams); not of the robot's self-collision model.
+  std::optional<double> gamma, beta;
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;

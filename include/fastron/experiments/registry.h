@@ -25,7 +25,7 @@ struct ExperimentSettings {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 0, resolution = 0;      ///< planning experiments
   double simplifyTime = -1;                  ///< planning experiments; < 0: default
-  double gamma = 0, beta = 0, variance = 0;  ///< changing
+  double gamma = 0, beta = 0, variance = 0;  ///< changing; gamma, beta also motion-bench
   std::size_t activeSamples = 0;             ///< changing
   bool warmStart = false;                    ///< changing
   std::size_t pruneSamples = 0;              ///< changing
@@ -41,6 +41,7 @@ struct ExperimentSettings {
   std::size_t queriesPerScene = 1;
   bool selfModel = false;
   bool learnFromVerification = false;
+  std::optional<std::size_t> samples, updates;  ///< motion-bench: each scene's training
 };
 
 /// What an experiment produced: the rows of results.csv, further tables by file name (e.g.
