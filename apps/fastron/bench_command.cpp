@@ -132,6 +132,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--resolution", o->settings.resolution,
                   "planning experiments: joint-space step of edge checks")
       ->check(numberAbove(0));
+  cmd->add_option("--model-resolution", o->settings.modelResolution,
+                  "planning experiments: joint-space step of edge checks on a Fastron model or "
+                  "its hybrid (default: 3 times --resolution; every such path is verified with "
+                  "FCL at --resolution)")
+      ->check(numberAbove(0));
   cmd->add_option("--simplify-time", o->settings.simplifyTime,
                   "planning experiments: seconds of OMPL path simplification per plan, every "
                   "checker alike (default 0.1; 0: off, the paper's setting)")

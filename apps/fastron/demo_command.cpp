@@ -85,6 +85,10 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--resolution", o->demo.resolution, "joint-space step of edge checks (rad)")
       ->capture_default_str()
       ->check(numberAbove(0));
+  cmd->add_option("--model-resolution", o->demo.modelResolution,
+                  "joint-space step of edge checks on the model or its hybrid (rad; default: 3 "
+                  "times --resolution; their paths are verified with FCL at --resolution)")
+      ->check(numberAbove(0));
   cmd->add_option("--learn-from-verification", o->demo.learnFromVerification,
                   "feed the exact answers of verification and repair to the model's next update")
       ->capture_default_str();

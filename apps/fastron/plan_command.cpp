@@ -38,7 +38,7 @@ struct PlanOptions {
   std::size_t samples = 5000, updates = 3;
   unsigned learningRounds = PlannerOptions{}.learningRounds;
   std::optional<double> gamma, beta;
-  double resolution = 0.03, timeLimit = 10, padding = 0, simplifyTime = 0.1;
+  double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1;
   std::uint64_t seed = 1;
   bool selfCollision = false;
 };
@@ -131,6 +131,7 @@ int runPlan(const PlanOptions& o) {
   const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
                                .resolution = o.resolution,
+                               .modelResolution = o.modelResolution,
                                .timeLimit = o.timeLimit,
                                .simplifyTime = o.simplifyTime};
   validate(options);
@@ -241,6 +242,10 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(1, true));
   cmd->add_option("--resolution", o->resolution, "joint-space step of edge checks")
       ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--model-resolution", o->modelResolution,
+                  "joint-space step of edge checks on a Fastron model or its hybrid (default: 3 "
+                  "times --resolution; their paths are verified with FCL at --resolution)")
       ->check(numberAbove(0));
   cmd->add_option("--time-limit", o->timeLimit, "seconds per planning query")
       ->capture_default_str()

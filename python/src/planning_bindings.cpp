@@ -19,11 +19,12 @@ namespace fastron::python {
 namespace {
 
 PlannerOptions plannerOptions(const std::string& planner, double range, double resolution,
-                              double timeLimit, double simplifyTime) {
+                              double modelResolution, double timeLimit, double simplifyTime) {
   PlannerOptions options;
   options.type = parsePlannerType(planner);
   options.range = range;
   options.resolution = resolution;
+  options.modelResolution = modelResolution;
   options.timeLimit = timeLimit;
   options.simplifyTime = simplifyTime;
   validate(options);
@@ -146,14 +147,14 @@ void bindPlanning(py::module_& m) {
   m.def(
       "plan",
       [](py::handle source, py::handle start, py::handle goal, std::optional<JointLimits> limits,
-         const std::string& planner, double range, double resolution, double timeLimit,
-         double simplifyTime) {
+         const std::string& planner, double range, double resolution, double modelResolution,
+         double timeLimit, double simplifyTime) {
         const CollisionSource s = sourceOf(source);
         const JointLimits l = limitsOf(source, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
         const PlannerOptions options =
-            plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
+            plannerOptions(planner, range, resolution, modelResolution, timeLimit, simplifyTime);
         PlanResult result;
         {
           py::gil_scoped_release released;
@@ -164,18 +165,21 @@ void bindPlanning(py::module_& m) {
       },
       py::arg("source"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
-      py::arg("resolution") = 0.02, py::arg("time_limit") = 10.0, py::arg("simplify_time") = 0.1,
+      py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
+      py::arg("simplify_time") = 0.1,
       "Plans from start to goal with OMPL (planner: 'RRT', 'RRTConnect', 'RRT*', 'BIT*') on a "
-      "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier.");
+      "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier. Edges are "
+      "checked every `resolution`, on a model (or a checker answering from one) every "
+      "`model_resolution` (0: 3 times `resolution`).");
 
   m.def(
       "plan_verified",
       [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
          py::handle goal, std::optional<JointLimits> limits, const std::string& planner,
-         double range, double resolution, double timeLimit, double simplifyTime,
-         unsigned learningRounds) {
+         double range, double resolution, double modelResolution, double timeLimit,
+         double simplifyTime, unsigned learningRounds) {
         PlannerOptions options =
-            plannerOptions(planner, range, resolution, timeLimit, simplifyTime);
+            plannerOptions(planner, range, resolution, modelResolution, timeLimit, simplifyTime);
         options.learningRounds = learningRounds;
         const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
@@ -205,11 +209,12 @@ void bindPlanning(py::module_& m) {
       },
       py::arg("approximate"), py::arg("exact"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
-      py::arg("resolution") = 0.02, py::arg("time_limit") = 10.0, py::arg("simplify_time") = 0.1,
-      py::arg("learning_rounds") = 0u,
+      py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
+      py::arg("simplify_time") = 0.1, py::arg("learning_rounds") = 0u,
       "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "
       "or a checker), then verifies every edge with `exact` and replans the stretches that "
-      "collide: a solved plan's path never collides under `exact` at `resolution`. "
+      "collide: a solved plan's path never collides under `exact` at `resolution`, whatever "
+      "`model_resolution`, the step of edges on the model (0: 3 times `resolution`). "
       "learning_rounds=N (a detector of a scene that stands still): when verification finds the "
       "model's path colliding, the detector first learns the answers its model got wrong and "
       "plans again, up to N times, before repairing.");

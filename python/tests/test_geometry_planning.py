@@ -399,6 +399,8 @@ def test_paths_written_read_and_cut_as_the_checks_cut_them(tmp_path, baxter, bax
         fastron.states_along_path(np.zeros(7), 0.1)
     with pytest.raises(fastron.InvalidArgument, match="resolution"):
         fastron.states_along_path(path, 0)
+    with pytest.raises(fastron.InvalidArgument, match="model resolution must be 0"):
+        fastron.plan(baxter_fcl, path[0], path[1], model_resolution=-1)
 
 
 def test_a_detector_learns_the_answers_its_model_got_wrong(baxter):

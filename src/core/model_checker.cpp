@@ -1,5 +1,7 @@
 #include "fastron/core/model_checker.h"
 
+#include <algorithm>
+
 #include <span>
 
 #include "fastron/core/error.h"
@@ -34,6 +36,11 @@ std::string AnyOfChecker::name() const {
     joined += c->name();
   }
   return joined;
+}
+
+bool AnyOfChecker::answersFromAModel() const {
+  return std::any_of(checkers_.begin(), checkers_.end(),
+                     [](const auto& c) { return c->answersFromAModel(); });
 }
 
 bool AnyOfChecker::check(const double* q) const {

@@ -117,6 +117,7 @@ std::vector<std::string> plannerNames(const std::vector<PlannerType>& types);
 PlannerOptions plannerOptions(const auto& o, PlannerType type) {
   return {.type = type,
           .resolution = o.resolution,
+          .modelResolution = o.modelResolution,
           .timeLimit = o.timeLimit,
           .simplifyTime = o.simplifyTime};
 }

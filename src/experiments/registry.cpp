@@ -31,11 +31,12 @@ void applyPlanning(const ExperimentSettings& s, Options& options) {
   applyCommon(s, options);
   if (s.timeLimit > 0) options.timeLimit = s.timeLimit;
   if (s.resolution > 0) options.resolution = s.resolution;
+  if (s.modelResolution > 0) options.modelResolution = s.modelResolution;
   if (s.simplifyTime >= 0) options.simplifyTime = s.simplifyTime;
 }
 
 const std::vector<std::string> kPlanningSettings{"features", "time-limit", "resolution",
-                                                 "simplify-time"};
+                                                 "model-resolution", "simplify-time"};
 
 std::vector<std::string> planningAnd(std::vector<std::string> more) {
   more.insert(more.begin(), kPlanningSettings.begin(), kPlanningSettings.end());

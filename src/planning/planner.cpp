@@ -1,5 +1,7 @@
 #include "fastron/planning/planner.h"
 
+#include <type_traits>
+
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -62,6 +64,11 @@ void validate(const PlannerOptions& options) {
   if (!(options.resolution > 0) || !std::isfinite(options.resolution)) {
     throw InvalidArgument("motion resolution must be positive, got " +
                           std::to_string(options.resolution));
+  }
+  if (!(options.modelResolution >= 0) || !std::isfinite(options.modelResolution)) {
+    throw InvalidArgument("model resolution must be 0 (" + std::to_string(kModelStepsPerStep) +
+                          " times the resolution) or positive, got " +
+                          std::to_string(options.modelResolution));
   }
   if (!(options.timeLimit > 0) || !std::isfinite(options.timeLimit)) {
     throw InvalidArgument("planning time limit must be positive, got " +
@@ -179,6 +186,22 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
   return problem;
 }
 
+double edgeResolution(const CollisionSource& source, const PlannerOptions& options) {
+  const bool model = std::visit(
+      [](const auto& s) {
+        using Source = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<Source, std::shared_ptr<const Model>>) {
+          return true;
+        } else {
+          return s != nullptr && s->answersFromAModel();
+        }
+      },
+      source);
+  if (!model) return options.resolution;
+  return options.modelResolution > 0 ? options.modelResolution
+                                     : kModelStepsPerStep * options.resolution;
+}
+
 PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
                       const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
                       const PlannerOptions& options) {
@@ -186,7 +209,7 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   checkEndpoint(start, limits, "start");
   checkEndpoint(goal, limits, "goal");
   const auto began = std::chrono::steady_clock::now();
-  const auto si = makeSpaceInformation(source, limits, options.resolution);
+  const auto si = makeSpaceInformation(source, limits, edgeResolution(source, options));
   PlanResult result;
   const auto finish = [&](PlanStatus status) {
     result.status = status;

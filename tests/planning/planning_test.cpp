@@ -3,6 +3,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 
 #include <algorithm>
@@ -15,6 +16,8 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
+#include "fastron/core/hybrid_checker.h"
+#include "fastron/core/model_checker.h"
 #include "fastron/core/trainer.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
@@ -60,8 +63,12 @@ bool pathIsFree(const JointPath& path, double resolution, const Collides& collid
     const double length = (path[k + 1] - path[k]).norm();
     const auto n = std::max<long>(1, static_cast<long>(std::ceil(length / resolution)));
     for (long i = 0; i <= n; ++i) {
+      // The last state is the waypoint itself, not a + (b - a) * 1, which can round across a
+      // wall's face that the waypoint lies on.
       const Eigen::VectorXd q =
-          path[k] + (path[k + 1] - path[k]) * (static_cast<double>(i) / static_cast<double>(n));
+          i == n ? path[k + 1]
+                 : Eigen::VectorXd(path[k] + (path[k + 1] - path[k]) *
+                                                 (static_cast<double>(i) / static_cast<double>(n)));
       if (collides(q)) return false;
     }
   }
@@ -597,6 +604,13 @@ TEST_F(Planning, RefusesBadQueries) {
                   [&] { planMotion(wall, limits, kStart, kGoal, {.resolution = -1}); }),
               HasSubstr("resolution"));
   EXPECT_THAT(messageOf<InvalidArgument>(
+                  [&] { planMotion(wall, limits, kStart, kGoal, {.modelResolution = -1}); }),
+              HasSubstr("model resolution must be 0"));
+  EXPECT_THAT(messageOf<InvalidArgument>([&] {
+                planMotion(wall, limits, kStart, kGoal, {.modelResolution = std::nan("")});
+              }),
+              HasSubstr("model resolution"));
+  EXPECT_THAT(messageOf<InvalidArgument>(
                   [&] { planMotion(wall, limits, kStart, kGoal, {.timeLimit = 0}); }),
               HasSubstr("time limit"));
   EXPECT_THAT(messageOf<InvalidArgument>([] { parsePlannerType("PRM"); }), HasSubstr("'PRM'"));
@@ -719,6 +733,52 @@ TEST_F(Planning, FastronPlansAreVerifiedAndRepairedIntoValidPaths) {
     EXPECT_TRUE(pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& q) {
       return inWall(q.data());
     })) << plannerName(type);
+  }
+}
+
+TEST_F(Planning, ModelsCheckEdgesAtTheirOwnCoarserStepAndVerificationKeepsTheFineOne) {
+  const auto wall = wallChecker();
+  const auto model = wallModel();
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions fine{.resolution = 0.01};
+  EXPECT_EQ(edgeResolution(wall, fine), 0.01);
+  EXPECT_DOUBLE_EQ(edgeResolution(model, fine), kModelStepsPerStep * 0.01);
+  const auto asChecker = std::make_shared<ModelChecker>(model);
+  EXPECT_DOUBLE_EQ(edgeResolution(asChecker, fine), kModelStepsPerStep * 0.01);
+  EXPECT_DOUBLE_EQ(
+      edgeResolution(std::make_shared<HybridChecker>(model, wall, UncertaintyBand{}), fine),
+      kModelStepsPerStep * 0.01);
+  EXPECT_DOUBLE_EQ(
+      edgeResolution(std::make_shared<AnyOfChecker>(
+                         std::vector<std::shared_ptr<const CollisionChecker>>{wall, asChecker}),
+                     fine),
+      kModelStepsPerStep * 0.01);
+  EXPECT_EQ(edgeResolution(std::make_shared<AnyOfChecker>(
+                               std::vector<std::shared_ptr<const CollisionChecker>>{wall, wall}),
+                           fine),
+            0.01);
+
+  // A model step wider than the wall (0.2): the straight motion's states at x = -0.27 and 0.27
+  // miss it, so the model lets it pass; at the fine step it does not.
+  const PlannerOptions coarse{.resolution = 0.01, .modelResolution = 0.6};
+  EXPECT_EQ(edgeResolution(model, coarse), 0.6);
+  const auto motionIsValid = [&](double step) {
+    const auto si = makeSpaceInformation(model, limits, step);
+    ompl::base::ScopedState<> a(si->getStateSpace()), b(si->getStateSpace());
+    for (unsigned j = 0; j < 2; ++j) {
+      a[j] = kStart[j];
+      b[j] = kGoal[j];
+    }
+    return si->checkMotion(a.get(), b.get());
+  };
+  EXPECT_TRUE(motionIsValid(edgeResolution(model, coarse)));
+  EXPECT_FALSE(motionIsValid(edgeResolution(model, fine)));
+  // Whatever the model's step, verification checks the final path at the fine one.
+  for (const PlannerOptions& options : {coarse, fine}) {
+    const VerifiedPlan plan = planVerified(model, wall, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plan.failure;
+    EXPECT_TRUE(
+        pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
   }
 }
 

@@ -41,6 +41,11 @@ class CollisionChecker {
   /// The same for every row of q; throws InvalidArgument when q does not have dof() columns.
   std::size_t firstInCollision(const Configurations& q) const;
 
+  /// True when the answers come, at least in part, from a learned model (ModelChecker,
+  /// HybridChecker, an AnyOfChecker holding one). Planners check such a source's edges at
+  /// PlannerOptions::modelResolution, and an exact checker verifies its paths.
+  virtual bool answersFromAModel() const { return false; }
+
   std::uint64_t callCount() const { return calls_.load(std::memory_order_relaxed); }
   void resetCallCount() { calls_.store(0, std::memory_order_relaxed); }
 

@@ -29,6 +29,7 @@ class HybridChecker final : public CollisionChecker {
   /// "Fastron+<exact name>".
   std::string name() const override;
   std::size_t dof() const override { return model_->dim(); }
+  bool answersFromAModel() const override { return true; }
 
   const Model& model() const { return *model_; }
   const UncertaintyBand& band() const { return band_; }

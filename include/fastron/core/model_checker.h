@@ -22,6 +22,7 @@ class ModelChecker final : public CollisionChecker {
   std::string name() const override { return name_; }
   std::size_t dof() const override { return model_->dim(); }
   const Model& model() const { return *model_; }
+  bool answersFromAModel() const override { return true; }
 
  protected:
   bool check(const double* q) const override { return model_->inCollision(q); }
@@ -43,6 +44,8 @@ class AnyOfChecker final : public CollisionChecker {
   /// The names joined by "+".
   std::string name() const override;
   std::size_t dof() const override { return checkers_.front()->dof(); }
+  /// True when one of its checkers answers from a model.
+  bool answersFromAModel() const override;
 
  protected:
   bool check(const double* q) const override;

@@ -25,6 +25,7 @@ struct DemoOptions {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 5;
   double resolution = 0.03;
+  double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
   /// Feed the exact answers of verification and repair that the model got wrong to its next

@@ -18,8 +18,9 @@ struct PlanningOptions {
   bool quick = false;
   std::vector<std::string> cases{"4dof", "6dof", "7dof", "7dof-3boxes"};
   std::vector<PlannerType> planners = allPlannerTypes();
-  double timeLimit = 10;     ///< seconds per planning query (and per repaired stretch)
-  double resolution = 0.03;  ///< joint-space step of edge checks (rad)
+  double timeLimit = 10;       ///< seconds per planning query (and per repaired stretch)
+  double resolution = 0.03;    ///< joint-space step of edge checks (rad)
+  double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
   /// Fastron's input (task-space features by default; joints for the paper's model).

@@ -24,6 +24,7 @@ struct ExperimentSettings {
   bool quick = false;
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 0, resolution = 0;      ///< planning experiments
+  double modelResolution = 0;                ///< planning experiments
   double simplifyTime = -1;                  ///< planning experiments; < 0: default
   double gamma = 0, beta = 0, variance = 0;  ///< changing; gamma, beta also motion-bench
   std::size_t activeSamples = 0;             ///< changing

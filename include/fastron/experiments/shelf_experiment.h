@@ -18,6 +18,7 @@ struct ShelfOptions {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
   double resolution = 0.03;
+  double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
 };

@@ -15,7 +15,8 @@ struct SurgicalOptions {
   std::uint64_t seed = 1;
   bool quick = false;
   double timeLimit = 1;
-  double resolution = 0.01;  ///< joint units (rad, and m for the insertion)
+  double resolution = 0.01;    ///< joint units (rad, and m for the insertion)
+  double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
   double padding = 0.005;  ///< PSM3 padding of the model's oracle (paper: a padded PSM3)

@@ -31,7 +31,13 @@ struct PlannerOptions {
   PlannerType type = PlannerType::RrtConnect;
   double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
   double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
-  double timeLimit = 10;     ///< seconds per planning query
+  /// The same step when planning on a Fastron model or a checker that answers from one
+  /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A model's score is smooth and
+  /// its "collides" regions are about a kernel width across, so checking its edges as finely as
+  /// the exact checker's costs time and changes few answers; a path planned on a model is verified
+  /// at `resolution` with the exact checker, so final paths keep that guarantee.
+  double modelResolution = 0;
+  double timeLimit = 10;  ///< seconds per planning query
   /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (vertex reduction,
   /// shortcutting, B-spline smoothing; every change checked with the same collision source as the
   /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
@@ -60,8 +66,15 @@ struct PlannerOptions {
   unsigned learningRounds = 0;
 };
 
+/// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).
+inline constexpr double kModelStepsPerStep = 3;
+
 /// Throws InvalidArgument naming the field when an option is out of range.
 void validate(const PlannerOptions& options);
+
+/// The step at which planning on `source` checks edges: options.resolution for an exact checker,
+/// the model step (PlannerOptions::modelResolution) for a model or a checker answering from one.
+double edgeResolution(const CollisionSource& source, const PlannerOptions& options);
 
 /// Seeds OMPL's generator of seeds (ompl::RNG::setSeed, process-wide) from a run's seed and a
 /// query's index, so that the planners and simplifiers made next draw the same random numbers in
