@@ -1,7 +1,6 @@
 #include "fastron/core/model_checker.h"
 
 #include <algorithm>
-
 #include <span>
 
 #include "fastron/core/error.h"

@@ -321,7 +321,7 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
      << o.queriesPerScene << " quer" << (o.queriesPerScene == 1 ? "y" : "ies")
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
         "every "
-     << o.resolution << " rad, time limit " << o.timeLimit << " s, seed " << o.seed
+     << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
      << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
      << " Training is reported beside the plans, not in them; the end-to-end time adds each "
         "scene's training, shared by its queries."

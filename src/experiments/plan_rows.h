@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -120,6 +121,16 @@ PlannerOptions plannerOptions(const auto& o, PlannerType type) {
           .modelResolution = o.modelResolution,
           .timeLimit = o.timeLimit,
           .simplifyTime = o.simplifyTime};
+}
+
+/// The edge steps of an experiment's plans for its report: "0.03 rad (0.09 rad on a model and its
+/// hybrid)".
+std::string edgeSteps(const auto& o, const std::string& unit) {
+  std::ostringstream text;
+  text << o.resolution << ' ' << unit << " ("
+       << modelStep(plannerOptions(o, PlannerType::RrtConnect)) << ' ' << unit
+       << " on a model and its hybrid)";
+  return text.str();
 }
 
 }  // namespace fastron::experiments

@@ -73,7 +73,7 @@ std::string planningReport(const PlanRows& r, const PlanningOptions& o) {
         "30% bands of its range. Every method plans the same query from scratch; Fastron and GJK "
         "plans are verified with FCL and invalid stretches replanned on FCL. Edges are checked "
         "every "
-     << o.resolution << " rad; time limit " << o.timeLimit << " s per query; " << o.trials
+     << edgeSteps(o, "rad") << "; time limit " << o.timeLimit << " s per query; " << o.trials
      << " trial(s), seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
      << simplificationSentence(o.simplifyTime)
      << " Times are means ± std over solved queries; 'Final paths colliding' re-checks every "

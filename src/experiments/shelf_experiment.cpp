@@ -77,7 +77,7 @@ std::string shelfReport(const PlanRows& r, const ShelfOptions& o) {
         "(start and goal drawn with the end effector inside the shelf, collision-free); RRT with "
         "Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL. Edges "
         "checked every "
-     << o.resolution << " rad, time limit " << o.timeLimit << " s, seed " << o.seed
+     << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
      << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
      << "\n\nThe paper (MATLAB): RRT with GJK 334.7 ms, with Fastron 119.7 ms including verify "
         "and repair (2.8 times faster).\n\n"

@@ -117,8 +117,8 @@ std::string surgicalReport(const PlanRows& r, const SurgicalOptions& o) {
      << o.padding
      << " m) updates in the background all along. Ticks where the instruments block PSM3 or its "
         "goal are skipped, as in the paper. Edges checked every "
-     << o.resolution << " joint units; seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
-     << simplificationSentence(o.simplifyTime)
+     << edgeSteps(o, "joint units") << "; seed " << o.seed << (o.quick ? ", quick mode" : "")
+     << ". " << simplificationSentence(o.simplifyTime)
      << "\n\nThe paper (MATLAB): 56 Hz replanning with Fastron, 10 Hz with GJK.\n\n"
      << "| Method | Replanning rate | Success | Mean total time |\n|---|---|---|---|\n";
   for (const std::string& method : experiments::methodsOf(r)) {

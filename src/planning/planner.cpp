@@ -197,7 +197,10 @@ double edgeResolution(const CollisionSource& source, const PlannerOptions& optio
         }
       },
       source);
-  if (!model) return options.resolution;
+  return model ? modelStep(options) : options.resolution;
+}
+
+double modelStep(const PlannerOptions& options) {
   return options.modelResolution > 0 ? options.modelResolution
                                      : kModelStepsPerStep * options.resolution;
 }

@@ -72,6 +72,9 @@ inline constexpr double kModelStepsPerStep = 3;
 /// Throws InvalidArgument naming the field when an option is out of range.
 void validate(const PlannerOptions& options);
 
+/// PlannerOptions::modelResolution, or kModelStepsPerStep times the resolution when it is 0.
+double modelStep(const PlannerOptions& options);
+
 /// The step at which planning on `source` checks edges: options.resolution for an exact checker,
 /// the model step (PlannerOptions::modelResolution) for a model or a checker answering from one.
 double edgeResolution(const CollisionSource& source, const PlannerOptions& options);
