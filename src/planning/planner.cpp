@@ -1,7 +1,5 @@
 #include "fastron/planning/planner.h"
 
-#include <type_traits>
-
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -187,16 +185,8 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
 }
 
 double edgeResolution(const CollisionSource& source, const PlannerOptions& options) {
-  const bool model = std::visit(
-      [](const auto& s) {
-        using Source = std::decay_t<decltype(s)>;
-        if constexpr (std::is_same_v<Source, std::shared_ptr<const Model>>) {
-          return true;
-        } else {
-          return s != nullptr && s->answersFromAModel();
-        }
-      },
-      source);
+  const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source);
+  const bool model = checker == nullptr || (*checker != nullptr && (*checker)->answersFromAModel());
   return model ? modelStep(options) : options.resolution;
 }
 
