@@ -39,7 +39,10 @@ void motionStates(const double* a, const double* b, std::size_t dim, std::size_t
     for (std::size_t j = 0; j < dim; ++j) out[row * dim + j] = a[j] + t * (b[j] - a[j]);
     ++row;
   };
-  put(n);  // the end state: a motion into an obstacle is found with one check
+  // The end state first, b itself (a + (b - a) * 1 may round off it): a motion into an obstacle
+  // is found with one check.
+  std::copy_n(b, dim, out.begin());
+  row = 1;
   // Bisection order over i = 1..n-1: odd multiples of the largest power of two first.
   std::size_t step = 1;
   while (step * 2 < n) step *= 2;

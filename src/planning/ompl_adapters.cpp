@@ -2,6 +2,7 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -70,7 +71,10 @@ bool CollisionValidityChecker::isValid(const ompl::base::State* state) const {
 
 ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si,
                                                      CollisionSource source, double resolution)
-    : ompl::base::MotionValidator(si), source_(std::move(source)), resolution_(resolution) {}
+    : ompl::base::MotionValidator(si),
+      source_(std::move(source)),
+      resolution_(resolution),
+      ends_(si->getStateDimension()) {}
 
 bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
                                             const ompl::base::State* s2) const {
@@ -79,8 +83,17 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
   const double* b = valuesOf(s2);
   const std::size_t n = segmentCount(a, b, dim, resolution_);
   thread_local std::vector<double> states;  // planners call this millions of times: no allocation
-  motionStates(a, b, dim, n, states);
-  const bool valid = firstCollision(source_, states.data(), n, dim) == n;
+  motionStates(a, b, dim, n, states);       // row 0 is b itself
+  bool valid = false;
+  if (const std::optional<bool> endCollides = ends_.find(b)) {
+    // Known: only the interior states (rows 1..n-1) are asked about.
+    valid = !*endCollides &&
+            (n == 1 || firstCollision(source_, states.data() + dim, n - 1, dim) == n - 1);
+  } else {
+    const std::size_t first = firstCollision(source_, states.data(), n, dim);
+    ends_.remember(b, first == 0);
+    valid = first == n;
+  }
   (valid ? valid_ : invalid_)++;
   return valid;
 }
@@ -92,13 +105,21 @@ bool ResolutionMotionValidator::checkMotion(
   const double* a = valuesOf(s1);
   const double* b = valuesOf(s2);
   const std::size_t n = segmentCount(a, b, dim, resolution_);
+  const std::optional<bool> endCollides = ends_.find(b);
   // In order from s1, so the first collision found is the first along the motion.
   thread_local std::vector<double> state;
   state.resize(dim);
   for (std::size_t i = 1; i <= n; ++i) {
     const double t = static_cast<double>(i) / static_cast<double>(n);
-    for (std::size_t j = 0; j < dim; ++j) state[j] = a[j] + t * (b[j] - a[j]);
-    if (firstCollision(source_, state.data(), 1, dim) == 0) {
+    for (std::size_t j = 0; j < dim; ++j) state[j] = i == n ? b[j] : a[j] + t * (b[j] - a[j]);
+    bool collides = false;
+    if (i == n && endCollides) {
+      collides = *endCollides;
+    } else {
+      collides = firstCollision(source_, state.data(), 1, dim) == 0;
+      if (i == n) ends_.remember(b, collides);
+    }
+    if (collides) {
       lastValid.second = static_cast<double>(i - 1) / static_cast<double>(n);
       if (lastValid.first != nullptr) {
         si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -23,8 +24,10 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
+#include "fastron/planning/ompl_adapters.h"
 #include "fastron/planning/parallel_check.h"
 #include "fastron/planning/planner.h"
+#include "fastron/planning/state_answers.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -113,6 +116,42 @@ TEST(Motion, StatesCoverTheMotionOnceInBisectionOrder) {
     EXPECT_EQ(unique.size(), n);
     EXPECT_EQ(*unique.begin(), 1.0);
   }
+}
+
+TEST(Motion, TheEndStateIsTheEndItself) {
+  // -0.8 + (0.35 - -0.8) * 1 rounds to 0.34999999999999987: the end state must be b bit for bit,
+  // or a validator's remembered answer about b would be one about another configuration.
+  const double a[] = {-0.8, 0.7};
+  const double b[] = {0.35, 0.1};
+  std::vector<double> states;
+  motionStates(a, b, 2, 5, states);
+  EXPECT_EQ(states[0], b[0]);
+  EXPECT_EQ(states[1], b[1]);
+}
+
+TEST(StateAnswers, RemembersAnswersByExactValues) {
+  StateAnswers answers(2);
+  const double q[] = {0.25, -1.5};
+  EXPECT_FALSE(answers.find(q).has_value());
+  answers.remember(q, true);
+  EXPECT_EQ(answers.find(q), std::optional<bool>(true));
+  answers.remember(q, false);
+  EXPECT_EQ(answers.find(q), std::optional<bool>(false));
+  const double near[] = {std::nextafter(0.25, 1.0), -1.5};
+  EXPECT_FALSE(answers.find(near).has_value()) << "one ulp away is another configuration";
+  EXPECT_EQ(answers.hits(), 2u);
+  EXPECT_EQ(answers.misses(), 2u);
+}
+
+TEST(StateAnswers, ANewAnswerReplacesTheOneInItsSlot) {
+  StateAnswers answers(1, 1);  // one slot: every configuration maps to it
+  const double p[] = {1.0}, q[] = {2.0};
+  answers.remember(p, true);
+  answers.remember(q, false);
+  EXPECT_FALSE(answers.find(p).has_value());
+  EXPECT_EQ(answers.find(q), std::optional<bool>(false));
+  EXPECT_THROW(StateAnswers(0), InvalidArgument);
+  EXPECT_THROW(StateAnswers(2, 0), InvalidArgument);
 }
 
 // The states along a path are those a check at that resolution looks at (checkPath's edges cut
@@ -275,6 +314,40 @@ TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
 // hugs the wall's corner, and a check every 0.02 cannot see a corner cut between two checked
 // states; every point of the path is within 0.01 of a checked free state, so the finer check is
 // against the wall shrunk by that much: what discrete checking guarantees, and all it does.
+// RRT-Connect's goal tree checks motions towards its nodes, and the simplifier motions ending at
+// waypoints: the validator asks its source about such an end once, and answers alike after.
+TEST_F(Planning, TheMotionValidatorAsksAboutAnEndStateOnce) {
+  std::size_t asked = 0;
+  const auto counting = std::make_shared<FunctionChecker>("counting wall", 2, [&](const double* q) {
+    ++asked;
+    return inWall(q);
+  });
+  const auto si = makeSpaceInformation(CollisionSource(counting), JointLimits::unitBox(2), 0.1);
+  const auto& validator = dynamic_cast<const ResolutionMotionValidator&>(*si->getMotionValidator());
+  ompl::base::ScopedState<> from(si), freeEnd(si), wallEnd(si);
+  from[0] = -0.8, from[1] = -0.8;
+  freeEnd[0] = -0.3, freeEnd[1] = -0.8;   // 5 states, all free
+  wallEnd[0] = 0.05, wallEnd[1] = -0.75;  // ends inside the wall
+  for (int round = 0; round < 2; ++round) {
+    asked = 0;
+    EXPECT_TRUE(validator.checkMotion(from.get(), freeEnd.get()));
+    EXPECT_EQ(asked, round == 0 ? 5u : 4u) << "round " << round;
+    asked = 0;
+    EXPECT_FALSE(validator.checkMotion(from.get(), wallEnd.get()));
+    EXPECT_EQ(asked, round == 0 ? 1u : 0u) << "the end is asked first, then remembered";
+  }
+  // The variant that reports the last valid state walks from s1 and agrees with a fresh walk.
+  std::pair<ompl::base::State*, double> lastValid{nullptr, 0};
+  EXPECT_FALSE(validator.checkMotion(from.get(), wallEnd.get(), lastValid));
+  const auto fresh =
+      makeSpaceInformation(CollisionSource(wallChecker()), JointLimits::unitBox(2), 0.1);
+  std::pair<ompl::base::State*, double> freshValid{nullptr, 0};
+  EXPECT_FALSE(fresh->getMotionValidator()->checkMotion(from.get(), wallEnd.get(), freshValid));
+  EXPECT_EQ(lastValid.second, freshValid.second);
+  EXPECT_TRUE(validator.checkMotion(from.get(), freeEnd.get(), lastValid));
+  EXPECT_GE(validator.endAnswers().hits(), 3u);
+}
+
 TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

@@ -13,6 +13,7 @@
 #include "fastron/core/export.h"
 #include "fastron/core/joint_limits.h"
 #include "fastron/core/model.h"
+#include "fastron/planning/state_answers.h"
 
 namespace FASTRON_API fastron {
 
@@ -46,7 +47,10 @@ class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
 
 /// Checks a straight-line motion at a fixed resolution (see motionStates): with a model, all the
 /// states of the edge are evaluated as one batch that stops at the first predicted collision;
-/// with a checker, through CollisionChecker::firstInCollision in the same order.
+/// with a checker, through CollisionChecker::firstInCollision in the same order. It remembers the
+/// answers about motions' end states (StateAnswers) and does not ask the source about the same
+/// end state twice: a planner's validator lives for one query, during which the source's answer
+/// about a configuration does not change.
 class ResolutionMotionValidator final : public ompl::base::MotionValidator {
  public:
   ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si, CollisionSource source,
@@ -57,9 +61,13 @@ class ResolutionMotionValidator final : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
+  /// The end states' answers remembered so far, with their hits and misses.
+  const StateAnswers& endAnswers() const { return ends_; }
+
  private:
   CollisionSource source_;
   double resolution_;
+  mutable StateAnswers ends_;
 };
 
 /// A SpaceInformation for planning in the joint space of `limits` with `source` as collision
