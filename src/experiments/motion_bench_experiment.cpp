@@ -449,11 +449,14 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "Fastron obstacles: a model of the scene's obstacles alone (self-collisions left to "
           "verification), trained in a median %s (|S| median %.0f; accuracy %.3f and TPR %.3f "
           "on the obstacles' labels of the same configurations); when it finds no path within "
-          "%s (%.2g%% of the time limit), a hybrid asking FCL about each \"collides\" plans; "
+          "%s (%.2g%% of the time limit; %s between substitute ends, when it calls the start or "
+          "goal colliding), a hybrid asking FCL about each \"collides\" plans; "
           "%s; "
           "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
           durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
           durationText(planner.modelShare * planner.timeLimit).c_str(), 100 * planner.modelShare,
+          durationText(std::min(planner.modelShare, planner.substituteShare) * planner.timeLimit)
+              .c_str(),
           learning, durationText(obstaclesEndToEnd).c_str(),
           total("FCL", true) / obstaclesEndToEnd);
       out << line;

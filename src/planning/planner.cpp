@@ -84,6 +84,10 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("modelShare must be in (0, 1], got " +
                           std::to_string(options.modelShare));
   }
+  if (!(options.substituteShare > 0) || !(options.substituteShare <= 1)) {
+    throw InvalidArgument("substituteShare must be in (0, 1], got " +
+                          std::to_string(options.substituteShare));
+  }
   if (!(options.simplifyTime >= 0) || !std::isfinite(options.simplifyTime)) {
     throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
                           std::to_string(options.simplifyTime));

@@ -221,6 +221,8 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
     const auto goalNear = substituteFor(goal, approximate, exact, limits, options.resolution);
     if (startNear && goalNear) {
       const auto spent = plan.time;
+      approximateOptions.timeLimit =
+          std::min(approximateOptions.timeLimit, options.timeLimit * options.substituteShare);
       plan = planMotion(approximate, limits, *startNear, *goalNear, approximateOptions);
       plan.time += spent;
       if (plan.solved()) {

@@ -588,6 +588,39 @@ TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {
       pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
 }
 
+// An approximate checker that calls the goal colliding, and closes the gap: its plan between
+// substitute ends gets substituteShare of the limit, not approximateShare, before the exact
+// checker plans the whole motion.
+TEST_F(Planning, APlanBetweenSubstituteEndsGetsItsOwnShare) {
+  const auto exact = wallChecker();
+  const auto closedAroundGoal =
+      std::make_shared<FunctionChecker>("closed, goal in a disc", 2, [](const double* q) {
+        return std::abs(q[0]) < 0.1 || std::hypot(q[0] - kGoal[0], q[1] - kGoal[1]) < 0.1;
+      });
+  const JointLimits limits = JointLimits::unitBox(2);
+  const auto planTime = [&](double substituteShare) {
+    const PlannerOptions options{.resolution = 0.01,
+                                 .timeLimit = 4,
+                                 .approximateShare = 0.1,
+                                 .substituteShare = substituteShare};
+    const VerifiedPlan plan =
+        planVerified(CollisionSource(std::shared_ptr<const CollisionChecker>(closedAroundGoal)),
+                     exact, limits, kStart, kGoal, options);
+    EXPECT_TRUE(plan.solved()) << plan.failure;
+    EXPECT_TRUE(plan.substituteEnds);
+    EXPECT_TRUE(plan.wholePathReplanned)
+        << "the closed wall leaves the motion to the exact checker";
+    EXPECT_TRUE(
+        pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+    return plan.planTime;
+  };
+  EXPECT_LT(planTime(0.01), std::chrono::milliseconds(300))
+      << "40 ms, not approximateShare's 0.4 s";
+  EXPECT_GE(planTime(1), std::chrono::milliseconds(350)) << "capped by approximateShare's 0.4 s";
+  EXPECT_THROW(validate(PlannerOptions{.substituteShare = 0}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.substituteShare = 2}), InvalidArgument);
+}
+
 // Seeded planners repeat their plans; another query's seed gives another plan.
 TEST_F(Planning, SeededPlannersRepeatTheirPlans) {
   const auto exact = wallChecker();

@@ -53,6 +53,13 @@ struct PlannerOptions {
   /// plans on obstacle models that succeeded in `bench motion-bench` took under 52 ms, and the
   /// generated cage family measured 1.6-2.6x FCL with 0.5% against 0.9-1.4x with 1%.
   double modelShare = 0.005;
+  /// planVerified, planVerifiedLearning: the share of timeLimit (at most the plan's own share) that
+  /// a plan on an approximate source between substitute ends may take, when the source called the
+  /// start or the goal colliding and the exact checker finds it free. Such an end lies in the
+  /// model's conservative shell around an obstacle, where the model closes the way more often; a
+  /// plan that succeeds there usually does so fast (on the four MotionBenchMaker families, 0-12 ms
+  /// on bookshelf_tall and table_pick), so the hybrid or the exact checker takes over sooner.
+  double substituteShare = 0.002;
   /// verifyAndRepair: the share of timeLimit that replanning one invalid stretch on the exact
   /// checker may take before the whole motion is planned on it instead. A stretch is short; one
   /// that is not bridged quickly starts at a waypoint in a pocket of free space, and searching on

@@ -63,7 +63,8 @@ VerifiedPlan verifyAndRepair(const JointPath& path,
 /// limit, then verifies and repairs with `exact`. When
 /// the approximate checker thinks the start or goal collides but the exact one finds both free, it
 /// plans between configurations near them that the approximate checker finds free and the exact
-/// one reaches from the true ends in a straight line (`substituteEnds`). When the approximate plan
+/// one reaches from the true ends in a straight line (`substituteEnds`), for at most
+/// options.substituteShare of the time limit. When the approximate plan
 /// fails, the whole motion is planned on the exact checker and counted as repair. Start and goal
 /// must be free under `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is
 /// returned in `exactAnswers`.
