@@ -73,7 +73,9 @@ class ResolutionMotionValidator final : public ompl::base::MotionValidator {
 /// A SpaceInformation for planning in the joint space of `limits` with `source` as collision
 /// checker and edges checked at `resolution` (joint units). Already set up. The state space
 /// registers no projection (setting one up per query cost more than a whole Fastron plan): a
-/// planner that needs one, such as KPIECE, needs `registerDefaultProjection` first. Throws
+/// planner that needs one, such as KPIECE, needs `registerDefaultProjection` first. Make one per
+/// query: its motion validator remembers its answers about motions' end states, so an exact
+/// checker whose scene changes (setScene) needs a new SpaceInformation after each change. Throws
 /// InvalidArgument when the source's dof differs from the limits' dimension.
 ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& source,
                                                      const JointLimits& limits, double resolution);
