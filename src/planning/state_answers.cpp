@@ -35,10 +35,8 @@ std::optional<bool> StateAnswers::find(const double* q) const {
   const std::lock_guard lock(mutex_);
   if (answers_.empty() || answers_[slot] == Slot::Empty ||
       std::memcmp(values_.data() + slot * dim_, q, dim_ * sizeof(double)) != 0) {
-    ++misses_;
     return std::nullopt;
   }
-  ++hits_;
   return answers_[slot] == Slot::Collides;
 }
 
@@ -52,16 +50,6 @@ void StateAnswers::remember(const double* q, bool collides) {
   }
   std::copy_n(q, dim_, values_.data() + slot * dim_);
   answers_[slot] = collides ? Slot::Collides : Slot::Free;
-}
-
-std::uint64_t StateAnswers::hits() const {
-  const std::lock_guard lock(mutex_);
-  return hits_;
-}
-
-std::uint64_t StateAnswers::misses() const {
-  const std::lock_guard lock(mutex_);
-  return misses_;
 }
 
 }  // namespace fastron

@@ -139,8 +139,6 @@ TEST(StateAnswers, RemembersAnswersByExactValues) {
   EXPECT_EQ(answers.find(q), std::optional<bool>(false));
   const double near[] = {std::nextafter(0.25, 1.0), -1.5};
   EXPECT_FALSE(answers.find(near).has_value()) << "one ulp away is another configuration";
-  EXPECT_EQ(answers.hits(), 2u);
-  EXPECT_EQ(answers.misses(), 2u);
 }
 
 TEST(StateAnswers, ANewAnswerReplacesTheOneInItsSlot) {
@@ -308,12 +306,6 @@ TEST_F(Planning, EveryPlannerFindsAValidPathAndStopsAtItsFirstSolution) {
   }
 }
 
-// OMPL's PathSimplifier after every plan: the path stays valid under an independent check at a
-// finer resolution and gets close to the shortest way over the wall (2 sqrt(0.7^2 + 1.3^2) =
-// 2.95), which the raw RRT-Connect paths are not; the time it took is reported. A simplified path
-// hugs the wall's corner, and a check every 0.02 cannot see a corner cut between two checked
-// states; every point of the path is within 0.01 of a checked free state, so the finer check is
-// against the wall shrunk by that much: what discrete checking guarantees, and all it does.
 // RRT-Connect's goal tree checks motions towards its nodes, and the simplifier motions ending at
 // waypoints: the validator asks its source about such an end once, and answers alike after.
 TEST_F(Planning, TheMotionValidatorAsksAboutAnEndStateOnce) {
@@ -344,10 +336,17 @@ TEST_F(Planning, TheMotionValidatorAsksAboutAnEndStateOnce) {
   std::pair<ompl::base::State*, double> freshValid{nullptr, 0};
   EXPECT_FALSE(fresh->getMotionValidator()->checkMotion(from.get(), wallEnd.get(), freshValid));
   EXPECT_EQ(lastValid.second, freshValid.second);
+  asked = 0;
   EXPECT_TRUE(validator.checkMotion(from.get(), freeEnd.get(), lastValid));
-  EXPECT_GE(validator.endAnswers().hits(), 3u);
+  EXPECT_EQ(asked, 4u) << "the walk in order asks about the known free end no more";
 }
 
+// OMPL's PathSimplifier after every plan: the path stays valid under an independent check at a
+// finer resolution and gets close to the shortest way over the wall (2 sqrt(0.7^2 + 1.3^2) =
+// 2.95), which the raw RRT-Connect paths are not; the time it took is reported. A simplified path
+// hugs the wall's corner, and a check every 0.02 cannot see a corner cut between two checked
+// states; every point of the path is within 0.01 of a checked free state, so the finer check is
+// against the wall shrunk by that much: what discrete checking guarantees, and all it does.
 TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

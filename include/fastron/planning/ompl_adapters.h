@@ -61,9 +61,6 @@ class ResolutionMotionValidator final : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
-  /// The end states' answers remembered so far, with their hits and misses.
-  const StateAnswers& endAnswers() const { return ends_; }
-
  private:
   CollisionSource source_;
   double resolution_;

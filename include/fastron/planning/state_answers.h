@@ -31,9 +31,6 @@ class StateAnswers {
   void remember(const double* q, bool collides);
 
   std::size_t dim() const { return dim_; }
-  /// Answers found, and asked for in vain, since construction.
-  std::uint64_t hits() const;
-  std::uint64_t misses() const;
 
  private:
   enum class Slot : std::uint8_t { Empty, Free, Collides };
@@ -44,7 +41,6 @@ class StateAnswers {
   mutable std::mutex mutex_;
   std::vector<double> values_;  ///< slots_ x dim_, allocated with the first answer
   std::vector<Slot> answers_;
-  mutable std::uint64_t hits_ = 0, misses_ = 0;
 };
 
 }  // namespace fastron
