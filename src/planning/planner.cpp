@@ -108,6 +108,22 @@ void seedPlanners(std::uint64_t seed, std::uint64_t query) {
   ompl::msg::setLogLevel(level);
 }
 
+namespace {
+
+/// OMPL's RRT-Connect, which can say whether one of its trees still holds only its root.
+class RrtConnectSeeingItsTrees : public og::RRTConnect {
+ public:
+  using og::RRTConnect::RRTConnect;
+  bool aTreeHoldsOnlyItsRoot() const { return tStart_->size() <= 1 || tGoal_->size() <= 1; }
+};
+
+bool answersFromAModel(const CollisionSource& source) {
+  const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source);
+  return checker == nullptr || (*checker != nullptr && (*checker)->answersFromAModel());
+}
+
+}  // namespace
+
 ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptions& options) {
   validate(options);
   switch (options.type) {
@@ -117,7 +133,7 @@ ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptio
       return planner;
     }
     case PlannerType::RrtConnect: {
-      auto planner = std::make_shared<og::RRTConnect>(si);
+      auto planner = std::make_shared<RrtConnectSeeingItsTrees>(si);
       if (options.range > 0) planner->setRange(options.range);
       return planner;
     }
@@ -189,9 +205,7 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
 }
 
 double edgeResolution(const CollisionSource& source, const PlannerOptions& options) {
-  const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source);
-  const bool model = checker == nullptr || (*checker != nullptr && (*checker)->answersFromAModel());
-  return model ? modelStep(options) : options.resolution;
+  return answersFromAModel(source) ? modelStep(options) : options.resolution;
 }
 
 double modelStep(const PlannerOptions& options) {
@@ -224,8 +238,20 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   planner->setProblemDefinition(makeProblemDefinition(si, start, goal, options.type));
   planner->setup();
   // Not solve(double): that checks the time on a helper thread, started and joined per query.
-  const ob::PlannerStatus status =
-      planner->solve(ob::timedPlannerTerminationCondition(options.timeLimit));
+  ob::PlannerTerminationCondition stop = ob::timedPlannerTerminationCondition(options.timeLimit);
+  const auto* rrtConnect = dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get());
+  std::size_t iterations = 0;
+  if (rrtConnect != nullptr && options.enclosedAfter > 0 &&
+      std::holds_alternative<std::shared_ptr<const Model>>(source)) {
+    // Evaluated once per iteration of RRT-Connect's loop. Only on a model: an exact checker's
+    // pocket may have a narrow way out that a few hundred random directions miss, and a plan on
+    // a hybrid is the last before the exact checker.
+    stop = ob::plannerOrTerminationCondition(
+        stop, ob::PlannerTerminationCondition([&iterations, rrtConnect, &options] {
+          return ++iterations > options.enclosedAfter && rrtConnect->aTreeHoldsOnlyItsRoot();
+        }));
+  }
+  const ob::PlannerStatus status = planner->solve(stop);
   const auto problem = planner->getProblemDefinition();
   if (status != ob::PlannerStatus::EXACT_SOLUTION || !problem->hasExactSolution()) {
     return finish(PlanStatus::Timeout);

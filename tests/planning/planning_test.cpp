@@ -564,6 +564,66 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
 }
 
+// A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the
+// goal, free within about 0.015 of it): RRT-Connect's goal tree can never grow, so a plan on the
+// model stops after enclosedAfter iterations instead of searching until its time limit. An exact
+// checker with the same pocket is searched until the limit, as is the model with the rule off.
+TEST_F(Planning, APlanOnAModelStopsWhenAnEndIsEnclosed) {
+  const JointLimits limits = JointLimits::unitBox(2);
+  const Eigen::VectorXd goal = vec({0.6, 0.6});
+  std::vector<Eigen::VectorXd> points;
+  std::vector<double> weights;
+  for (int k = 0; k < 48; ++k) {  // the ring
+    const double angle = 2 * M_PI * k / 48;
+    points.push_back(goal + 0.2 * vec({std::cos(angle), std::sin(angle)}));
+    weights.push_back(1);
+  }
+  points.push_back(goal);  // the pocket
+  weights.push_back(-2.3);
+  for (double x = -1; x <= 1.001; x += 0.2) {  // free space elsewhere
+    for (double y = -1; y <= 1.001; y += 0.2) {
+      if ((vec({x, y}) - goal).norm() < 0.35) continue;
+      points.push_back(vec({x, y}));
+      weights.push_back(-1);
+    }
+  }
+  Configurations support(static_cast<Eigen::Index>(points.size()), 2);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    support.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  }
+  const auto model = std::make_shared<const Model>(
+      FeatureMap::jointScaling(limits), Kernel{KernelType::RationalQuadratic, 200}, support,
+      Eigen::Map<const Eigen::VectorXd>(weights.data(), static_cast<Eigen::Index>(weights.size())));
+  ASSERT_FALSE(model->inCollision(goal.data()));
+  ASSERT_FALSE(model->inCollision(kStart.data()));
+  for (int k = 0; k < 16; ++k) {
+    const double angle = 2 * M_PI * k / 16;
+    for (const double r : {0.03, 0.1, 0.2, 0.3}) {
+      const Eigen::VectorXd q = goal + r * vec({std::cos(angle), std::sin(angle)});
+      ASSERT_TRUE(model->inCollision(q.data())) << "r " << r << ", angle " << angle;
+    }
+  }
+
+  PlannerOptions options{.resolution = 0.01, .timeLimit = 1};
+  seedPlanners(3, 0);
+  const PlanResult stopped = planMotion(model, limits, kStart, goal, options);
+  EXPECT_EQ(stopped.status, PlanStatus::Timeout);
+  EXPECT_LT(stopped.time, std::chrono::milliseconds(300)) << "256 iterations, not 1 s";
+
+  options.enclosedAfter = 0;
+  seedPlanners(3, 0);
+  const PlanResult searched = planMotion(model, limits, kStart, goal, options);
+  EXPECT_EQ(searched.status, PlanStatus::Timeout);
+  EXPECT_GE(searched.time, std::chrono::milliseconds(950));
+
+  options.enclosedAfter = 256;
+  const auto enclosing = std::make_shared<FunctionChecker>(
+      "enclosing", 2, [&](const double* q) { return model->inCollision(q); });
+  const PlanResult exact = planMotion(enclosing, limits, kStart, goal, options);
+  EXPECT_EQ(exact.status, PlanStatus::Timeout);
+  EXPECT_GE(exact.time, std::chrono::milliseconds(950)) << "an exact checker is never given up";
+}
+
 // A learning model that finds both ends colliding, with no state it finds free within reach of
 // the start to plan from: the hybrid, which asks the exact checker about the ends, plans from them.
 TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {

@@ -71,6 +71,13 @@ struct PlannerOptions {
   /// at once: since FCL's mesh checks got 1.3-6 times faster a repair costs less than a re-plan
   /// on the corrected model (docs/planning.md, "Learning within a query, or not").
   unsigned learningRounds = 0;
+  /// RRT-Connect on a Fastron model (a CollisionSource holding the Model; never on a checker,
+  /// hybrids included): the plan stops, as a timeout, when after this many iterations its start or
+  /// goal tree still holds only its root. Every motion of the planner's range from that end then
+  /// met the model's "collides": the end sits in a pocket the model closed around it (a grasp's
+  /// goal inside a box), and searching on until the time box ends finds nothing (docs/planning.md,
+  /// "An end the model encloses"). 0: never.
+  std::size_t enclosedAfter = 256;
 };
 
 /// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).
