@@ -11,6 +11,7 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <thread>
@@ -574,7 +575,7 @@ TEST_F(Planning, APlanOnAModelStopsWhenAnEndIsEnclosed) {
   std::vector<Eigen::VectorXd> points;
   std::vector<double> weights;
   for (int k = 0; k < 48; ++k) {  // the ring
-    const double angle = 2 * M_PI * k / 48;
+    const double angle = 2 * std::numbers::pi * k / 48;
     points.push_back(goal + 0.2 * vec({std::cos(angle), std::sin(angle)}));
     weights.push_back(1);
   }
@@ -597,7 +598,7 @@ TEST_F(Planning, APlanOnAModelStopsWhenAnEndIsEnclosed) {
   ASSERT_FALSE(model->inCollision(goal.data()));
   ASSERT_FALSE(model->inCollision(kStart.data()));
   for (int k = 0; k < 16; ++k) {
-    const double angle = 2 * M_PI * k / 16;
+    const double angle = 2 * std::numbers::pi * k / 16;
     for (const double r : {0.03, 0.1, 0.2, 0.3}) {
       const Eigen::VectorXd q = goal + r * vec({std::cos(angle), std::sin(angle)});
       ASSERT_TRUE(model->inCollision(q.data())) << "r " << r << ", angle " << angle;

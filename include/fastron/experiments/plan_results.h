@@ -62,8 +62,8 @@ struct PlanRows {
 
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
-  /// fallback, exact_ends, collides_fcl, exact_share, planned_on), then the figures. Throws
-  /// InvalidArgument when the rows do not share their query and figure columns.
+  /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, planned_on), then the
+  /// figures. Throws InvalidArgument when the rows do not share their query and figure columns.
   Table table() const;
 };
 
