@@ -444,6 +444,10 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
                       "wrong and plans again, up to %u times (mean %.2f times a query)",
                       rounds, statistic(rowsOf("Fastron obstacles"), relearned, false));
       }
+      // The boxes planVerifiedLearning gives the model's first plan and, within it, a plan
+      // between substitute ends.
+      const double modelShare = std::min(planner.approximateShare, planner.modelShare);
+      const double substituteShare = std::min(modelShare, planner.substituteShare);
       std::snprintf(
           line, sizeof line,
           "Fastron obstacles: a model of the scene's obstacles alone (self-collisions left to "
@@ -454,11 +458,9 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "%s; "
           "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
           durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
-          durationText(planner.modelShare * planner.timeLimit).c_str(), 100 * planner.modelShare,
-          durationText(std::min(planner.modelShare, planner.substituteShare) * planner.timeLimit)
-              .c_str(),
-          learning, durationText(obstaclesEndToEnd).c_str(),
-          total("FCL", true) / obstaclesEndToEnd);
+          durationText(modelShare * planner.timeLimit).c_str(), 100 * modelShare,
+          durationText(substituteShare * planner.timeLimit).c_str(), learning,
+          durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);
       out << line;
     }
     return out.str();

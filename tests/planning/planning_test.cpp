@@ -566,9 +566,10 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the
-// goal, free within about 0.015 of it): RRT-Connect's goal tree can never grow, so a plan on the
-// model stops after enclosedAfter iterations instead of searching until its time limit. An exact
-// checker with the same pocket is searched until the limit, as is the model with the rule off.
+// goal; free at the goal, colliding from 0.03 out): RRT-Connect's goal tree can never grow, so a
+// plan on the model stops after enclosedAfter iterations instead of searching until its time
+// limit. An exact checker with the same pocket is searched until the limit, as is the model with
+// the rule off.
 TEST_F(Planning, APlanOnAModelStopsWhenAnEndIsEnclosed) {
   const JointLimits limits = JointLimits::unitBox(2);
   const Eigen::VectorXd goal = vec({0.6, 0.6});
