@@ -162,9 +162,10 @@ int runPlan(const PlanOptions& o) {
     // A model trained here learns the obstacles alone: self-collisions, when checked, are left
     // to verification (docs/planning.md, "Fastron obstacles": on the mesh Panda 9-27x FCL on
     // both samples, where a model of obstacles and self-collisions together reached 1.4-20x).
-    // It plans on the model, then on a hybrid asking FCL about every "collides", then on FCL
-    // (no calibrated band needed); with --learning-rounds N it learns what verification found
-    // it got wrong and plans again before repairing.
+    // It plans on the model, then on a hybrid asking FCL about every "collides" (the obstacles'
+    // FCL, the model's oracle: a relaxation of the exact checker), then on FCL (no calibrated
+    // band needed); with --learning-rounds N it learns what verification found it got wrong and
+    // plans again before repairing.
     const auto obstacles = o.selfCollision ? std::make_shared<const FclChecker>(
                                                  robot, scene, CheckerOptions{false, o.padding})
                                            : fcl;
@@ -172,6 +173,7 @@ int runPlan(const PlanOptions& o) {
         trainObstacleModel(o, robot, obstacles, o.selfCollision ? "of the obstacles, " : "");
     PlannerOptions learning = options;
     learning.learningRounds = o.learningRounds;
+    learning.hybridAsksOracle = true;
     plan = planVerifiedLearning(*detector, fcl, limits, start, goal, learning);
   }
 

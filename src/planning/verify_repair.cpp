@@ -345,10 +345,15 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     if (!attempt.plan.solved()) {
       // The model closes the way. Near walls it says "collides" with confidence where the robot
       // is free (outside any calibrated band), so a hybrid plans next that trusts only its "free"
-      // and asks the exact checker about every "collides": in the generated cage family 74-83% of
-      // those answers were "free". Then the exact checker plans the whole motion.
+      // and asks about every "collides": in the generated cage family 74-83% of those answers
+      // were "free". With options.hybridAsksOracle it asks the model's own oracle instead of
+      // `exact` (not recorded: its answers are not the exact checker's). Then `exact` plans the
+      // whole motion.
+      const std::shared_ptr<const CollisionChecker> askedByHybrid =
+          options.hybridAsksOracle && proxy.sharedOracle() != exact ? proxy.sharedOracle()
+                                                                    : recorder;
       const std::vector<CollisionSource> optimistic{
-          std::make_shared<HybridChecker>(model, recorder, kAskEveryCollision)};
+          std::make_shared<HybridChecker>(model, askedByHybrid, kAskEveryCollision)};
       result = planAndRepair(optimistic, recorder, limits, start, goal, options);
       break;
     }

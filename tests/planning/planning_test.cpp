@@ -7,6 +7,7 @@
 #include <ompl/util/Console.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -563,6 +564,41 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_GT(inGap, 0u) << "the hybrid asked the exact checker in the gap";
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 0}), InvalidArgument);
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
+}
+
+// With hybridAsksOracle the hybrid asks the proxy's oracle, not the exact checker: here an oracle
+// that taught the model a world without the gap, then answers as the exact checker does (a
+// relaxation of it, as FCL without self-collision is of FCL with it).
+TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  std::atomic<bool> gapOpen{false};
+  const auto oracle = std::make_shared<FunctionChecker>(
+      "oracle", 2, [&](const double* q) { return gapOpen ? inWall(q) : std::abs(q[0]) < 0.1; });
+  const JointLimits limits = JointLimits::unitBox(2);
+  PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  for (const bool asksOracle : {false, true}) {
+    gapOpen = false;
+    ProxyCollisionDetector proxy(oracle, limits, learningProxyParams());
+    proxy.initialize(1500);
+    ASSERT_TRUE(proxy.model()->inCollision(vec({0, 0.8}).data())) << "the model closes the gap";
+    gapOpen = true;
+    options.hybridAsksOracle = asksOracle;
+    oracle->resetCallCount();
+    exact->resetCallCount();
+    const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plan.failure;
+    EXPECT_EQ(plan.plannedOn, asksOracle ? "Fastron+oracle" : "Fastron+wall");
+    EXPECT_TRUE(
+        pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
+    if (asksOracle) {
+      EXPECT_GT(oracle->callCount(), 0u);
+    } else {
+      EXPECT_EQ(oracle->callCount(), 0u);
+    }
+    // exactAnswers holds the exact checker's answers only.
+    EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+  }
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the

@@ -78,6 +78,14 @@ struct PlannerOptions {
   /// goal inside a box), and searching on until the time box ends finds nothing (docs/planning.md,
   /// "An end the model encloses"). 0: never.
   std::size_t enclosedAfter = 256;
+  /// planVerifiedLearning: its hybrid asks the proxy's oracle about the model's "collides"
+  /// instead of the exact checker. Only for an oracle that never says "collides" where the exact
+  /// checker finds the robot free: FCL without self-collision under a model of the obstacles
+  /// alone, when `exact` adds self-collision. Such an oracle is the question the model answers,
+  /// and cheaper (on the mesh Panda a free answer costs a third of one with self-collision); the
+  /// hybrid trusts the model's "free" without checking self-collision anyway, and verification
+  /// asks the exact checker. Any other oracle could close what the exact checker leaves open.
+  bool hybridAsksOracle = false;
 };
 
 /// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).

@@ -186,6 +186,8 @@ class ProxyCollisionDetector {
   BackgroundHealth backgroundHealth() const;
 
   const CollisionChecker& oracle() const { return *oracle_; }
+  /// The oracle as shared, e.g. for a HybridChecker that asks what the model was taught.
+  const std::shared_ptr<const CollisionChecker>& sharedOracle() const { return oracle_; }
   const FeatureMap& features() const { return features_; }
   const JointLimits& limits() const { return features_.limits(); }
   const ProxyParams& params() const { return params_; }
