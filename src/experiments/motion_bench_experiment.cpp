@@ -457,7 +457,7 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
           "on the obstacles' labels of the same configurations); when it finds no path within "
           "%s (%.2g%% of the time limit; %s between substitute ends, when it calls the start or "
           "goal colliding), a hybrid asking FCL without self-collision (the model's oracle) about "
-          "each \"collides\" plans; "
+          "each \"collides\" plans with half the planner's range; "
           "%s; "
           "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
           durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,

@@ -10,6 +10,7 @@
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/tools/config/MagicConstants.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -58,6 +59,10 @@ void validate(const PlannerOptions& options) {
   if (!(options.range >= 0) || !std::isfinite(options.range)) {
     throw InvalidArgument("planner range must be 0 (OMPL's default) or positive, got " +
                           std::to_string(options.range));
+  }
+  if (!(options.hybridRange >= 0) || !std::isfinite(options.hybridRange)) {
+    throw InvalidArgument("hybridRange must be 0 (half the planner's range) or positive, got " +
+                          std::to_string(options.hybridRange));
   }
   if (!(options.resolution > 0) || !std::isfinite(options.resolution)) {
     throw InvalidArgument("motion resolution must be positive, got " +
@@ -206,6 +211,16 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
 
 double edgeResolution(const CollisionSource& source, const PlannerOptions& options) {
   return answersFromAModel(source) ? modelStep(options) : options.resolution;
+}
+
+double optimisticHybridRange(const PlannerOptions& options, const JointLimits& limits) {
+  if (options.hybridRange > 0) return options.hybridRange;
+  // OMPL's default: this fraction of the space's maximum extent, for a real vector space the
+  // diagonal of its bounds.
+  const double range = options.range > 0 ? options.range
+                                         : ompl::magic::MAX_MOTION_LENGTH_AS_SPACE_EXTENT_FRACTION *
+                                               (limits.upper() - limits.lower()).norm();
+  return 0.5 * range;
 }
 
 double modelStep(const PlannerOptions& options) {

@@ -354,7 +354,9 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
                                                                     : recorder;
       const std::vector<CollisionSource> optimistic{
           std::make_shared<HybridChecker>(model, askedByHybrid, kAskEveryCollision)};
-      result = planAndRepair(optimistic, recorder, limits, start, goal, options);
+      PlannerOptions hybridOptions = options;
+      hybridOptions.range = optimisticHybridRange(options, limits);
+      result = planAndRepair(optimistic, recorder, limits, start, goal, hybridOptions);
       break;
     }
     if (round == options.learningRounds) {

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <ompl/base/ScopedState.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
 
 #include <algorithm>
@@ -599,6 +600,27 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
     // exactAnswers holds the exact checker's answers only.
     EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
   }
+}
+
+// The optimistic hybrid's range is half the planner's: half of OMPL's own default (which OMPL
+// computes from the space) when no range is set.
+TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
+  // The Panda's joint limits: OMPL's default range there is 2.6 rad.
+  const JointLimits panda(vec({-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973}),
+                          vec({2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973}));
+  const auto si = makeSpaceInformation(
+      CollisionSource(std::shared_ptr<const CollisionChecker>(
+          std::make_shared<FunctionChecker>("free", 7, [](const double*) { return false; }))),
+      panda, 0.05);
+  ompl::geometric::RRTConnect ompl(si);
+  ompl.setup();
+  ASSERT_GT(ompl.getRange(), 2.5);
+  EXPECT_NEAR(optimisticHybridRange(PlannerOptions{}, panda), 0.5 * ompl.getRange(), 1e-12);
+  EXPECT_DOUBLE_EQ(optimisticHybridRange(PlannerOptions{.range = 2}, panda), 1);
+  EXPECT_DOUBLE_EQ(optimisticHybridRange(PlannerOptions{.range = 2, .hybridRange = 0.7}, panda),
+                   0.7);
+  EXPECT_THROW(validate(PlannerOptions{.hybridRange = -1}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.hybridRange = std::nan("")}), InvalidArgument);
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the

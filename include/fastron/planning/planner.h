@@ -86,6 +86,12 @@ struct PlannerOptions {
   /// hybrid trusts the model's "free" without checking self-collision anyway, and verification
   /// asks the exact checker. Any other oracle could close what the exact checker leaves open.
   bool hybridAsksOracle = false;
+  /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
+  /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found
+  /// no path, most often because an end sits in a pocket the model closed (a goal inside a
+  /// cage), and RRT-Connect adds a motion only when it is free over its whole length: shorter
+  /// motions leave a pocket sooner (docs/planning.md, "A shorter range for the hybrid").
+  double hybridRange = 0;
 };
 
 /// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).
@@ -96,6 +102,11 @@ void validate(const PlannerOptions& options);
 
 /// PlannerOptions::modelResolution, or kModelStepsPerStep times the resolution when it is 0.
 double modelStep(const PlannerOptions& options);
+
+/// The range of planVerifiedLearning's optimistic hybrid: options.hybridRange, or half of
+/// options.range, or, when both are 0, half of OMPL's default range (a fifth of the diagonal of
+/// the joint limits' box), i.e. a tenth of that diagonal (1.3 rad on the Panda).
+double optimisticHybridRange(const PlannerOptions& options, const JointLimits& limits);
 
 /// The step at which planning on `source` checks edges: options.resolution for an exact checker,
 /// the model step (PlannerOptions::modelResolution) for a model or a checker answering from one.
