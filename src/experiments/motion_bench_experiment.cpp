@@ -214,8 +214,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::shared_ptr<const CollisionChecker> split;
     if (o.selfCollision) {
       const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
-      // No band: planVerifiedLearning's hybrid asks FCL about every "collides", and the split
-      // plans on no hybrid.
+      // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the
+      // split plans on no hybrid.
       obstacles = std::make_unique<ProxyCollisionDetector>(
           obstacleFcl, features,
           withKernelOptions(

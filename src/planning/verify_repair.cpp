@@ -235,16 +235,19 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
   return result;
 }
 
-/// Plans on each source of `chain` in turn until one finds a path, then verifies and repairs it;
-/// when none does, plans the whole motion on the exact checker.
+/// Plans on each source of `chain` in turn (with `chainOptions`) until one finds a path, then
+/// verifies and repairs it; when none does, plans the whole motion on the exact checker (both
+/// with `options`).
 VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
                            const std::shared_ptr<const CollisionChecker>& exact,
                            const JointLimits& limits, const Eigen::VectorXd& start,
-                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+                           const Eigen::VectorXd& goal, const PlannerOptions& options,
+                           const PlannerOptions& chainOptions) {
   std::chrono::nanoseconds planTime{0};
   bool substituteEnds = false;
   for (const CollisionSource& source : chain) {
-    const ApproximatePlan attempt = planApproximately(source, exact, limits, start, goal, options);
+    const ApproximatePlan attempt =
+        planApproximately(source, exact, limits, start, goal, chainOptions);
     planTime += attempt.plan.time;
     substituteEnds = substituteEnds || attempt.substituteEnds;
     if (attempt.plan.solved()) {
@@ -285,7 +288,8 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
   checkExact(exact, limits);
   const auto recorder = std::make_shared<RecordingChecker>(exact);
-  VerifiedPlan result = planAndRepair({approximate}, recorder, limits, start, goal, options);
+  VerifiedPlan result =
+      planAndRepair({approximate}, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
   return result;
 }
@@ -302,7 +306,7 @@ VerifiedPlan planVerified(const CalibratedModel& model,
     chain.emplace_back(
         std::make_shared<HybridChecker>(model.model, recorder, model.calibration.band));
   }
-  VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options);
+  VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
   return result;
 }
@@ -356,7 +360,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
           std::make_shared<HybridChecker>(model, askedByHybrid, kAskEveryCollision)};
       PlannerOptions hybridOptions = options;
       hybridOptions.range = optimisticHybridRange(options, limits);
-      result = planAndRepair(optimistic, recorder, limits, start, goal, hybridOptions);
+      result = planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions);
       break;
     }
     if (round == options.learningRounds) {
