@@ -254,13 +254,15 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   planner->setup();
   // Not solve(double): that checks the time on a helper thread, started and joined per query.
   ob::PlannerTerminationCondition stop = ob::timedPlannerTerminationCondition(options.timeLimit);
-  const auto* rrtConnect = dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get());
   std::size_t iterations = 0;
-  if (rrtConnect != nullptr && options.enclosedAfter > 0 &&
-      std::holds_alternative<std::shared_ptr<const Model>>(source)) {
-    // Evaluated once per iteration of RRT-Connect's loop. Only on a model: an exact checker's
-    // pocket may have a narrow way out that a few hundred random directions miss, and a plan on
-    // a hybrid is the last before the exact checker.
+  // Only on a model: an exact checker's pocket may have a narrow way out that a few hundred
+  // random directions miss, and a plan on a hybrid is the last before the exact checker.
+  const auto* rrtConnect =
+      options.enclosedAfter > 0 && std::holds_alternative<std::shared_ptr<const Model>>(source)
+          ? dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get())
+          : nullptr;
+  if (rrtConnect != nullptr) {
+    // Evaluated once per iteration of RRT-Connect's loop.
     stop = ob::plannerOrTerminationCondition(
         stop, ob::PlannerTerminationCondition([&iterations, rrtConnect, &options] {
           return ++iterations > options.enclosedAfter && rrtConnect->aTreeHoldsOnlyItsRoot();

@@ -354,8 +354,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       // `exact` (not recorded: its answers are not the exact checker's). Then `exact` plans the
       // whole motion.
       const std::shared_ptr<const CollisionChecker> askedByHybrid =
-          options.hybridAsksOracle && proxy.sharedOracle() != exact ? proxy.sharedOracle()
-                                                                    : recorder;
+          options.hybridAsksOracle && proxy.oracle() != exact ? proxy.oracle() : recorder;
       const std::vector<CollisionSource> optimistic{
           std::make_shared<HybridChecker>(model, askedByHybrid, kAskEveryCollision)};
       PlannerOptions hybridOptions = options;

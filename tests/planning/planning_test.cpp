@@ -621,6 +621,34 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
                    0.7);
   EXPECT_THROW(validate(PlannerOptions{.hybridRange = -1}), InvalidArgument);
   EXPECT_THROW(validate(PlannerOptions{.hybridRange = std::nan("")}), InvalidArgument);
+
+  // planVerifiedLearning's hybrid plans at that range: this model closes the gap of a thinner
+  // wall (so that what it calls free is free, and nothing is repaired), so the hybrid plans, and
+  // unsimplified, each edge of its path is one RRT-Connect motion, at most the range long (the
+  // planner's own range here is 0.57).
+  const auto exact = std::make_shared<FunctionChecker>(
+      "wall", 2, [](const double* q) { return std::abs(q[0]) < 0.05 && q[1] < 0.5; });
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const JointLimits square = JointLimits::unitBox(2);
+  ProxyCollisionDetector proxy(closed, square, learningProxyParams());
+  proxy.initialize(1500);
+  const PlannerOptions options{.resolution = 0.01,
+                               .modelResolution = 0.01,  // the states verification checks
+                               .timeLimit = 4,
+                               .simplifyTime = 0,
+                               .approximateShare = 0.25,
+                               .modelShare = 0.025,
+                               .hybridRange = 0.1};
+  const VerifiedPlan plan = planVerifiedLearning(proxy, exact, square, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  ASSERT_EQ(plan.plannedOn, "Fastron+wall");
+  ASSERT_EQ(plan.invalidStretches, 0u) << "a repair's motions have the planner's range";
+  double longest = 0;
+  for (std::size_t i = 1; i < plan.path.size(); ++i) {
+    longest = std::max(longest, (plan.path[i] - plan.path[i - 1]).norm());
+  }
+  EXPECT_LE(longest, 0.1 + 1e-9);
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the

@@ -185,9 +185,8 @@ class ProxyCollisionDetector {
   /// Steps and faults of the background thread since startBackground().
   BackgroundHealth backgroundHealth() const;
 
-  const CollisionChecker& oracle() const { return *oracle_; }
-  /// The oracle as shared, e.g. for a HybridChecker that asks what the model was taught.
-  const std::shared_ptr<const CollisionChecker>& sharedOracle() const { return oracle_; }
+  /// Shared, e.g. with a HybridChecker that asks what the model was taught.
+  const std::shared_ptr<const CollisionChecker>& oracle() const { return oracle_; }
   const FeatureMap& features() const { return features_; }
   const JointLimits& limits() const { return features_.limits(); }
   const ProxyParams& params() const { return params_; }
