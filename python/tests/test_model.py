@@ -26,7 +26,7 @@ def test_train_learns_a_disc():
 
 
 def test_training_on_two_cores_gives_the_model_of_one():
-    x, y = disc_data(6000, seed=4)  # more rows than Trainer::kRowsToShareUpdate (4096)
+    x, y = disc_data(6000, seed=4)  # more rows than Trainer::rowsToShareUpdate() (4096 on AVX-512)
     one, report_one = fastron.train(x, y, gamma=30, beta=5, threads=1)
     two, report_two = fastron.train(x, y, gamma=30, beta=5)  # threads=0: every core
     assert report_one.shared_iterations == 0

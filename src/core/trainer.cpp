@@ -71,7 +71,7 @@ void gramColumn(const Eigen::MatrixXd& x, const Eigen::MatrixXf& xf, Eigen::Inde
 // Algorithm 1 on two cores: an iteration's Gram column and F update split into two halves of
 // the rows, one taken by the calling thread and one by the helper (helper_thread.h). Each row's
 // values do not depend on the half it is in, and the halves' minima are combined in row order,
-// so the weights are those of one thread, bit for bit. Below Trainer::kRowsToShareUpdate rows an
+// so the weights are those of one thread, bit for bit. Below Trainer::rowsToShareUpdate() rows an
 // iteration is too short to pay for the round trip between the cores (about 1 us on this
 // project's machine).
 constexpr std::size_t kChunks = 2;
@@ -293,6 +293,10 @@ std::size_t Trainer::countMisclassified(const Eigen::VectorXd& f) const {
   return static_cast<std::size_t>((y_.array() * f.array() <= 0).count());
 }
 
+std::size_t Trainer::rowsToShareUpdate(SimdPath path) {
+  return path == SimdPath::Avx512 ? 4096 : 2048;
+}
+
 UpdateReport Trainer::update(unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
   UpdateReport report;
@@ -309,7 +313,7 @@ UpdateReport Trainer::update(unsigned threads) {
   bool stopped = false;
   const double maxWeight = params_.maxWeightOverBeta * params_.beta;
   const bool inFloat = columnError_ > 0;
-  detail::HelperSession helper(threads != 1 && static_cast<std::size_t>(n) >= kRowsToShareUpdate);
+  detail::HelperSession helper(threads != 1 && static_cast<std::size_t>(n) >= rowsToShareUpdate());
   for (;;) {
     while (report.iterations < params_.maxIterations && n > 0) {
       // Add or adjust a support point: Delta alpha = beta^(0.5 (y_i + 1)) y_i - F_i (Eq. 18).

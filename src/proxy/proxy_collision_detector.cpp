@@ -150,7 +150,7 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   trainer_.addPoints(fresh, Labels(labels.begin() + relabelled, labels.end()), onLabelThreads());
   report.observed = learnPendingObservations();
   // Algorithm 1 on two cores needs the other core: then the held-out labelling ends first.
-  const bool trainOnTwoCores = trainThreads != 1 && trainer_.size() >= Trainer::kRowsToShareUpdate;
+  const bool trainOnTwoCores = trainThreads != 1 && trainer_.size() >= Trainer::rowsToShareUpdate();
   if (trainOnTwoCores) awaitHeldOut();
   report.update = trainer_.update(trainOnTwoCores ? trainThreads : 1);
   if (!trainOnTwoCores) awaitHeldOut();

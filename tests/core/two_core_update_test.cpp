@@ -132,7 +132,7 @@ class TwoCoreUpdate : public ::testing::TestWithParam<TwoCoreCase> {};
 // at a time (gram_columns_impl.h); both split into halves alike.
 TEST_P(TwoCoreUpdate, GivesTheWeightsOfOneCore) {
   const TwoCoreCase c = GetParam();
-  const std::size_t n = Trainer::kRowsToShareUpdate + 904;
+  const std::size_t n = Trainer::rowsToShareUpdate(SimdPath::Avx512) + 904;  // enough on every path
   const Configurations q = test::uniformPoints(n, c.dim, 93);
   const std::size_t ballDim = std::min<std::size_t>(c.dim, 7);
   const Labels y =
@@ -199,7 +199,7 @@ INSTANTIATE_TEST_SUITE_P(
              (c.cap < 100000 ? "_capped" : "") + (c.block ? "_pointTerms" : "");
     });
 
-// Fewer training points than kRowsToShareUpdate: one core, whatever was asked.
+// Fewer training points than rowsToShareUpdate() on any path: one core, whatever was asked.
 TEST(TwoCoreUpdate, SmallTrainingSetsStayOnOneCore) {
   const Configurations q = test::uniformPoints(1000, 4, 95);
   const Labels y = test::BallWorld::random(4, 3, 0.5, 96).label(q);
@@ -208,6 +208,36 @@ TEST(TwoCoreUpdate, SmallTrainingSetsStayOnOneCore) {
   const UpdateReport report = trainer.update(0);
   EXPECT_GT(report.iterations, 10u);
   EXPECT_EQ(report.sharedIterations, 0u);
+}
+
+// 3000 points, about a bench changing update: shared on the paths where a row costs enough.
+TEST(TwoCoreUpdate, NarrowerPathsShareFromFewerRows) {
+  EXPECT_LT(Trainer::rowsToShareUpdate(SimdPath::Avx2),
+            Trainer::rowsToShareUpdate(SimdPath::Avx512));
+  EXPECT_EQ(Trainer::rowsToShareUpdate(SimdPath::Portable),
+            Trainer::rowsToShareUpdate(SimdPath::Avx2));
+  const std::size_t n = 3000;
+  const Configurations q = test::uniformPoints(n, 7, 97);
+  const Labels y = test::BallWorld::random(7, 4, 0.8, 98).label(q);
+  const test::SimdPathGuard guard;
+  for (const SimdPath path : supportedSimdPaths()) {
+    SCOPED_TRACE(toString(path));
+    useSimdPath(path);
+    const auto sharedIterations = [&] {
+      Trainer trainer(JointLimits::unitBox(7), TrainParams{});
+      trainer.addPoints(q, y);
+      return trainer.update(0).sharedIterations;
+    };
+    if (n < Trainer::rowsToShareUpdate(path)) {
+      EXPECT_EQ(sharedIterations(), 0u);
+      continue;
+    }
+    // As above: a busy machine may keep the helper asleep through a short update.
+    std::size_t shared = sharedIterations();
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (shared == 0 && std::chrono::steady_clock::now() < deadline) shared = sharedIterations();
+    EXPECT_GT(shared, 0u);
+  }
 }
 
 }  // namespace

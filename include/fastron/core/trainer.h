@@ -14,6 +14,7 @@
 #include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
 #include "fastron/core/model.h"
+#include "fastron/core/simd.h"
 #include "fastron/core/types.h"
 
 namespace FASTRON_API fastron {
@@ -140,18 +141,20 @@ class Trainer {
   /// Algorithm 1: greedy most-negative-margin updates with conditional bias, support-point cap,
   /// redundant support point removal once all margins are positive, the revert safeguard, and
   /// finally removal of the non-support points. Never prints. `threads` 1 runs it on the calling
-  /// thread; any other value (0: every core), with at least kRowsToShareUpdate training points,
+  /// thread; any other value (0: every core), with at least rowsToShareUpdate() training points,
   /// also on the process's helper thread, which takes half of every iteration's rows and spins
   /// between iterations (one such update at a time in a process: the others, and the rest of an
   /// update whose helper was preempted, run on the calling thread). The result is the same bit
   /// for bit.
   UpdateReport update(unsigned threads = 1);
 
-  /// Training points from which update(threads != 1) shares its iterations with a second core.
-  /// `BM_TrainOnThreads` (12 features with point terms; 2026-11-26): 1500 points 0.35 ms on one
-  /// core against 0.45 ms on two, 3000 1.42 against 1.37 ms, 8000 8.9 against 5.8 ms, 20000
-  /// 72.5 against 36.5 ms.
-  static constexpr std::size_t kRowsToShareUpdate = 4096;
+  /// Training points from which update(threads != 1) shares its iterations with a second core
+  /// when Algorithm 1 runs on `path`: a row costs twice as much on AVX2 as on AVX-512, so sharing
+  /// pays from half as many rows. `BM_TrainOnThreads` (12 features with point terms), AVX-512
+  /// (2026-11-26): 1500 points 0.35 ms on one core against 0.45 ms on two, 3000 1.42 against
+  /// 1.37 ms, 8000 8.9 against 5.8 ms; AVX2 (AMD Zen 3, 2026-11-28): 1500 points 0.54-0.63
+  /// against 0.50-0.59 ms, 3000 2.4-3.0 against 1.8-2.1 ms.
+  static std::size_t rowsToShareUpdate(SimdPath path = activeSimdPath());
 
   /// Snapshot of the current support set (points with nonzero weight).
   std::shared_ptr<const Model> model() const;

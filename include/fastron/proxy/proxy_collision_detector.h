@@ -34,7 +34,7 @@ struct ProxyParams {
   unsigned labelThreads = 0;
   /// Threads of Algorithm 1 in initialize(), step() and learnObservations() (Trainer::update): 1
   /// the calling thread alone, any other value also the process's helper thread when the
-  /// training set is large enough to share (Trainer::kRowsToShareUpdate). Background steps run it
+  /// training set is large enough to share (Trainer::rowsToShareUpdate()). Background steps run it
   /// on their own thread alone, beside the planner that uses the other cores.
   unsigned trainThreads = 0;
   /// Observations (addObservations) kept for the next step at most; later ones are dropped and
