@@ -173,7 +173,7 @@ int runPlan(const PlanOptions& o) {
         trainObstacleModel(o, robot, obstacles, o.selfCollision ? "of the obstacles, " : "");
     PlannerOptions learning = options;
     learning.learningRounds = o.learningRounds;
-    learning.hybridAsksOracle = true;
+    learning.oracleRelaxesExact = true;
     plan = planVerifiedLearning(*detector, fcl, limits, start, goal, learning);
   }
 

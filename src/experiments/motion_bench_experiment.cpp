@@ -299,7 +299,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
         const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
         seedPlanners(o.seed, turn);
         PlannerOptions learning = options;
-        learning.hybridAsksOracle = true;  // FCL without self-collision: a relaxation of `fcl`
+        learning.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `fcl`
         addRow({"Fastron obstacles",
                 planVerifiedLearning(*obstacles, fcl, limits, from, to, learning), 0},
                static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);

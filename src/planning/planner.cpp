@@ -276,8 +276,17 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   auto& path = *problem->getSolutionPath()->as<og::PathGeometric>();
   if (options.simplifyTime > 0) {
     const auto simplifyBegan = std::chrono::steady_clock::now();
-    og::PathSimplifier(si).simplify(path,
-                                    ob::timedPlannerTerminationCondition(options.simplifyTime));
+    og::PathSimplifier simplifier(si);
+    if (options.simplification == PathSimplification::Full) {
+      simplifier.simplify(path, ob::timedPlannerTerminationCondition(options.simplifyTime));
+    } else {
+      // As simplify's first round, without the smoothing; each pass stops when it gains nothing.
+      for (int pass = 0; pass < 5 && simplifier.shortcutPath(path); ++pass) {
+      }
+      for (int pass = 0; pass < 5 && simplifier.reduceVertices(path); ++pass) {
+      }
+      simplifier.collapseCloseVertices(path);
+    }
     result.simplifyTime = std::chrono::steady_clock::now() - simplifyBegan;
   }
   const auto dim = static_cast<Eigen::Index>(limits.dim());

@@ -102,14 +102,20 @@ void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const Join
   }
 }
 
-/// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it).
+/// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it), and
+/// whose first round plans its bridges on `relaxed` when given: a checker that never says
+/// "collides" where `exact` finds the robot free, so a bridge is at worst wrong, and the next
+/// round's verification catches that.
 VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>& known,
                            const std::shared_ptr<const CollisionChecker>& exact,
-                           const JointLimits& limits, const PlannerOptions& options) {
-  constexpr int kRounds = 3;  // a repaired stretch is planned on the exact checker, so one suffices
+                           const JointLimits& limits, const PlannerOptions& options,
+                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr) {
+  // A stretch repaired on the exact checker is free, so a round after it suffices; one more
+  // when the first round's bridges are on a relaxed checker.
+  const int rounds = relaxed ? 4 : 3;
   VerifiedPlan result;
   result.path = path;
-  for (int round = 0; round < kRounds; ++round) {
+  for (int round = 0; round < rounds; ++round) {
     auto began = Clock::now();
     const PathCheck check =
         round == 0 && known ? *known : checkPathParallel(*exact, result.path, options.resolution);
@@ -132,6 +138,8 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
     }
 
     began = Clock::now();
+    const std::shared_ptr<const CollisionChecker>& bridgeChecker =
+        round == 0 && relaxed ? relaxed : exact;
     JointPath repaired{old.front()};
     std::size_t i = 0;  // the last valid waypoint kept
     while (i + 1 < old.size()) {
@@ -146,19 +154,22 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
       // The bridge joins the free states next to the stretch's first and last collisions, not
       // its waypoints: a simplified path's edges are long, and a plan between their ends
       // replans what was free of the motion too. It is short, so it gets options.stretchShare of
-      // the time; a waypoint the approximate plan left in a pocket of free space may have no
-      // short way out, and then the whole motion is planned again on the exact checker.
+      // the time and shortcuts without smoothing (on the mesh Panda, smoothing took two thirds of
+      // a repair and the final paths were as long without it); a waypoint the approximate plan
+      // left in a pocket of free space may have no short way out, and then the whole motion is
+      // planned again on the exact checker.
       const Eigen::VectorXd from = lastFreeToward(exact, old[i], old[i + 1], options.resolution);
       const Eigen::VectorXd to = lastFreeToward(exact, old[j], old[j - 1], options.resolution);
       PlannerOptions stretchOptions = options;
       stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
+      stretchOptions.simplification = PathSimplification::Shortcuts;
       // Searched near its ends first: with the whole joint range the planner's samples and long
       // default edges wander far from a graze, and each exact edge check costs milliseconds on
       // a mesh robot (box family: repairs of 0.09-0.29 s, as long as FCL's whole plans); then in
       // the whole range, for an obstacle whose way round lies farther out.
-      PlanResult bridge =
-          planMotion(exact, aroundEnds(limits, from, to, kBridgeMargin), from, to, stretchOptions);
-      if (!bridge.solved()) bridge = planMotion(exact, limits, from, to, stretchOptions);
+      PlanResult bridge = planMotion(bridgeChecker, aroundEnds(limits, from, to, kBridgeMargin),
+                                     from, to, stretchOptions);
+      if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
       if (!bridge.solved()) {
         const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);
         if (!whole.solved()) {
@@ -182,7 +193,7 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
     result.repairTime += Clock::now() - began;
   }
   result.status = PlanStatus::Timeout;
-  result.failure = "the path still collided after " + std::to_string(kRounds) + " repair rounds";
+  result.failure = "the path still collided after " + std::to_string(rounds) + " repair rounds";
   return result;
 }
 
@@ -236,13 +247,15 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
 }
 
 /// Plans on each source of `chain` in turn (with `chainOptions`) until one finds a path, then
-/// verifies and repairs it; when none does, plans the whole motion on the exact checker (both
-/// with `options`).
+/// verifies and repairs it (the first round's bridges on `relaxed` when given, as in
+/// repairChecked); when none does, plans the whole motion on the exact checker (both with
+/// `options`).
 VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
                            const std::shared_ptr<const CollisionChecker>& exact,
                            const JointLimits& limits, const Eigen::VectorXd& start,
                            const Eigen::VectorXd& goal, const PlannerOptions& options,
-                           const PlannerOptions& chainOptions) {
+                           const PlannerOptions& chainOptions,
+                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr) {
   std::chrono::nanoseconds planTime{0};
   bool substituteEnds = false;
   for (const CollisionSource& source : chain) {
@@ -251,7 +264,8 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
     planTime += attempt.plan.time;
     substituteEnds = substituteEnds || attempt.substituteEnds;
     if (attempt.plan.solved()) {
-      VerifiedPlan result = verifyAndRepair(attempt.plan.path, exact, limits, options);
+      VerifiedPlan result =
+          repairChecked(attempt.plan.path, std::nullopt, exact, limits, options, relaxed);
       result.planTime = planTime;
       result.simplifyTime = attempt.plan.simplifyTime;
       result.substituteEnds = attempt.substituteEnds;
@@ -327,9 +341,14 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   PathCheck lastCheck;
   PlannerOptions roundOptions = options;
   roundOptions.approximateShare = std::min(options.approximateShare, options.modelShare);
-  // Repairs `path` on the exact checker (its first check given when known), as planVerified does.
+  // With options.oracleRelaxesExact the proxy's oracle answers where verification catches a
+  // wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
+  // recorded: its answers are not the exact checker's).
+  const std::shared_ptr<const CollisionChecker> relaxed =
+      options.oracleRelaxesExact && proxy.oracle() != exact ? proxy.oracle() : nullptr;
+  // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
-    VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options);
+    VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options, relaxed);
     repaired.plannedOn = repaired.wholePathReplanned ? exact->name() : sourceName(proxy.model());
     return repaired;
   };
@@ -349,17 +368,14 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     if (!attempt.plan.solved()) {
       // The model closes the way. Near walls it says "collides" with confidence where the robot
       // is free (outside any calibrated band), so a hybrid plans next that trusts only its "free"
-      // and asks about every "collides": in the generated cage family 74-83% of those answers
-      // were "free". With options.hybridAsksOracle it asks the model's own oracle instead of
-      // `exact` (not recorded: its answers are not the exact checker's). Then `exact` plans the
-      // whole motion.
-      const std::shared_ptr<const CollisionChecker> askedByHybrid =
-          options.hybridAsksOracle && proxy.oracle() != exact ? proxy.oracle() : recorder;
+      // and asks about every "collides" (the relaxed oracle when there is one): in the generated
+      // cage family 74-83% of those answers were "free". Then `exact` plans the whole motion.
       const std::vector<CollisionSource> optimistic{
-          std::make_shared<HybridChecker>(model, askedByHybrid, kAskEveryCollision)};
+          std::make_shared<HybridChecker>(model, relaxed ? relaxed : recorder, kAskEveryCollision)};
       PlannerOptions hybridOptions = options;
       hybridOptions.range = optimisticHybridRange(options, limits);
-      result = planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions);
+      result =
+          planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed);
       break;
     }
     if (round == options.learningRounds) {

@@ -346,34 +346,41 @@ TEST_F(Planning, TheMotionValidatorAsksAboutAnEndStateOnce) {
 
 // OMPL's PathSimplifier after every plan: the path stays valid under an independent check at a
 // finer resolution and gets close to the shortest way over the wall (2 sqrt(0.7^2 + 1.3^2) =
-// 2.95), which the raw RRT-Connect paths are not; the time it took is reported. A simplified path
-// hugs the wall's corner, and a check every 0.02 cannot see a corner cut between two checked
-// states; every point of the path is within 0.01 of a checked free state, so the finer check is
-// against the wall shrunk by that much: what discrete checking guarantees, and all it does.
+// 2.95), which the raw RRT-Connect paths are not; the time it took is reported. So with shortcuts
+// alone (what repairs' bridges get). A simplified path hugs the wall's corner, and a check every
+// 0.02 cannot see a corner cut between two checked states; every point of the path is within 0.01
+// of a checked free state, so the finer check is against the wall shrunk by that much: what
+// discrete checking guarantees, and all it does.
 TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
-  double rawLength = 0, simplifiedLength = 0;
-  for (int query = 0; query < 10; ++query) {
-    const PlannerOptions raw{.resolution = 0.02, .timeLimit = 5, .simplifyTime = 0};
-    PlannerOptions simplified = raw;
-    simplified.simplifyTime = 0.1;
-    const PlanResult a = planMotion(wall, limits, kStart, kGoal, raw);
-    const PlanResult b = planMotion(wall, limits, kStart, kGoal, simplified);
-    ASSERT_TRUE(a.solved() && b.solved());
-    EXPECT_EQ(a.simplifyTime.count(), 0);
-    EXPECT_GT(b.simplifyTime.count(), 0);
-    EXPECT_LE(b.simplifyTime, b.time);
-    EXPECT_TRUE(b.path.front().isApprox(kStart) && b.path.back().isApprox(kGoal));
-    EXPECT_TRUE(pathIsFree(
-        b.path, 0.002,
-        [](const Eigen::VectorXd& q) { return std::abs(q[0]) < 0.1 - 0.01 && q[1] < 0.5 - 0.01; }))
-        << "query " << query;
-    EXPECT_LT(pathLength(b.path), 2.95 * 1.3) << "query " << query;
-    rawLength += pathLength(a.path);
-    simplifiedLength += pathLength(b.path);
+  for (const PathSimplification simplification :
+       {PathSimplification::Full, PathSimplification::Shortcuts}) {
+    SCOPED_TRACE(simplification == PathSimplification::Full ? "full" : "shortcuts");
+    double rawLength = 0, simplifiedLength = 0;
+    for (int query = 0; query < 10; ++query) {
+      const PlannerOptions raw{.resolution = 0.02, .timeLimit = 5, .simplifyTime = 0};
+      PlannerOptions simplified = raw;
+      simplified.simplifyTime = 0.1;
+      simplified.simplification = simplification;
+      const PlanResult a = planMotion(wall, limits, kStart, kGoal, raw);
+      const PlanResult b = planMotion(wall, limits, kStart, kGoal, simplified);
+      ASSERT_TRUE(a.solved() && b.solved());
+      EXPECT_EQ(a.simplifyTime.count(), 0);
+      EXPECT_GT(b.simplifyTime.count(), 0);
+      EXPECT_LE(b.simplifyTime, b.time);
+      EXPECT_TRUE(b.path.front().isApprox(kStart) && b.path.back().isApprox(kGoal));
+      EXPECT_TRUE(pathIsFree(b.path, 0.002,
+                             [](const Eigen::VectorXd& q) {
+                               return std::abs(q[0]) < 0.1 - 0.01 && q[1] < 0.5 - 0.01;
+                             }))
+          << "query " << query;
+      EXPECT_LT(pathLength(b.path), 2.95 * 1.3) << "query " << query;
+      rawLength += pathLength(a.path);
+      simplifiedLength += pathLength(b.path);
+    }
+    EXPECT_LT(simplifiedLength, 0.9 * rawLength);
   }
-  EXPECT_LT(simplifiedLength, 0.9 * rawLength);
   EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(PlannerOptions{.simplifyTime = -1}); }),
               HasSubstr("path simplification time must be 0 (off) or positive, got -1"));
 }
@@ -567,7 +574,7 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
 }
 
-// With hybridAsksOracle the hybrid asks the proxy's oracle, not the exact checker: here an oracle
+// With oracleRelaxesExact the hybrid asks the proxy's oracle, not the exact checker: here an oracle
 // that taught the model a world without the gap, then answers as the exact checker does (a
 // relaxation of it, as FCL without self-collision is of FCL with it).
 TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
@@ -584,7 +591,7 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
     proxy.initialize(1500);
     ASSERT_TRUE(proxy.model()->inCollision(vec({0, 0.8}).data())) << "the model closes the gap";
     gapOpen = true;
-    options.hybridAsksOracle = asksOracle;
+    options.oracleRelaxesExact = asksOracle;
     oracle->resetCallCount();
     exact->resetCallCount();
     const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
@@ -599,6 +606,47 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
     }
     // exactAnswers holds the exact checker's answers only.
     EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+  }
+}
+
+// With oracleRelaxesExact the first repair round bridges on the proxy's oracle. Here the oracle
+// lacks a bar of the exact checker's in the wall's gap (as FCL without self-collision lacks the
+// robot's own links): a bridge through the bar fails the next verification and is bridged again on
+// the exact checker, so the final path is free either way.
+TEST_F(Planning, ALearningModelsFirstRepairsBridgeOnItsOracleWhenTold) {
+  const auto inBar = [](const double* q) { return std::abs(q[0]) < 0.1 && q[1] < 0.8; };
+  const auto exact = std::make_shared<FunctionChecker>("wall and bar", 2, inBar);
+  std::atomic<bool> wallBuilt{false};
+  const auto oracle = std::make_shared<FunctionChecker>("oracle", 2, [&](const double* q) {
+    // Before the wall: a corner post, so that the model knows some collisions but none between
+    // start and goal, and plans through the wall.
+    return wallBuilt ? inWall(q) : q[0] > 0.7 && q[1] > 0.7;
+  });
+  const JointLimits limits = JointLimits::unitBox(2);
+  PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  for (const bool relaxes : {false, true}) {
+    SCOPED_TRACE(relaxes ? "bridges on the oracle first" : "bridges on the exact checker");
+    wallBuilt = false;
+    ProxyCollisionDetector proxy(oracle, limits, learningProxyParams());
+    proxy.initialize(1500);
+    ASSERT_FALSE(proxy.model()->inCollision(vec({0, -0.8}).data())) << "the model misses the wall";
+    wallBuilt = true;
+    options.oracleRelaxesExact = relaxes;
+    oracle->resetCallCount();
+    exact->resetCallCount();
+    const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plan.failure;
+    EXPECT_GE(plan.invalidStretches, 1u) << "the model's path was repaired";
+    EXPECT_TRUE(pathIsFree(plan.path, 0.01, [&](const Eigen::VectorXd& x) {
+      return inBar(x.data());
+    })) << "the final path is free under the exact checker";
+    if (relaxes) {
+      EXPECT_GT(oracle->callCount(), 0u);
+    } else {
+      EXPECT_EQ(oracle->callCount(), 0u);
+    }
+    EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());  // the exact checker's answers only
   }
 }
 

@@ -27,6 +27,17 @@ PlannerType parsePlannerType(std::string_view name);
 /// Every planner type, in the paper's order.
 std::vector<PlannerType> allPlannerTypes();
 
+/// How a plan's path is shortened (PlannerOptions::simplification).
+enum class PathSimplification : std::uint8_t {
+  /// OMPL's PathSimplifier::simplify: shortcutting, B-spline smoothing, vertex reduction and the
+  /// collapse of close vertices, in rounds within simplifyTime, as MoveIt does.
+  Full,
+  /// Up to five passes each of OMPL's shortcutPath and reduceVertices, then
+  /// collapseCloseVertices: no B-spline smoothing, whose subdivided states make most of the
+  /// checks. What repairs use for their bridges (docs/planning.md, "Lighter bridges").
+  Shortcuts,
+};
+
 struct PlannerOptions {
   PlannerType type = PlannerType::RrtConnect;
   double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
@@ -42,6 +53,9 @@ struct PlannerOptions {
   /// shortcutting, B-spline smoothing; every change checked with the same collision source as the
   /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
   double simplifyTime = 0.1;
+  /// How simplifyTime shortens the path. Repairs plan their bridges with Shortcuts whatever this
+  /// says: a bridge is short, and smoothing it on the exact checker took two thirds of a repair.
+  PathSimplification simplification = PathSimplification::Full;
   /// planVerified: the share of timeLimit that planning on the approximate source, and then on
   /// its hybrid, may each take before the motion is planned on the exact checker instead
   /// (planVerifiedLearning: its hybrid's share). A model that closes a passage finds no path
@@ -78,14 +92,14 @@ struct PlannerOptions {
   /// goal inside a box), and searching on until the time box ends finds nothing (docs/planning.md,
   /// "An end the model encloses"). 0: never.
   std::size_t enclosedAfter = 256;
-  /// planVerifiedLearning: its hybrid asks the proxy's oracle about the model's "collides"
-  /// instead of the exact checker. Only for an oracle that never says "collides" where the exact
-  /// checker finds the robot free: FCL without self-collision under a model of the obstacles
-  /// alone, when `exact` adds self-collision. Such an oracle is the question the model answers,
-  /// and cheaper (on the mesh Panda a free answer costs a third of one with self-collision); the
-  /// hybrid trusts the model's "free" without checking self-collision anyway, and verification
-  /// asks the exact checker. Any other oracle could close what the exact checker leaves open.
-  bool hybridAsksOracle = false;
+  /// planVerifiedLearning: the proxy's oracle never says "collides" where the exact checker finds
+  /// the robot free (FCL without self-collision under a model of the obstacles alone, when
+  /// `exact` adds self-collision), so it may answer where verification catches a wrong "free"
+  /// later: the optimistic hybrid asks it about the model's "collides", and the first repair
+  /// round plans its bridges on it. Such an oracle is cheaper (on the mesh Panda a free answer
+  /// costs a third of one with self-collision); verification, and the bridges of a second round,
+  /// still ask the exact checker. Any other oracle could close what the exact checker leaves open.
+  bool oracleRelaxesExact = false;
   /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
   /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found
   /// no path, most often because an end sits in a pocket the model closed (a goal inside a

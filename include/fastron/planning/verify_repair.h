@@ -90,13 +90,14 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// on the new model, up to options.learningRounds times; the last path is repaired as above. The
 /// first plan on the model gets options.modelShare of the time limit. When it fails, a
 /// HybridChecker that trusts the model's "free" and asks `exact` (the proxy's oracle with
-/// options.hybridAsksOracle) about every "collides" plans for approximateShare (the model closes
+/// options.oracleRelaxesExact) about every "collides" plans for approximateShare (the model closes
 /// passages near walls where the robot is free; a calibrated band does not reach that far,
-/// docs/planning.md), its path verified and repaired;
+/// docs/planning.md), its path verified and repaired (the first round's bridges planned on the
+/// oracle with options.oracleRelaxesExact);
 /// only then does `exact` plan the whole motion. A plan on a corrected model gets at most four
 /// times the first plan's time (at least 50 ms, at most approximateShare) and, when it fails,
 /// the last path is repaired. The proxy keeps what it learned for later queries; every exact
-/// answer of every round is in `exactAnswers` (the oracle's answers to the hybrid are not).
+/// answer of every round is in `exactAnswers` (the oracle's answers are not).
 /// Not while the proxy updates in the background: what it learns must be of the world as it is.
 /// Throws Error before proxy.initialize().
 VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
