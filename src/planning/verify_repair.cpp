@@ -102,6 +102,35 @@ void checkExact(const std::shared_ptr<const CollisionChecker>& exact, const Join
   }
 }
 
+/// The check of `path` (as checkPathParallel) where the edges flagged in `knownFree` are free
+/// without a check: an earlier round checked them, and a repair kept them as they were. Each run
+/// of the other edges is checked as a path of its own (its end waypoints too).
+PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path,
+                            const std::vector<bool>& knownFree, double resolution) {
+  if (knownFree.empty()) return checkPathParallel(exact, path, resolution);
+  PathCheck result;
+  const std::size_t edges = path.size() - 1;
+  for (std::size_t first = 0; first < edges;) {
+    if (knownFree[first]) {
+      ++first;
+      continue;
+    }
+    std::size_t end = first;  // one past the run's last edge
+    while (end < edges && !knownFree[end]) ++end;
+    const JointPath run(path.begin() + static_cast<std::ptrdiff_t>(first),
+                        path.begin() + static_cast<std::ptrdiff_t>(end) + 1);
+    const PathCheck check = checkPathParallel(exact, run, resolution);
+    for (const std::size_t w : check.invalidWaypoints) {
+      if (result.invalidWaypoints.empty() || result.invalidWaypoints.back() != first + w) {
+        result.invalidWaypoints.push_back(first + w);
+      }
+    }
+    for (const std::size_t e : check.invalidEdges) result.invalidEdges.push_back(first + e);
+    first = end;
+  }
+  return result;
+}
+
 /// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it), and
 /// whose first round plans its bridges on `relaxed` when given: a checker that never says
 /// "collides" where `exact` finds the robot free, so a bridge is at worst wrong, and the next
@@ -115,10 +144,13 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
   const int rounds = relaxed ? 4 : 3;
   VerifiedPlan result;
   result.path = path;
+  // Per edge of result.path: checked free by an earlier round and kept since (empty: none).
+  std::vector<bool> knownFree;
   for (int round = 0; round < rounds; ++round) {
     auto began = Clock::now();
     const PathCheck check =
-        round == 0 && known ? *known : checkPathParallel(*exact, result.path, options.resolution);
+        round == 0 && known ? *known
+                            : checkNotKnownFree(*exact, result.path, knownFree, options.resolution);
     result.verifyTime += Clock::now() - began;
     if (check.valid()) {
       result.status = PlanStatus::Solved;
@@ -141,10 +173,17 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
     const std::shared_ptr<const CollisionChecker>& bridgeChecker =
         round == 0 && relaxed ? relaxed : exact;
     JointPath repaired{old.front()};
+    std::vector<bool> repairedKnownFree;  // per edge of `repaired`
+    // Every edge from here to the next waypoint kept is new, so not known free.
+    const auto addNew = [&](const Eigen::VectorXd& waypoint) {
+      repaired.push_back(waypoint);
+      repairedKnownFree.push_back(false);
+    };
     std::size_t i = 0;  // the last valid waypoint kept
     while (i + 1 < old.size()) {
       if (!contains(check.invalidEdges, i) && !contains(check.invalidWaypoints, i + 1)) {
         repaired.push_back(old[++i]);
+        repairedKnownFree.push_back(true);
         continue;
       }
       // Excise up to the next valid waypoint and bridge the gap on the exact checker.
@@ -181,15 +220,17 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
           return result;
         }
         repaired = whole.path;
+        repairedKnownFree.assign(repaired.size() - 1, false);
         result.wholePathReplanned = true;
         break;
       }
-      if (!from.isApprox(old[i])) repaired.push_back(from);
-      repaired.insert(repaired.end(), bridge.path.begin() + 1, bridge.path.end());
-      if (!to.isApprox(old[j])) repaired.push_back(old[j]);
+      if (!from.isApprox(old[i])) addNew(from);
+      std::for_each(bridge.path.begin() + 1, bridge.path.end(), addNew);
+      if (!to.isApprox(old[j])) addNew(old[j]);
       i = j;
     }
     result.path = std::move(repaired);
+    knownFree = std::move(repairedKnownFree);
     result.repairTime += Clock::now() - began;
   }
   result.status = PlanStatus::Timeout;

@@ -411,6 +411,37 @@ TEST_F(Planning, VerifiedPlansReturnEveryExactAnswer) {
   EXPECT_GT(repaired, 0u) << "the test needs plans through the missed half";
 }
 
+// After a repair, verification checks what the repair changed: the edges it kept were checked in
+// the round before and are asked about no more. The repaired path is still free under an
+// independent finer check.
+TEST_F(Planning, VerificationAfterARepairChecksOnlyWhatChanged) {
+  std::mutex mutex;
+  std::multiset<std::pair<double, double>> askedOnKeptEdge;
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, [&](const double* q) {
+    if (q[1] == -0.95 && q[0] > -0.8 && q[0] < -0.3) {  // inside the edge every round keeps
+      const std::lock_guard lock(mutex);
+      askedOnKeptEdge.emplace(q[0], q[1]);
+    }
+    return inWall(q);
+  });
+  const JointLimits limits = JointLimits::unitBox(2);
+  // The second edge crosses the wall; the first and the last stay clear of it.
+  const JointPath path{vec({-0.8, -0.95}), vec({-0.3, -0.95}), vec({0.5, -0.5}), kGoal};
+  const VerifiedPlan plan =
+      verifyAndRepair(path, exact, limits, PlannerOptions{.resolution = 0.01, .timeLimit = 5});
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_EQ(plan.invalidStretches, 1u);
+  EXPECT_TRUE(plan.path.front().isApprox(path[0]) && plan.path[1].isApprox(path[1]));
+  EXPECT_TRUE(pathIsFree(plan.path, 0.005, [](const Eigen::VectorXd& q) {
+    return std::abs(q[0]) < 0.1 - 0.01 && q[1] < 0.5 - 0.01;
+  }));
+  ASSERT_GT(askedOnKeptEdge.size(), 40u);  // the first round checked it every 0.01
+  for (const auto& q : askedOnKeptEdge) {
+    EXPECT_EQ(askedOnKeptEdge.count(q), 1u)
+        << "asked again about (" << q.first << ", " << q.second << ")";
+  }
+}
+
 // A model that learned a wall without its lower half plans through it; with learning from
 // verification it learns the exact answers it got wrong and plans again before anything is
 // repaired, and keeps what it learned.
