@@ -54,7 +54,7 @@ struct PlannerOptions {
   /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
   double simplifyTime = 0.1;
   /// How simplifyTime shortens the path. Repairs plan their bridges with Shortcuts whatever this
-  /// says: a bridge is short, and smoothing it on the exact checker took two thirds of a repair.
+  /// says: a bridge is short, and smoothing it took two thirds of a repair on the mesh Panda.
   PathSimplification simplification = PathSimplification::Full;
   /// planVerified: the share of timeLimit that planning on the approximate source, and then on
   /// its hybrid, may each take before the motion is planned on the exact checker instead
