@@ -277,13 +277,15 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   if (options.simplifyTime > 0) {
     const auto simplifyBegan = std::chrono::steady_clock::now();
     og::PathSimplifier simplifier(si);
+    const auto timeLeft = ob::timedPlannerTerminationCondition(options.simplifyTime);
     if (options.simplification == PathSimplification::Full) {
-      simplifier.simplify(path, ob::timedPlannerTerminationCondition(options.simplifyTime));
+      simplifier.simplify(path, timeLeft);
     } else {
-      // As simplify's first round, without the smoothing; each pass stops when it gains nothing.
-      for (int pass = 0; pass < 5 && simplifier.shortcutPath(path); ++pass) {
+      // As simplify's first round, without the smoothing: passes until one gains nothing or the
+      // time is up (the first always runs, as simplify's first round does).
+      for (int pass = 0; pass < 5 && simplifier.shortcutPath(path) && !timeLeft(); ++pass) {
       }
-      for (int pass = 0; pass < 5 && simplifier.reduceVertices(path); ++pass) {
+      for (int pass = 0; pass < 5 && simplifier.reduceVertices(path) && !timeLeft(); ++pass) {
       }
       simplifier.collapseCloseVertices(path);
     }

@@ -119,12 +119,9 @@ PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path
     while (end < edges && !knownFree[end]) ++end;
     const JointPath run(path.begin() + static_cast<std::ptrdiff_t>(first),
                         path.begin() + static_cast<std::ptrdiff_t>(end) + 1);
+    // Runs are apart by a known-free edge at least, so they share no waypoint.
     const PathCheck check = checkPathParallel(exact, run, resolution);
-    for (const std::size_t w : check.invalidWaypoints) {
-      if (result.invalidWaypoints.empty() || result.invalidWaypoints.back() != first + w) {
-        result.invalidWaypoints.push_back(first + w);
-      }
-    }
+    for (const std::size_t w : check.invalidWaypoints) result.invalidWaypoints.push_back(first + w);
     for (const std::size_t e : check.invalidEdges) result.invalidEdges.push_back(first + e);
     first = end;
   }

@@ -605,6 +605,18 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
 }
 
+// With oracleRelaxesExact planVerifiedLearning asked the proxy's oracle (without it, never), and
+// exactAnswers holds the exact checker's answers only.
+void expectOracleAskedOnlyWhenRelaxed(const VerifiedPlan& plan, const FunctionChecker& oracle,
+                                      const FunctionChecker& exact, bool relaxed) {
+  if (relaxed) {
+    EXPECT_GT(oracle.callCount(), 0u);
+  } else {
+    EXPECT_EQ(oracle.callCount(), 0u);
+  }
+  EXPECT_EQ(plan.exactAnswers.size(), exact.callCount());
+}
+
 // With oracleRelaxesExact the hybrid asks the proxy's oracle, not the exact checker: here an oracle
 // that taught the model a world without the gap, then answers as the exact checker does (a
 // relaxation of it, as FCL without self-collision is of FCL with it).
@@ -630,13 +642,7 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
     EXPECT_EQ(plan.plannedOn, asksOracle ? "Fastron+oracle" : "Fastron+wall");
     EXPECT_TRUE(
         pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
-    if (asksOracle) {
-      EXPECT_GT(oracle->callCount(), 0u);
-    } else {
-      EXPECT_EQ(oracle->callCount(), 0u);
-    }
-    // exactAnswers holds the exact checker's answers only.
-    EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+    expectOracleAskedOnlyWhenRelaxed(plan, *oracle, *exact, asksOracle);
   }
 }
 
@@ -672,12 +678,7 @@ TEST_F(Planning, ALearningModelsFirstRepairsBridgeOnItsOracleWhenTold) {
     EXPECT_TRUE(pathIsFree(plan.path, 0.01, [&](const Eigen::VectorXd& x) {
       return inBar(x.data());
     })) << "the final path is free under the exact checker";
-    if (relaxes) {
-      EXPECT_GT(oracle->callCount(), 0u);
-    } else {
-      EXPECT_EQ(oracle->callCount(), 0u);
-    }
-    EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());  // the exact checker's answers only
+    expectOracleAskedOnlyWhenRelaxed(plan, *oracle, *exact, relaxes);
   }
 }
 
