@@ -282,12 +282,15 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
       simplifier.simplify(path, timeLeft);
     } else {
       // As simplify's first round, without the smoothing: passes until one gains nothing or the
-      // time is up (the first always runs, as simplify's first round does).
+      // time is up (the first always runs, as simplify's first round does). A shortcut may start
+      // at a point between two checked states of an edge, unchecked itself (a corner the edge
+      // grazes): checkAndRepair moves such states out, as simplify does after its passes.
       for (int pass = 0; pass < 5 && simplifier.shortcutPath(path) && !timeLeft(); ++pass) {
       }
       for (int pass = 0; pass < 5 && simplifier.reduceVertices(path) && !timeLeft(); ++pass) {
       }
       simplifier.collapseCloseVertices(path);
+      path.checkAndRepair(ompl::magic::MAX_VALID_SAMPLE_ATTEMPTS);
     }
     result.simplifyTime = std::chrono::steady_clock::now() - simplifyBegan;
   }
