@@ -34,8 +34,8 @@ enum class PathSimplification : std::uint8_t {
   Full,
   /// Up to five passes each of OMPL's shortcutPath and reduceVertices (fewer when one gains
   /// nothing or simplifyTime is up), then collapseCloseVertices and checkAndRepair, as simplify
-  /// ends: no B-spline smoothing, whose subdivided states make most of the checks. What repairs use for their bridges
-  /// (docs/planning.md, "Lighter bridges").
+  /// ends: no B-spline smoothing, whose subdivided states make most of the checks. Repairs use it
+  /// for their bridges (docs/planning.md, "Lighter bridges").
   Shortcuts,
 };
 
