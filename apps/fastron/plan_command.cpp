@@ -31,7 +31,8 @@ namespace {
 
 struct PlanOptions {
   RobotOptions robot;
-  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect";
+  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect",
+                                                     simplification = "full";
   std::vector<double> start, goal;
   std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
   FeatureOptions features;
@@ -133,7 +134,8 @@ int runPlan(const PlanOptions& o) {
                                .resolution = o.resolution,
                                .modelResolution = o.modelResolution,
                                .timeLimit = o.timeLimit,
-                               .simplifyTime = o.simplifyTime};
+                               .simplifyTime = o.simplifyTime,
+                               .simplification = parsePathSimplification(o.simplification)};
   validate(options);
 
   std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
@@ -182,7 +184,8 @@ int runPlan(const PlanOptions& o) {
             << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
             << "time     plan " << durationText(inSeconds(plan.planTime)) << " (of which simplify "
-            << durationText(inSeconds(plan.simplifyTime)) << "), verify "
+            << durationText(inSeconds(plan.simplifyTime)) << ", "
+            << simplificationName(options.simplification) << "), verify "
             << durationText(inSeconds(plan.verifyTime)) << ", repair "
             << durationText(inSeconds(plan.repairTime)) << ", total "
             << durationText(inSeconds(plan.totalTime())) << '\n';
@@ -256,6 +259,11 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                   "seconds of OMPL path simplification (0: the planner's path as found)")
       ->capture_default_str()
       ->check(numberAbove(0, true));
+  cmd->add_option("--simplification", o->simplification,
+                  "full: OMPL's simplify, with B-spline smoothing, as MoveIt; shortcuts: "
+                  "shortcutting and vertex reduction only, fewer checks (every checker alike)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
   cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");

@@ -19,7 +19,8 @@ namespace fastron::python {
 namespace {
 
 PlannerOptions plannerOptions(const std::string& planner, double range, double resolution,
-                              double modelResolution, double timeLimit, double simplifyTime) {
+                              double modelResolution, double timeLimit, double simplifyTime,
+                              const std::string& simplification) {
   PlannerOptions options;
   options.type = parsePlannerType(planner);
   options.range = range;
@@ -27,8 +28,44 @@ PlannerOptions plannerOptions(const std::string& planner, double range, double r
   options.modelResolution = modelResolution;
   options.timeLimit = timeLimit;
   options.simplifyTime = simplifyTime;
+  options.simplification = parsePathSimplification(simplification);
   validate(options);
   return options;
+}
+
+/// plan_verified's settings of the pipeline beyond the plan itself (PlannerOptions' shares and
+/// planVerifiedLearning's), as Python passes them.
+struct PipelineSettings {
+  double approximateShare, substituteShare, stretchShare;
+  std::size_t enclosedAfter;
+  unsigned learningRounds;
+  bool learns;  ///< planVerifiedLearning plans: static_scene, or learning_rounds > 0
+  std::optional<double> modelShare, hybridRange;
+  bool oracleRelaxesExact;
+};
+
+/// Sets `settings` on `options`; throws InvalidArgument naming a setting that only a detector's
+/// static-scene plan reads when it was given for another.
+void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
+  options.approximateShare = settings.approximateShare;
+  options.substituteShare = settings.substituteShare;
+  options.stretchShare = settings.stretchShare;
+  options.enclosedAfter = settings.enclosedAfter;
+  options.learningRounds = settings.learningRounds;
+  for (const auto& [given, name] :
+       {std::pair{settings.modelShare.has_value(), "model_share"},
+        std::pair{settings.hybridRange.has_value(), "hybrid_range"},
+        std::pair{settings.oracleRelaxesExact, "oracle_relaxes_exact"}}) {
+    if (given && !settings.learns) {
+      throw InvalidArgument(std::string(name) +
+                            ": only a ProxyCollisionDetector's plan in a static scene reads it "
+                            "(static_scene=True)");
+    }
+  }
+  if (settings.modelShare) options.modelShare = *settings.modelShare;
+  if (settings.hybridRange) options.hybridRange = *settings.hybridRange;
+  options.oracleRelaxesExact = settings.oracleRelaxesExact;
+  validate(options);
 }
 
 /// The joint limits of a planning problem: given, else the source's own (a model's or a
@@ -148,13 +185,13 @@ void bindPlanning(py::module_& m) {
       "plan",
       [](py::handle source, py::handle start, py::handle goal, std::optional<JointLimits> limits,
          const std::string& planner, double range, double resolution, double modelResolution,
-         double timeLimit, double simplifyTime) {
+         double timeLimit, double simplifyTime, const std::string& simplification) {
         const CollisionSource s = sourceOf(source);
         const JointLimits l = limitsOf(source, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
-        const PlannerOptions options =
-            plannerOptions(planner, range, resolution, modelResolution, timeLimit, simplifyTime);
+        const PlannerOptions options = plannerOptions(planner, range, resolution, modelResolution,
+                                                      timeLimit, simplifyTime, simplification);
         PlanResult result;
         {
           py::gil_scoped_release released;
@@ -166,10 +203,12 @@ void bindPlanning(py::module_& m) {
       py::arg("source"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
       py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
-      py::arg("simplify_time") = 0.1,
+      py::arg("simplify_time") = 0.1, py::arg("simplification") = "full",
       "Plans from start to goal with OMPL (planner: 'RRT', 'RRTConnect', 'RRT*', 'BIT*') on a "
-      "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier. Edges are "
-      "checked every `resolution`, on a model (or a checker answering from one) every "
+      "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier for at most "
+      "`simplify_time` seconds ('full': simplify, with B-spline smoothing, as MoveIt; "
+      "'shortcuts': shortcutting and vertex reduction only, fewer checks). Edges are checked "
+      "every `resolution`, on a model (or a checker answering from one) every "
       "`model_resolution` (0: 3 times `resolution`).");
 
   m.def(
@@ -177,19 +216,26 @@ void bindPlanning(py::module_& m) {
       [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
          py::handle goal, std::optional<JointLimits> limits, const std::string& planner,
          double range, double resolution, double modelResolution, double timeLimit,
-         double simplifyTime, unsigned learningRounds) {
-        PlannerOptions options =
-            plannerOptions(planner, range, resolution, modelResolution, timeLimit, simplifyTime);
-        options.learningRounds = learningRounds;
+         double simplifyTime, const std::string& simplification, unsigned learningRounds,
+         bool staticScene, double approximateShare, std::optional<double> modelShare,
+         double substituteShare, double stretchShare, std::size_t enclosedAfter,
+         std::optional<double> hybridRange, bool oracleRelaxesExact) {
+        PlannerOptions options = plannerOptions(planner, range, resolution, modelResolution,
+                                                timeLimit, simplifyTime, simplification);
+        const bool learns = staticScene || learningRounds > 0;
+        if (learns && !py::isinstance<ProxyCollisionDetector>(approximate)) {
+          throw InvalidArgument(
+              std::string(learningRounds > 0 ? "learning_rounds" : "static_scene") +
+              ": only a ProxyCollisionDetector learns, got " + typeName(approximate));
+        }
+        applyPipeline({approximateShare, substituteShare, stretchShare, enclosedAfter,
+                       learningRounds, learns, modelShare, hybridRange, oracleRelaxesExact},
+                      options);
         const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
         VerifiedPlan plan;
-        if (learningRounds > 0) {
-          if (!py::isinstance<ProxyCollisionDetector>(approximate)) {
-            throw InvalidArgument("learning_rounds: only a ProxyCollisionDetector learns, got " +
-                                  typeName(approximate));
-          }
+        if (learns) {
           auto& detector = approximate.cast<ProxyCollisionDetector&>();
           py::gil_scoped_release released;
           plan = planVerifiedLearning(detector, exact, l, a, b, options);
@@ -210,14 +256,26 @@ void bindPlanning(py::module_& m) {
       py::arg("approximate"), py::arg("exact"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
       py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
-      py::arg("simplify_time") = 0.1, py::arg("learning_rounds") = 0u,
+      py::arg("simplify_time") = 0.1, py::arg("simplification") = "full",
+      py::arg("learning_rounds") = 0u, py::arg("static_scene") = false,
+      py::arg("approximate_share") = PlannerOptions{}.approximateShare,
+      py::arg("model_share") = py::none(),
+      py::arg("substitute_share") = PlannerOptions{}.substituteShare,
+      py::arg("stretch_share") = PlannerOptions{}.stretchShare,
+      py::arg("enclosed_after") = PlannerOptions{}.enclosedAfter,
+      py::arg("hybrid_range") = py::none(), py::arg("oracle_relaxes_exact") = false,
       "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "
       "or a checker), then verifies every edge with `exact` and replans the stretches that "
       "collide: a solved plan's path never collides under `exact` at `resolution`, whatever "
       "`model_resolution`, the step of edges on the model (0: 3 times `resolution`). "
-      "learning_rounds=N (a detector of a scene that stands still): when verification finds the "
+      "static_scene=True (a detector of a scene that stands still, not updating in the "
+      "background): plan as `fastron plan` does, on the model for `model_share` of the time "
+      "limit, then on a hybrid trusting the model's 'free' and asking `exact` (the detector's "
+      "oracle with oracle_relaxes_exact=True) about its 'collides', with tree edges of "
+      "`hybrid_range`. learning_rounds=N (implies static_scene): when verification finds the "
       "model's path colliding, the detector first learns the answers its model got wrong and "
-      "plans again, up to N times, before repairing.");
+      "plans again, up to N times, before repairing. The shares are of `time_limit`: "
+      "docs/planning.md and PlannerOptions in fastron/planning/planner.h.");
 
   m.def(
       "check_path",

@@ -90,6 +90,20 @@ def test_bad_robot_and_planning_arguments(baxter, baxter_fcl):
         fastron.plan(baxter_fcl, np.zeros(7), np.zeros(7), planner="nope")
     with pytest.raises(fastron.InvalidArgument, match="source"):
         fastron.plan("fcl", np.zeros(7), np.zeros(7), limits=baxter.limits)
+    with pytest.raises(fastron.InvalidArgument, match=r"'smooth' \(choose full or shortcuts\)"):
+        fastron.plan(baxter_fcl, np.zeros(7), np.zeros(7), simplification="smooth")
+    # Settings the chosen plan would not read are refused, naming them.
+    for setting in ({"model_share": 0.1}, {"hybrid_range": 0.5}, {"oracle_relaxes_exact": True}):
+        name = next(iter(setting))
+        with pytest.raises(fastron.InvalidArgument, match=name + ": only a ProxyCollisionDetector"):
+            fastron.plan_verified(baxter_fcl, baxter_fcl, np.zeros(7), np.zeros(7), **setting)
+    with pytest.raises(fastron.InvalidArgument, match="static_scene: only a ProxyCollisionDetector"):
+        fastron.plan_verified(baxter_fcl, baxter_fcl, np.zeros(7), np.zeros(7), static_scene=True)
+    for setting, message in (({"stretch_share": 0}, "stretchShare must be in"),
+                             ({"approximate_share": 1.5}, "approximateShare must be in"),
+                             ({"substitute_share": -1}, "substituteShare must be in")):
+        with pytest.raises(fastron.InvalidArgument, match=message):
+            fastron.plan_verified(baxter_fcl, baxter_fcl, np.zeros(7), np.zeros(7), **setting)
     with pytest.raises(fastron.InvalidArgument, match="oracle"):
         fastron.ProxyCollisionDetector(42, fastron.robot_features(baxter))
     with pytest.raises(fastron.InvalidArgument, match="nope"):

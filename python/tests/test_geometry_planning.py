@@ -320,6 +320,36 @@ def test_planning_verified_paths_never_collide(baxter):
     assert on_model.path.shape[1] == 7
 
 
+def test_plan_verified_in_a_static_scene_on_a_relaxed_oracle(baxter):
+    # static_scene: the model's plan, then a hybrid asking the detector's oracle (FCL without
+    # self-collision, a relaxation of the exact checker) about the model's "collides", then the
+    # exact checker; final paths are checked with self-collision whatever the oracle said.
+    scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
+    obstacles = fastron.FclChecker(baxter, scene)
+    exact = fastron.FclChecker(baxter, scene, self_collision=True)
+    detector = fastron.ProxyCollisionDetector(obstacles, fastron.robot_features(baxter), seed=4,
+                                              calibration_samples=0)
+    detector.initialize(3000)
+    version = detector.model_version
+    x = uniform(baxter.limits, 400, seed=14)
+    free = x[~exact.in_collision(x)]
+    solved = 0
+    for i, simplification in enumerate(("full", "shortcuts", "shortcuts")):
+        start, goal = free[2 * i], free[2 * i + 1]
+        plan = fastron.plan_verified(detector, exact, start, goal, resolution=0.05, time_limit=5,
+                                     static_scene=True, oracle_relaxes_exact=True,
+                                     simplification=simplification, hybrid_range=0.6,
+                                     model_share=0.02)
+        if plan.solved:
+            solved += 1
+            assert np.array_equal(plan.path[0], start) and np.array_equal(plan.path[-1], goal)
+            assert fastron.check_path(exact, plan.path, 0.05), plan
+            assert plan.planned_on in ("Fastron", "Fastron+FCL", "FCL"), plan.planned_on
+        assert plan.relearned == 0
+    assert solved >= 2
+    assert detector.model_version == version  # without learning_rounds the model stays
+
+
 def test_plans_on_two_models_at_once(baxter):
     # Two models, each of a part of the scene (as a scene's obstacles beside a robot's
     # self-collisions), answer together through an AnyOfChecker; FCL on the whole scene verifies.

@@ -51,6 +51,19 @@ PlannerType parsePlannerType(std::string_view name) {
                         "' (choose RRT, RRTConnect, RRT* or BIT*)");
 }
 
+std::string simplificationName(PathSimplification simplification) {
+  return simplification == PathSimplification::Full ? "full" : "shortcuts";
+}
+
+PathSimplification parsePathSimplification(std::string_view name) {
+  std::string key;
+  for (const char c : name) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (key == "full") return PathSimplification::Full;
+  if (key == "shortcuts") return PathSimplification::Shortcuts;
+  throw InvalidArgument("unknown path simplification '" + std::string(name) +
+                        "' (choose full or shortcuts)");
+}
+
 std::vector<PlannerType> allPlannerTypes() {
   return {PlannerType::Rrt, PlannerType::RrtConnect, PlannerType::RrtStar, PlannerType::BitStar};
 }

@@ -950,6 +950,11 @@ TEST_F(Planning, RefusesBadQueries) {
   EXPECT_EQ(parsePlannerType("rrt-connect"), PlannerType::RrtConnect);
   EXPECT_EQ(parsePlannerType("BITstar"), PlannerType::BitStar);
   EXPECT_EQ(parsePlannerType("RRT*"), PlannerType::RrtStar);
+  EXPECT_THAT(messageOf<InvalidArgument>([] { parsePathSimplification("smooth"); }),
+              HasSubstr("'smooth' (choose full or shortcuts)"));
+  for (const PathSimplification s : {PathSimplification::Full, PathSimplification::Shortcuts})
+    EXPECT_EQ(parsePathSimplification(simplificationName(s)), s);
+  EXPECT_EQ(parsePathSimplification("Shortcuts"), PathSimplification::Shortcuts);
   EXPECT_THROW(makeSpaceInformation(wall, JointLimits::unitBox(3), 0.01), InvalidArgument);
   EXPECT_THAT(messageOf<InvalidArgument>(
                   [&] { planVerified(wall, nullptr, limits, kStart, kGoal, options); }),

@@ -39,6 +39,11 @@ enum class PathSimplification : std::uint8_t {
   Shortcuts,
 };
 
+/// "full", "shortcuts".
+std::string simplificationName(PathSimplification simplification);
+/// Reads those names (case-insensitive); throws InvalidArgument naming the value and the choices.
+PathSimplification parsePathSimplification(std::string_view name);
+
 struct PlannerOptions {
   PlannerType type = PlannerType::RrtConnect;
   double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
