@@ -347,7 +347,9 @@ TEST_F(Planning, TheMotionValidatorAsksAboutAnEndStateOnce) {
 // OMPL's PathSimplifier after every plan: the path stays valid under an independent check at a
 // finer resolution and gets close to the shortest way over the wall (2 sqrt(0.7^2 + 1.3^2) =
 // 2.95), which the raw RRT-Connect paths are not; the time it took is reported. So with shortcuts
-// alone (what repairs' bridges get). A simplified path hugs the wall's corner, and a check every
+// alone (what repairs' bridges get), whose paths are a little longer: over 1500 plans the median
+// 1.11 times the shortest, 0.2% over 1.3 times, at most 1.43 (full: 1.10, at most 1.23), so their
+// bound holds for the mean of the ten. A simplified path hugs the wall's corner, and a check every
 // 0.02 cannot see a corner cut between two checked states; every point of the path is within 0.01
 // of a checked free state, so the finer check is against the wall shrunk by that much: what
 // discrete checking guarantees, and all it does.
@@ -356,7 +358,8 @@ TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
   const JointLimits limits = JointLimits::unitBox(2);
   for (const PathSimplification simplification :
        {PathSimplification::Full, PathSimplification::Shortcuts}) {
-    SCOPED_TRACE(simplification == PathSimplification::Full ? "full" : "shortcuts");
+    SCOPED_TRACE(simplificationName(simplification));
+    const bool full = simplification == PathSimplification::Full;
     double rawLength = 0, simplifiedLength = 0;
     for (int query = 0; query < 10; ++query) {
       const PlannerOptions raw{.resolution = 0.02, .timeLimit = 5, .simplifyTime = 0};
@@ -375,14 +378,39 @@ TEST_F(Planning, SimplifiedPathsAreShortAndStayValid) {
                                return std::abs(q[0]) < 0.1 - 0.01 && q[1] < 0.5 - 0.01;
                              }))
           << "query " << query;
-      EXPECT_LT(pathLength(b.path), 2.95 * 1.3) << "query " << query;
+      EXPECT_LT(pathLength(b.path), 2.95 * (full ? 1.3 : 2.0)) << "query " << query;
       rawLength += pathLength(a.path);
       simplifiedLength += pathLength(b.path);
     }
     EXPECT_LT(simplifiedLength, 0.9 * rawLength);
+    EXPECT_LT(simplifiedLength / 10, 2.95 * 1.3);
   }
   EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(PlannerOptions{.simplifyTime = -1}); }),
               HasSubstr("path simplification time must be 0 (off) or positive, got -1"));
+}
+
+// OMPL's checkAndRepair, which ends both simplifications, cannot always move a state out of an
+// obstacle, and then leaves an edge through it (about 1 in 1000 plans around the wall with
+// shortcuts alone; with these seeds, query 261 did without the fix); the planner's own path,
+// every edge of it checked, is returned instead.
+TEST_F(Planning, ASimplificationThatEndsInvalidKeepsThePlannersPath) {
+  const auto wall = wallChecker();
+  for (const PathSimplification simplification :
+       {PathSimplification::Shortcuts, PathSimplification::Full}) {
+    SCOPED_TRACE(simplificationName(simplification));
+    const int queries = simplification == PathSimplification::Shortcuts ? 400 : 200;
+    for (int query = 0; query < queries; ++query) {
+      seedPlanners(2, static_cast<std::uint64_t>(
+                          query));  // the same plans in every run  // the same plans in every run
+      const PlanResult plan = planMotion(wall, JointLimits::unitBox(2), kStart, kGoal,
+                                         {.resolution = 0.02,
+                                          .timeLimit = 5,
+                                          .simplifyTime = 0.1,
+                                          .simplification = simplification});
+      ASSERT_TRUE(plan.solved());
+      ASSERT_TRUE(checkPath(*wall, plan.path, 0.02).valid()) << "query " << query;
+    }
+  }
 }
 
 // Every exact answer of a verified plan is returned, and nothing else: one row per call the exact
