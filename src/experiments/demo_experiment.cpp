@@ -155,7 +155,8 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
      << " ticks the boxes move and RRT-Connect plans a fresh query (start and goal on opposite "
         "sides of the workspace) with each checker. Fastron and GJK plans are verified with FCL "
         "and invalid stretches replanned; edges are checked every "
-     << edgeSteps(o, "rad") << "; seed " << o.seed << ". " << simplificationSentence(o.simplifyTime)
+     << edgeSteps(o, "rad") << "; seed " << o.seed << ". "
+     << simplificationSentence(o.simplifyTime, o.simplification)
      << (o.learnFromVerification
              ? " The exact answers of a Fastron plan's verification and repair that the model got "
                "wrong are fed to its next update (learning from verification)."

@@ -324,7 +324,8 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
         "every "
      << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
+     << (o.quick ? ", quick mode" : "") << ". "
+     << simplificationSentence(o.simplifyTime, o.simplification)
      << " Training is reported beside the plans, not in them; the end-to-end time adds each "
         "scene's training, shared by its queries."
      << (o.learnFromVerification

@@ -120,7 +120,8 @@ PlannerOptions plannerOptions(const auto& o, PlannerType type) {
           .resolution = o.resolution,
           .modelResolution = o.modelResolution,
           .timeLimit = o.timeLimit,
-          .simplifyTime = o.simplifyTime};
+          .simplifyTime = o.simplifyTime,
+          .simplification = o.simplification};
 }
 
 /// The edge steps of an experiment's plans for its report: "0.03 rad (0.09 rad on a model and its

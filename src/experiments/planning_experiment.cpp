@@ -75,7 +75,7 @@ std::string planningReport(const PlanRows& r, const PlanningOptions& o) {
         "every "
      << edgeSteps(o, "rad") << "; time limit " << o.timeLimit << " s per query; " << o.trials
      << " trial(s), seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
-     << simplificationSentence(o.simplifyTime)
+     << simplificationSentence(o.simplifyTime, o.simplification)
      << " Times are means ± std over solved queries; 'Final paths colliding' re-checks every "
         "final path with a separate FCL checker.\n\nThe paper (Figs. 13 and 14) found Fastron "
         "fastest with every planner even with verify and repair, up to 4 times faster than FCL "

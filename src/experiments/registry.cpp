@@ -33,10 +33,11 @@ void applyPlanning(const ExperimentSettings& s, Options& options) {
   if (s.resolution > 0) options.resolution = s.resolution;
   if (s.modelResolution > 0) options.modelResolution = s.modelResolution;
   if (s.simplifyTime >= 0) options.simplifyTime = s.simplifyTime;
+  if (s.simplification) options.simplification = *s.simplification;
 }
 
-const std::vector<std::string> kPlanningSettings{"features", "time-limit", "resolution",
-                                                 "model-resolution", "simplify-time"};
+const std::vector<std::string> kPlanningSettings{
+    "features", "time-limit", "resolution", "model-resolution", "simplify-time", "simplification"};
 
 std::vector<std::string> planningAnd(std::vector<std::string> more) {
   more.insert(more.begin(), kPlanningSettings.begin(), kPlanningSettings.end());

@@ -78,7 +78,8 @@ std::string shelfReport(const PlanRows& r, const ShelfOptions& o) {
         "Fastron (verified and repaired with FCL), GJK (verified and repaired) and FCL. Edges "
         "checked every "
      << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "") << ". " << simplificationSentence(o.simplifyTime)
+     << (o.quick ? ", quick mode" : "") << ". "
+     << simplificationSentence(o.simplifyTime, o.simplification)
      << "\n\nThe paper (MATLAB): RRT with GJK 334.7 ms, with Fastron 119.7 ms including verify "
         "and repair (2.8 times faster).\n\n"
      << planTable(r, {}, {"RRT"}) << speedups(r, {}, {"RRT"});

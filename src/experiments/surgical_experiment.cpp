@@ -118,7 +118,7 @@ std::string surgicalReport(const PlanRows& r, const SurgicalOptions& o) {
      << " m) updates in the background all along. Ticks where the instruments block PSM3 or its "
         "goal are skipped, as in the paper. Edges checked every "
      << edgeSteps(o, "joint units") << "; seed " << o.seed << (o.quick ? ", quick mode" : "")
-     << ". " << simplificationSentence(o.simplifyTime)
+     << ". " << simplificationSentence(o.simplifyTime, o.simplification)
      << "\n\nThe paper (MATLAB): 56 Hz replanning with Fastron, 10 Hz with GJK.\n\n"
      << "| Method | Replanning rate | Success | Mean total time |\n|---|---|---|---|\n";
   for (const std::string& method : experiments::methodsOf(r)) {

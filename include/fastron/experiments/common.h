@@ -15,6 +15,7 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
+#include "fastron/planning/planner.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron::experiments {
@@ -61,7 +62,7 @@ std::string methodRow(const Table& results, const std::string& method, const Tab
 /// A sentence for reports saying what Fastron learned on.
 std::string featureSentence(FeatureKind kind);
 /// A sentence for reports saying whether and how long paths were simplified.
-std::string simplificationSentence(double simplifyTime);
+std::string simplificationSentence(double simplifyTime, PathSimplification simplification);
 
 /// Formats a number for a CSV cell (full precision, "nan" for NaN).
 std::string cell(double value);

@@ -28,6 +28,8 @@ struct DemoOptions {
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
+  /// How every checker's whole paths are simplified (repairs' bridges always take Shortcuts).
+  PathSimplification simplification = PathSimplification::Full;
   /// Feed the exact answers of verification and repair that the model got wrong to its next
   /// update.
   bool learnFromVerification = true;

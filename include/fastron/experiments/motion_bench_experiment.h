@@ -51,6 +51,8 @@ struct MotionBenchOptions {
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
+  /// How every checker's whole paths are simplified (repairs' bridges always take Shortcuts).
+  PathSimplification simplification = PathSimplification::Full;
 };
 
 /// Each problem: Fastron trained on the scene, then RRT-Connect with Fastron and Hybrid (verified

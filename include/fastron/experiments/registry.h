@@ -23,16 +23,17 @@ struct ExperimentSettings {
   std::uint64_t seed = 1;
   bool quick = false;
   FeatureKind features = FeatureKind::Kinematic;
-  double timeLimit = 0, resolution = 0;      ///< planning experiments
-  double modelResolution = 0;                ///< planning experiments
-  double simplifyTime = -1;                  ///< planning experiments; < 0: default
-  double gamma = 0, beta = 0, variance = 0;  ///< changing; gamma, beta also motion-bench
-  std::size_t activeSamples = 0;             ///< changing
-  bool warmStart = false;                    ///< changing
-  std::size_t pruneSamples = 0;              ///< changing
-  double mergeRadius = 0;                    ///< changing
-  std::optional<std::uint32_t> kernelBlock;  ///< changing
-  std::optional<double> wholeShare;          ///< changing
+  double timeLimit = 0, resolution = 0;              ///< planning experiments
+  double modelResolution = 0;                        ///< planning experiments
+  double simplifyTime = -1;                          ///< planning experiments; < 0: default
+  std::optional<PathSimplification> simplification;  ///< planning experiments; none: Full
+  double gamma = 0, beta = 0, variance = 0;          ///< changing; gamma, beta also motion-bench
+  std::size_t activeSamples = 0;                     ///< changing
+  bool warmStart = false;                            ///< changing
+  std::size_t pruneSamples = 0;                      ///< changing
+  double mergeRadius = 0;                            ///< changing
+  std::optional<std::uint32_t> kernelBlock;          ///< changing
+  std::optional<double> wholeShare;                  ///< changing
   // motion-bench
   std::filesystem::path problems;
   std::string robot = "panda";

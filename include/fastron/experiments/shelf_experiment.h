@@ -21,6 +21,8 @@ struct ShelfOptions {
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
+  /// How every checker's whole paths are simplified (repairs' bridges always take Shortcuts).
+  PathSimplification simplification = PathSimplification::Full;
 };
 
 /// UR3 from the lower to the higher shelf with RRT: one row per (trial, method), columns as

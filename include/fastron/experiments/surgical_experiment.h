@@ -19,6 +19,8 @@ struct SurgicalOptions {
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).
   double simplifyTime = 0.1;
+  /// How every checker's whole paths are simplified (repairs' bridges always take Shortcuts).
+  PathSimplification simplification = PathSimplification::Full;
   double padding = 0.005;  ///< PSM3 padding of the model's oracle (paper: a padded PSM3)
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
