@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "fastron/core/error.h"
 #include "fastron/core/trainer.h"
 #include "fastron/core/uncertainty_band.h"
@@ -123,21 +125,36 @@ TEST(HybridChecker, AnswersFromTheModelOnlyOutsideTheBand) {
   EXPECT_DOUBLE_EQ(hybrid.exactShare(), static_cast<double>(inBand) / 3000.0);
 }
 
-// The batch path an edge check takes answers exactly as configuration after configuration.
+// The batch path an edge check takes answers exactly as configuration after configuration, and
+// counts the same answers (model, exact, and the exact checker's calls), also across chunks of
+// sixteen and with the band that asks about every "collides" (planVerifiedLearning's hybrid),
+// although it asks the exact checker a chunk's states inside the band together.
 TEST(HybridChecker, FirstInCollisionAgreesWithSingleAnswers) {
   const World world;
-  const HybridChecker hybrid(world.model, world.exact, world.calibrate(5000, 13).band);
-  for (std::uint64_t seed = 0; seed < 50; ++seed) {
-    const Configurations q = test::uniformPoints(1 + seed % 20, kDim, 100 + seed);
-    std::size_t expected = static_cast<std::size_t>(q.rows());
-    for (Eigen::Index i = 0; i < q.rows(); ++i) {
-      if (hybrid.inCollision({q.row(i).data(), kDim})) {
-        expected = static_cast<std::size_t>(i);
-        break;
+  const UncertaintyBand askEveryCollision{0, std::numeric_limits<double>::infinity()};
+  for (const UncertaintyBand band : {world.calibrate(5000, 13).band, askEveryCollision}) {
+    for (std::uint64_t seed = 0; seed < 60; ++seed) {
+      const Configurations q = test::uniformPoints(1 + seed % 40, kDim, 100 + seed);
+      const HybridChecker single(world.model, world.exact, band);
+      std::uint64_t before = world.exact->callCount();
+      std::size_t expected = static_cast<std::size_t>(q.rows());
+      for (Eigen::Index i = 0; i < q.rows(); ++i) {
+        if (single.inCollision({q.row(i).data(), kDim})) {
+          expected = static_cast<std::size_t>(i);
+          break;
+        }
       }
+      const std::uint64_t singleCalls = world.exact->callCount() - before;
+      const HybridChecker batch(world.model, world.exact, band);
+      before = world.exact->callCount();
+      EXPECT_EQ(batch.firstInCollision(q.data(), static_cast<std::size_t>(q.rows())), expected)
+          << "seed " << seed;
+      EXPECT_EQ(world.exact->callCount() - before, singleCalls) << "seed " << seed;
+      EXPECT_EQ(batch.exactAnswers(), single.exactAnswers()) << "seed " << seed;
+      EXPECT_EQ(batch.modelAnswers(), single.modelAnswers()) << "seed " << seed;
     }
-    EXPECT_EQ(hybrid.firstInCollision(q.data(), static_cast<std::size_t>(q.rows())), expected);
   }
+  const HybridChecker hybrid(world.model, world.exact, askEveryCollision);
   const double bad[2 * kDim] = {0, 0, 0, 0, NAN, 0};
   EXPECT_THROW(hybrid.firstInCollision(bad, 2), InvalidArgument);
 }
