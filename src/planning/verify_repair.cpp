@@ -64,18 +64,25 @@ std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
   return std::nullopt;
 }
 
-/// The last state that `source` finds free walking in order from `from` towards `to` at
-/// `resolution`, before the first one it finds colliding (`from` itself when the first step
-/// collides; `to` when none does). The caller knows `from` to be free.
-Eigen::VectorXd lastFreeToward(const CollisionSource& source, const Eigen::VectorXd& from,
-                               const Eigen::VectorXd& to, double resolution) {
+/// Where a walk in order from `from` towards `to` at `resolution` first meets a state that
+/// `source` finds colliding.
+struct FirstCollisionToward {
+  Eigen::VectorXd lastFree;   ///< the state before it (`from` itself when the first step collides)
+  Eigen::VectorXd colliding;  ///< that state
+};
+
+/// The walk above; both states are `to` when none collides. The caller knows `from` to be free.
+FirstCollisionToward firstCollisionToward(const CollisionSource& source,
+                                          const Eigen::VectorXd& from, const Eigen::VectorXd& to,
+                                          double resolution) {
   // Rows 0..n: `from`, the states a check of this motion at `resolution` looks at, `to`.
   const Configurations states = statesAlongPath({from, to}, resolution);
   const auto dim = static_cast<std::size_t>(from.size());
   const auto n = static_cast<std::size_t>(states.rows()) - 1;
   // Checked from row 1 on, so row `first` is the last free state (`to` when none collides).
   const std::size_t first = firstCollision(source, states.data() + dim, n, dim);
-  return states.row(static_cast<Eigen::Index>(first)).transpose();
+  return {states.row(static_cast<Eigen::Index>(first)).transpose(),
+          states.row(static_cast<Eigen::Index>(std::min(first + 1, n))).transpose()};
 }
 
 /// A hybrid's band that trusts the model's "free" (a score below 0) and asks the exact checker
@@ -167,8 +174,6 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
     }
 
     began = Clock::now();
-    const std::shared_ptr<const CollisionChecker>& bridgeChecker =
-        round == 0 && relaxed ? relaxed : exact;
     JointPath repaired{old.front()};
     std::vector<bool> repairedKnownFree;  // per edge of `repaired`
     // Every edge from here to the next waypoint kept is new, so not known free.
@@ -194,8 +199,17 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
       // a repair and the final paths were as long without it); a waypoint the approximate plan
       // left in a pocket of free space may have no short way out, and then the whole motion is
       // planned again on the exact checker.
-      const Eigen::VectorXd from = lastFreeToward(exact, old[i], old[i + 1], options.resolution);
-      const Eigen::VectorXd to = lastFreeToward(exact, old[j], old[j - 1], options.resolution);
+      const FirstCollisionToward entry =
+          firstCollisionToward(exact, old[i], old[i + 1], options.resolution);
+      const Eigen::VectorXd& from = entry.lastFree;
+      const Eigen::VectorXd to =
+          firstCollisionToward(exact, old[j], old[j - 1], options.resolution).lastFree;
+      // The first round bridges on the relaxed checker, unless it finds the stretch's first
+      // collision free (the robot against itself, when it checks the obstacles alone): its
+      // bridge would keep that collision for the next round to bridge again.
+      const bool relaxedSeesIt = round == 0 && relaxed && !freeUnder(relaxed, entry.colliding);
+      const std::shared_ptr<const CollisionChecker>& bridgeChecker =
+          relaxedSeesIt ? relaxed : exact;
       PlannerOptions stretchOptions = options;
       stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
       stretchOptions.simplification = PathSimplification::Shortcuts;

@@ -710,6 +710,39 @@ TEST_F(Planning, ALearningModelsFirstRepairsBridgeOnItsOracleWhenTold) {
   }
 }
 
+// A stretch whose first collision the relaxed oracle finds free (as FCL without self-collision
+// misses the robot's own links) is bridged on the exact checker at once: on the oracle its bridge
+// would cross the same wall and need a second round. Here the oracle knows only a corner post, so
+// the model's path runs straight into the exact checker's wall, which the oracle lacks.
+TEST_F(Planning, AStretchTheOracleCannotSeeIsBridgedOnTheExactChecker) {
+  const auto inPost = [](const double* q) { return q[0] > 0.7 && q[1] > 0.7; };
+  const auto inWallOrPost = [&](const double* q) { return inWall(q) || inPost(q); };
+  const auto exact = std::make_shared<FunctionChecker>("wall and post", 2, inWallOrPost);
+  const auto oracle = std::make_shared<FunctionChecker>("post", 2, inPost);
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01,
+                               .timeLimit = 4,
+                               .approximateShare = 0.25,
+                               .modelShare = 0.025,
+                               .oracleRelaxesExact = true};
+  std::size_t repaired = 0;
+  for (std::uint64_t seed = 0; seed < 5; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    seedPlanners(seed, 0);
+    ProxyCollisionDetector proxy(oracle, limits, learningProxyParams());
+    proxy.initialize(1500);
+    const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved()) << plan.failure;
+    EXPECT_TRUE(pathIsFree(plan.path, 0.01, [&](const Eigen::VectorXd& x) {
+      return inWallOrPost(x.data());
+    })) << "the final path is free under the exact checker";
+    EXPECT_LE(plan.invalidStretches, 1u) << "one stretch through the wall, bridged once";
+    EXPECT_FALSE(plan.wholePathReplanned);
+    repaired += plan.invalidStretches;
+  }
+  EXPECT_GE(repaired, 3u) << "the model's paths must meet the wall";
+}
+
 // The optimistic hybrid's range is half the planner's: half of OMPL's own default (which OMPL
 // computes from the space) when no range is set.
 TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {

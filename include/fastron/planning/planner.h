@@ -102,9 +102,10 @@ struct PlannerOptions {
   /// the robot free (FCL without self-collision under a model of the obstacles alone, when
   /// `exact` adds self-collision), so it may answer where verification catches a wrong "free"
   /// later: the optimistic hybrid asks it about the model's "collides", and the first repair
-  /// round plans its bridges on it. Such an oracle is cheaper (on the mesh Panda a free answer
-  /// costs a third of one with self-collision); verification, and the bridges of a second round,
-  /// still ask the exact checker. Any other oracle could close what the exact checker leaves open.
+  /// round plans its bridges on it (those of stretches whose first collision it sees). Such an
+  /// oracle is cheaper (on the mesh Panda a free answer costs a third of one with self-collision);
+  /// verification, and the bridges of a second round, still ask the exact checker. Any other oracle
+  /// could close what the exact checker leaves open.
   bool oracleRelaxesExact = false;
   /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
   /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found

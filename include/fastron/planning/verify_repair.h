@@ -93,7 +93,8 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// options.oracleRelaxesExact) about every "collides" plans for approximateShare (the model closes
 /// passages near walls where the robot is free; a calibrated band does not reach that far,
 /// docs/planning.md), its path verified and repaired (the first round's bridges planned on the
-/// oracle with options.oracleRelaxesExact);
+/// oracle with options.oracleRelaxesExact, except a stretch whose first collision the oracle finds
+/// free);
 /// only then does `exact` plan the whole motion. A plan on a corrected model gets at most four
 /// times the first plan's time (at least 50 ms, at most approximateShare) and, when it fails,
 /// the last path is repaired. The proxy keeps what it learned for later queries; every exact
