@@ -57,7 +57,9 @@ std::size_t HybridChecker::checkFirst(const double* q, std::size_t n) const {
   constexpr std::size_t kChunk = 16;
   std::array<double, kChunk> scores{};
   std::array<std::size_t, kChunk> asked{};  // the chunk's states inside the band, in order
-  thread_local std::vector<double> askedStates;
+  // Not thread_local: the exact checker may itself be a hybrid, calling this again on this thread
+  // with these states (a vector per chunk costs nanoseconds beside an exact check).
+  std::vector<double> askedStates;
   const std::size_t dim = dof();
   for (std::size_t begin = 0; begin < n; begin += kChunk) {
     const std::size_t count = std::min(kChunk, n - begin);
