@@ -159,6 +159,29 @@ TEST(HybridChecker, FirstInCollisionAgreesWithSingleAnswers) {
   EXPECT_THROW(hybrid.firstInCollision(bad, 2), InvalidArgument);
 }
 
+// A hybrid whose exact checker is itself a hybrid (of the same model, asking the balls) gives,
+// for a run, the answer of its configurations one by one: the inner one's run of questions must
+// not disturb the outer one's.
+TEST(HybridChecker, AHybridOfAHybridAnswersAsOneByOne) {
+  const World world;
+  const UncertaintyBand band = world.calibrate(5000, 17).band;
+  const auto inner = std::make_shared<const HybridChecker>(
+      world.model, world.exact, UncertaintyBand{0, std::numeric_limits<double>::infinity()});
+  const HybridChecker outer(world.model, inner, band);
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    const Configurations q = test::uniformPoints(1 + seed % 40, kDim, 300 + seed);
+    std::size_t expected = static_cast<std::size_t>(q.rows());
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      if (outer.inCollision({q.row(i).data(), kDim})) {
+        expected = static_cast<std::size_t>(i);
+        break;
+      }
+    }
+    EXPECT_EQ(outer.firstInCollision(q.data(), static_cast<std::size_t>(q.rows())), expected)
+        << "seed " << seed;
+  }
+}
+
 TEST(HybridChecker, RefusesBadArguments) {
   const World world;
   EXPECT_THROW(HybridChecker(nullptr, world.exact, {}), InvalidArgument);
