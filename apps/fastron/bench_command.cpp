@@ -141,14 +141,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "planning experiments: seconds of OMPL path simplification per plan, every "
                   "checker alike (default 0.1; 0: off, the paper's setting)")
       ->check(numberAbove(0, true));
-  cmd->add_option_function<std::string>(
-         "--simplification",
-         [o](const std::string& name) {
-           o->settings.simplification = parsePathSimplification(name);
-         },
-         "planning experiments: full (OMPL's simplify, with B-spline smoothing, as MoveIt; the "
-         "default) or shortcuts (shortcutting and vertex reduction alone), every checker alike")
-      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
+  addSimplificationOption(
+      *cmd, [o](PathSimplification s) { o->settings.simplification = s; },
+      "planning experiments: ");
   cmd->add_option("--seed", o->settings.seed, "seed of every random choice")->capture_default_str();
   addFeatureKindOption(*cmd, o->features);  // changing, sweep and the planning experiments
   cmd->add_option("--gamma", o->settings.gamma,

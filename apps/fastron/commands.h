@@ -4,7 +4,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <functional>
 #include <string>
+
+#include "fastron/planning/planner.h"
 
 namespace fastron::cli {
 
@@ -22,6 +25,20 @@ inline CLI::Validator numberAbove(double minimum, bool inclusive = false) {
         return ok ? std::string() : "must be " + what + ", got " + text;
       },
       inclusive ? "NONNEGATIVE" : "POSITIVE");
+}
+
+/// --simplification full|shortcuts (any case), handed to `set`; `scope` begins the help, e.g.
+/// "planning experiments: ".
+inline void addSimplificationOption(CLI::App& cmd, std::function<void(PathSimplification)> set,
+                                    const std::string& scope = "") {
+  cmd.add_option_function<std::string>(
+         "--simplification",
+         [set = std::move(set)](const std::string& name) { set(parsePathSimplification(name)); },
+         scope +
+             "full (OMPL's simplify, with B-spline smoothing, as MoveIt; the default) or "
+             "shortcuts (shortcutting and vertex reduction alone, fewer checks), every "
+             "checker alike")
+      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
 }
 
 void addTrainCommand(CLI::App& app, int& exitCode);

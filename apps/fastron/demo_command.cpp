@@ -96,12 +96,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                   "seconds of OMPL path simplification per plan, every checker alike (0: off)")
       ->capture_default_str()
       ->check(numberAbove(0, true));
-  cmd->add_option_function<std::string>(
-         "--simplification",
-         [o](const std::string& name) { o->demo.simplification = parsePathSimplification(name); },
-         "full (OMPL's simplify, with B-spline smoothing, as MoveIt; the default) or shortcuts "
-         "(shortcutting and vertex reduction alone), every checker alike")
-      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
+  addSimplificationOption(*cmd, [o](PathSimplification s) { o->demo.simplification = s; });
   cmd->add_option("--band-miss-rate", o->demo.band.missRate,
                   "Hybrid: colliding configurations the model may answer free (calibrated rate)")
       ->check(CLI::Range(0.0, 1.0))

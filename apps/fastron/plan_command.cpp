@@ -31,8 +31,7 @@ namespace {
 
 struct PlanOptions {
   RobotOptions robot;
-  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect",
-                                                     simplification = "full";
+  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect";
   std::vector<double> start, goal;
   std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
   FeatureOptions features;
@@ -41,6 +40,7 @@ struct PlanOptions {
   std::optional<double> gamma, beta;
   double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1;
   std::uint64_t seed = 1;
+  PathSimplification simplification = PathSimplification::Full;
   bool selfCollision = false;
 };
 
@@ -135,7 +135,7 @@ int runPlan(const PlanOptions& o) {
                                .modelResolution = o.modelResolution,
                                .timeLimit = o.timeLimit,
                                .simplifyTime = o.simplifyTime,
-                               .simplification = parsePathSimplification(o.simplification)};
+                               .simplification = o.simplification};
   validate(options);
 
   std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
@@ -259,11 +259,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                   "seconds of OMPL path simplification (0: the planner's path as found)")
       ->capture_default_str()
       ->check(numberAbove(0, true));
-  cmd->add_option("--simplification", o->simplification,
-                  "full: OMPL's simplify, with B-spline smoothing, as MoveIt; shortcuts: "
-                  "shortcutting and vertex reduction only, fewer checks (every checker alike)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
+  addSimplificationOption(*cmd, [o](PathSimplification s) { o->simplification = s; });
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
   cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
   cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");

@@ -350,6 +350,41 @@ def test_plan_verified_in_a_static_scene_on_a_relaxed_oracle(baxter):
     assert detector.model_version == version  # without learning_rounds the model stays
 
 
+def test_static_scene_plans_on_the_hybrid_that_asks_the_relaxed_oracle():
+    # A wall with a gap: the detector learned it while the gap was shut, so its model closes the
+    # way. static_scene plans next on the hybrid that asks about the model's "collides" (the
+    # detector's own oracle with oracle_relaxes_exact, else the exact checker); without it an
+    # uncalibrated detector goes straight to the exact checker.
+    gap = {"open": False}
+    asked = []
+
+    def oracle(q):
+        asked.append(1)
+        return bool(abs(q[0]) < 0.1 and (q[1] < 0.5 or not gap["open"]))
+
+    exact = fastron.FunctionChecker(lambda q: bool(abs(q[0]) < 0.1 and q[1] < 0.5), 2, "wall")
+    features = fastron.FeatureMap.joint_scaling(fastron.JointLimits([-1, -1], [1, 1]))
+    start, goal = np.array([-0.8, -0.8]), np.array([0.8, -0.8])
+    planned_on = {}
+    for static_scene, relaxed in ((False, False), (True, False), (True, True)):
+        gap["open"] = False
+        detector = fastron.ProxyCollisionDetector(oracle, features, gamma=30, beta=5, seed=3,
+                                                  calibration_samples=0)
+        detector.initialize(1500)
+        gap["open"] = True
+        asked.clear()
+        settings = {"oracle_relaxes_exact": True} if relaxed else {}
+        plan = fastron.plan_verified(detector, exact, start, goal, resolution=0.01, time_limit=4,
+                                     approximate_share=0.25, static_scene=static_scene,
+                                     model_share=0.025 if static_scene else None, **settings)
+        assert plan.solved, plan
+        assert fastron.check_path(exact, plan.path, 0.01)
+        planned_on[(static_scene, relaxed)] = plan.planned_on
+        assert (len(asked) > 0) == relaxed, (static_scene, relaxed, len(asked))
+    assert planned_on == {(False, False): "wall", (True, False): "Fastron+wall",
+                          (True, True): "Fastron+python"}, planned_on
+
+
 def test_plans_on_two_models_at_once(baxter):
     # Two models, each of a part of the scene (as a scene's obstacles beside a robot's
     # self-collisions), answer together through an AnyOfChecker; FCL on the whole scene verifies.
