@@ -19,8 +19,8 @@
 namespace fastron::experiments {
 
 Table runChanging(const ChangingOptions& o, const Progress& progress) {
-  // update_s = sample_s + label_s + train_s (Algorithm 1) + the rest (calibrating the band,
-  // publishing the model).
+  // update_s = sample_s + label_s + train_s (Algorithm 1) + the rest (the new points' features,
+  // and their F from the weights a warm start keeps; publishing the model). No band here.
   Table table{{"case", "trial", "step", "method", "accuracy", "tpr", "tnr", "support", "query_s",
                "update_s", "sample_s", "label_s", "train_s"},
               {}};
@@ -202,7 +202,8 @@ std::string changingReport(const Table& r, const ChangingOptions& o) {
       md << method << ": an update of " << durationText(total) << " is sampling "
          << durationText(sample) << ", labelling " << durationText(label) << ", Algorithm 1 "
          << durationText(train) << " and " << durationText(total - sample - label - train)
-         << " for the rest (the band's calibration, publishing).\n\n";
+         << " for the rest (the new points' features, and their F when an update keeps the "
+            "weights; publishing the model).\n\n";
     }
   }
   return md.str();
