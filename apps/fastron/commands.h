@@ -3,11 +3,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <string>
 
-#include "fastron/planning/planner.h"
+namespace fastron {
+enum class PathSimplification : std::uint8_t;  // fastron/planning/planner.h
+}
 
 namespace fastron::cli {
 
@@ -28,18 +31,10 @@ inline CLI::Validator numberAbove(double minimum, bool inclusive = false) {
 }
 
 /// --simplification full|shortcuts (any case), handed to `set`; `scope` begins the help, e.g.
-/// "planning experiments: ".
-inline void addSimplificationOption(CLI::App& cmd, std::function<void(PathSimplification)> set,
-                                    const std::string& scope = "") {
-  cmd.add_option_function<std::string>(
-         "--simplification",
-         [set = std::move(set)](const std::string& name) { set(parsePathSimplification(name)); },
-         scope +
-             "full (OMPL's simplify, with B-spline smoothing, as MoveIt; the default) or "
-             "shortcuts (shortcutting and vertex reduction alone, fewer checks), every "
-             "checker alike")
-      ->check(CLI::IsMember({"full", "shortcuts"}, CLI::ignore_case));
-}
+/// "planning experiments: ". Defined in plan_command.cpp, so that this header, which every
+/// command includes, does not bring OMPL's headers along.
+void addSimplificationOption(CLI::App& cmd, std::function<void(PathSimplification)> set,
+                             const std::string& scope = "");
 
 void addTrainCommand(CLI::App& app, int& exitCode);
 void addEvalCommand(CLI::App& app, int& exitCode);

@@ -5,10 +5,13 @@
 #include <ompl/util/RandomNumbers.h>
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "fastron/core/error.h"
@@ -25,6 +28,19 @@
 #include "robot_options.h"
 
 namespace fastron::cli {
+
+void addSimplificationOption(CLI::App& cmd, std::function<void(PathSimplification)> set,
+                             const std::string& scope) {
+  const std::vector<std::string> names{simplificationName(PathSimplification::Full),
+                                       simplificationName(PathSimplification::Shortcuts)};
+  cmd.add_option_function<std::string>(
+         "--simplification",
+         [set = std::move(set)](const std::string& name) { set(parsePathSimplification(name)); },
+         scope + names[0] +
+             " (OMPL's simplify, with B-spline smoothing, as MoveIt; the default) or " + names[1] +
+             " (shortcutting and vertex reduction alone, fewer checks), every checker alike")
+      ->check(CLI::IsMember(names, CLI::ignore_case));
+}
 
 using namespace experiments;  // the command runs the experiments layer
 namespace {
