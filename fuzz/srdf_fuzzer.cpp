@@ -1,4 +1,4 @@
-// SRDF disabled collisions (fastron::parseSrdfDisabledCollisions), against the Panda.
+// SRDF disabled collisions and groups (fastron::parseSrdf), against the Panda.
 #include "fastron/geometry/srdf.h"
 #include "fuzz_reader.h"
 #include "robot_for_fuzzing.h"
@@ -6,8 +6,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace fastron;
   const Robot& robot = fuzz::panda();
-  fuzz::readOrRefuse("fuzz.srdf", [&] {
-    parseSrdfDisabledCollisions(fuzz::textOf(data, size), "fuzz.srdf", robot);
-  });
+  fuzz::readOrRefuse("fuzz.srdf", [&] { parseSrdf(fuzz::textOf(data, size), "fuzz.srdf", robot); });
   return 0;
 }

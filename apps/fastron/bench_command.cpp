@@ -62,6 +62,7 @@ int runBench(const CLI::App& cmd, BenchOptions o) {
                                         ? std::filesystem::path("fastron-results") / o.name
                                         : std::filesystem::path(o.out);
   std::filesystem::create_directories(dir);
+  s.resultsFile = dir / "results.csv";  // rows so far, for experiments that write them as they go
   // OMPL draws every planner's seeds from one global generator, which takes a seed only before
   // its first use: planning experiments are repeatable in their queries, not in planning times.
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(s.seed));

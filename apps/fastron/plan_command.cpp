@@ -120,22 +120,35 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
 
 int runPlan(const PlanOptions& o) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
-  const Robot robot = loadRobotFromOptions(o.robot);
-  const JointLimits limits = robot.limits();
+  RobotDescription description = robotDescriptionFromOptions(o.robot);
+  Scene scene = loadScene(o.scene);
   Eigen::VectorXd start, goal;
   if (!o.request.empty()) {
     if (!o.start.empty() || !o.goal.empty())
       throw InvalidArgument("give either --request or --start and --goal, not both");
-    RequestEnds ends = requestEnds(robot, loadMoveItRequest(o.request), o.request);
+    // The request's group, unless --joints or --group chose the joints; other joints where the
+    // scene and the start state put them.
+    const PlanRequest request = loadMoveItRequest(o.request);
+    const bool jointsChosen = !o.robot.joints.empty() || !o.robot.group.empty();
+    RequestRobot forRequest =
+        robotForRequest(std::move(description.robot),
+                        jointsChosen ? std::vector<SrdfGroup>{} : description.srdf.groups, scene,
+                        request, o.request);
+    if (!forRequest.warning.empty())
+      std::cerr << "fastron: warning: " << forRequest.warning << '\n';
+    description.robot = std::move(forRequest.robot);
+    RequestEnds ends = requestEnds(description.robot, request, o.request);
     start = std::move(ends.start);
     goal = std::move(ends.goal);
-  } else {
+  }
+  const Robot& robot = description.robot;
+  const JointLimits limits = robot.limits();
+  if (o.request.empty()) {
     if (o.start.empty() || o.goal.empty())
       throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
     start = configurationFromOption(o.start, robot, "--start");
     goal = configurationFromOption(o.goal, robot, "--goal");
   }
-  Scene scene = loadScene(o.scene);
   allowPairs(o.allow, scene);
   if (!o.selfModel.empty() && !o.selfCollision) {
     throw InvalidArgument(

@@ -13,14 +13,21 @@ namespace {
 
 struct ProblemsCommandOptions {
   RobotOptions robot;
-  std::string family = "cage", output, group = "arm", tipLink;
+  std::string family = "cage", output, tipLink;
   std::size_t count = 10, samples = experiments::ProblemOptions{}.samplesPerAttempt;
   std::uint64_t seed = 1;
   bool noSelfCollision = false;
 };
 
 int runProblems(const ProblemsCommandOptions& o) {
-  const Robot robot = loadRobotFromOptions(o.robot);
+  const RobotDescription description = robotDescriptionFromOptions(o.robot);
+  const Robot& robot = description.robot;
+  // The requests name the SRDF group that moves these joints, as MoveIt's requests do.
+  std::string group = o.robot.group;
+  for (const SrdfGroup& g : description.srdf.groups) {
+    if (group.empty() && g.joints == robot.actuatedJointNames()) group = g.name;
+  }
+  if (group.empty()) group = "arm";
   experiments::ProblemOptions options;
   options.family = experiments::parseProblemFamily(o.family);
   options.count = o.count;
@@ -30,7 +37,7 @@ int runProblems(const ProblemsCommandOptions& o) {
   options.samplesPerAttempt = o.samples;
   const auto start = std::chrono::steady_clock::now();
   const auto problems = experiments::generateProblems(robot, options);
-  experiments::writeProblems(o.output, robot, problems, o.group);
+  experiments::writeProblems(o.output, robot, problems, group);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "wrote " << problems.size() << " '" << o.family << "' problems for " << robot.name()
@@ -48,7 +55,8 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
       "problems",
       "Write generated planning problems (MoveIt scene and request files, MotionBenchMaker's "
       "format): the robot reaches into a cage or an open box placed anew for each problem");
-  addRobotOptions(*cmd, o->robot);
+  addRobotOptions(*cmd, o->robot);  // --group: also the requests' group_name (default: the SRDF
+                                    // group of the actuated joints, else "arm")
   cmd->add_option("--family", o->family, "cage or box")
       ->capture_default_str()
       ->check(CLI::IsMember({"cage", "box"}));
@@ -63,7 +71,6 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
                   "structure are tried)")
       ->capture_default_str()
       ->check(numberAbove(0));
-  cmd->add_option("--group", o->group, "the requests' group_name")->capture_default_str();
   cmd->add_option(
       "--tip-link", o->tipLink,
       "link whose origin reaches the object (default: of the child of the last actuated joint "

@@ -1,5 +1,7 @@
 #include "robot_options.h"
 
+#include <iostream>
+
 #include "fastron/core/error.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot_library.h"
@@ -16,15 +18,28 @@ void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required) {
   cmd.add_option("--package-path", options.packagePaths,
                  "folder searched for package:// and relative mesh paths (repeatable)");
   cmd.add_option("--srdf", options.srdf,
-                 "MoveIt SRDF: its disable_collisions pairs are skipped in self-collision checks");
+                 "MoveIt SRDF: its disable_collisions pairs are skipped in self-collision checks, "
+                 "its groups can be chosen with --group");
+  cmd.add_option("--group", options.group,
+                 "an SRDF group whose joints are actuated (instead of --joints)");
 }
 
 Robot loadRobotFromOptions(const RobotOptions& options) {
+  return robotDescriptionFromOptions(options).robot;
+}
+
+RobotDescription robotDescriptionFromOptions(const RobotOptions& options) {
+  if (!options.group.empty() && !options.joints.empty())
+    throw InvalidArgument("give --group or --joints, not both");
   UrdfOptions urdf;
   for (const auto& p : options.packagePaths) urdf.searchPaths.emplace_back(p);
-  Robot robot = loadRobot(options.robot, urdf, options.srdf);
+  RobotDescription description = loadRobotDescription(options.robot, urdf, options.srdf);
+  for (const std::string& w : description.srdf.warnings)
+    std::cerr << "fastron: warning: " << w << '\n';
+  Robot& robot = description.robot;
   if (!options.joints.empty()) robot.setActuatedJoints(options.joints);
-  return robot;
+  if (!options.group.empty()) robot.setActuatedJoints(description.srdf.group(options.group).joints);
+  return description;
 }
 
 Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const Robot& robot,

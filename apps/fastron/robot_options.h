@@ -9,6 +9,7 @@
 #include "fastron/core/feature_map.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot.h"
+#include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene.h"
 
 namespace fastron::cli {
@@ -17,13 +18,17 @@ struct RobotOptions {
   std::string robot;
   std::vector<std::string> joints;
   std::vector<std::string> packagePaths;
-  std::string srdf;  ///< a MoveIt SRDF whose disabled collisions apply
+  std::string srdf;   ///< a MoveIt SRDF whose disabled collisions apply
+  std::string group;  ///< an SRDF group whose joints are actuated
 };
 
 void addRobotOptions(CLI::App& cmd, RobotOptions& options, bool required = true);
 
-/// The shipped robot or URDF, with --joints applied.
+/// The shipped robot or URDF, with --joints or --group applied; prints the SRDF's warnings
+/// (entries naming links the URDF lacks, skipped) to stderr.
 Robot loadRobotFromOptions(const RobotOptions& options);
+/// The same with the SRDF's groups and warnings.
+RobotDescription robotDescriptionFromOptions(const RobotOptions& options);
 
 /// The joint values given to `option` (e.g. "--config") as a configuration of `robot`; throws
 /// InvalidArgument naming the option, the count and the robot's actuated joints when the count

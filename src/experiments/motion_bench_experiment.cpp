@@ -147,6 +147,183 @@ ProxyParams withKernelOptions(ProxyParams params, const MotionBenchOptions& o) {
   return params;
 }
 
+/// What a problem's robot shares with the problems before it: models and features depend on the
+/// robot's actuated joints and held positions (kinematicsChecksum), which each request may set.
+struct RobotModels {
+  std::uint64_t checksum = 0;
+  FeatureMap features;
+  std::shared_ptr<const CollisionChecker> selfModel;  ///< with MotionBenchOptions::selfModel
+  double selfTrainSeconds = 0;
+};
+
+/// The robot's self-collision model, learned once per kinematics: self-collision does not depend
+/// on the scene.
+void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const Progress& progress,
+                         RobotModels& models) {
+  if (progress) progress("motion-bench: learning the robot's self-collisions");
+  ProxyCollisionDetector self(
+      std::make_shared<FclChecker>(robot, Scene{}, CheckerOptions{.selfCollision = true}),
+      robotFeatures(robot, FeatureKind::JointScaling),
+      withoutBand(experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed)));
+  models.selfTrainSeconds = train(self, o.quick ? 2000 : o.selfTrainingPoints, trainingUpdates(o));
+  models.selfModel = std::make_shared<ModelChecker>(self.model(), "Fastron self");
+}
+
+/// `rows` as results.csv so far, written whole to a new file then moved over `path`: an
+/// interrupted run leaves the problems it finished.
+void writeRowsSoFar(const PlanRows& rows, const std::filesystem::path& path) {
+  if (path.empty()) return;
+  std::filesystem::path partial = path;
+  partial += ".part";
+  rows.table().writeCsv(partial);
+  std::filesystem::rename(partial, path);
+}
+
+void runProblem(const Problem& problem, std::size_t p, const RobotDescription& description,
+                const MotionBenchOptions& o, const Progress& progress, RobotModels& models,
+                PlanRows& results) {
+  Scene scene = loadScene(problem.scene);
+  const PlanRequest request = loadMoveItRequest(problem.request);
+  const RequestRobot forRequest = robotForRequest(description.robot, description.srdf.groups, scene,
+                                                  request, problem.request.string());
+  if (!forRequest.warning.empty() && std::find(results.warnings.begin(), results.warnings.end(),
+                                               forRequest.warning) == results.warnings.end())
+    results.warnings.push_back(forRequest.warning);
+  const Robot& robot = forRequest.robot;
+  if (const std::uint64_t checksum = kinematicsChecksum(robot);
+      checksum != models.checksum || p == 0) {
+    models = {checksum, robotFeatures(robot, o.features), nullptr, 0};
+    if (o.selfModel) learnSelfCollisions(robot, o, progress, models);
+  }
+  const JointLimits limits = robot.limits();
+  const FeatureMap& features = models.features;
+  const CheckerOptions checking{.selfCollision = o.selfCollision};
+  const std::shared_ptr<const CollisionChecker>& selfModel = models.selfModel;
+  const double selfTrainSeconds = models.selfTrainSeconds;
+  const std::size_t samples = trainingSamples(o);
+  const std::size_t updates = trainingUpdates(o);
+  const RequestEnds ends = requestEnds(robot, request, problem.request.string());
+  const Eigen::VectorXd& start = ends.start;
+  const Eigen::VectorXd& goal = ends.goal;
+  const std::string note = allowGrasp(robot, scene, goal);
+  auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
+  const FclChecker audit(robot, scene, checking);
+
+  const ProxyParams params = withKernelOptions(
+      forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision)), o);
+  ProxyCollisionDetector proxy(fcl, features, params);
+  const double trainSeconds = train(proxy, samples, updates);
+  CalibratedModel calibrated = proxy.calibratedModel();
+  auto support = static_cast<double>(calibrated.model->supportCount());
+  // The models' accuracy beside their speed: fresh uniform configurations of this scene,
+  // labelled by the audit FCL (self-collision included when it is checked).
+  Rng testRng(o.seed * 104729 + p);
+  const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
+  const Labels truth = labelConfigurations(audit, test, 1);
+  ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
+  // With self-collision checked: a model of this scene's obstacles alone (its oracle ignores
+  // self-collision), for "Fastron obstacles" (self-collisions left to verification, and learned
+  // from it) and, with the robot's self-collision model, for the split source.
+  std::unique_ptr<ProxyCollisionDetector> obstacles;
+  Labels obstacleTruth;  // of `test`, by FCL without self-collision
+  double obstaclesSupport = 0, obstaclesTrain = 0;
+  ConfusionCounts splitQuality;
+  std::shared_ptr<const CollisionChecker> split;
+  if (o.selfCollision) {
+    const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
+    // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the
+    // split plans on no hybrid.
+    obstacles = std::make_unique<ProxyCollisionDetector>(
+        obstacleFcl, features,
+        withKernelOptions(
+            withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))), o));
+    obstaclesTrain = train(*obstacles, samples, updates);
+    const std::shared_ptr<const Model> obstacleModel = obstacles->model();
+    obstaclesSupport = static_cast<double>(obstacleModel->supportCount());
+    obstacleTruth = labelConfigurations(*obstacleFcl, test, 1);
+    if (selfModel) {
+      split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
+          std::make_shared<ModelChecker>(obstacleModel), selfModel});
+      const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
+      splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
+    }
+  }
+
+  Rng rng(o.seed * 7919 + p);
+  const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
+  for (std::size_t query = 0; query < o.queriesPerScene; ++query) {
+    // Query 0 is the request; the others join two configurations free under FCL.
+    const auto freeConfiguration = [&] {
+      return sampleFree(
+          *fcl, [&] { return uniformIn(limits, rng); }, "configuration");
+    };
+    const Eigen::VectorXd from = query == 0 ? start : freeConfiguration();
+    const Eigen::VectorXd to = query == 0 ? goal : freeConfiguration();
+    double learnSeconds = 0;
+    if (o.learnFromVerification && query > 0) {  // what the last query's plan taught it
+      learnSeconds = std::chrono::duration<double>(proxy.learnObservations().total).count();
+      calibrated = proxy.calibratedModel();
+      support = static_cast<double>(calibrated.model->supportCount());
+      quality = evaluate(*calibrated.model, test, truth);  // each row scores the model it used
+    }
+    const std::vector<std::pair<std::string, std::string>> queryColumns{
+        {"family", problem.family},
+        {"problem", problem.id},
+        {"query", std::to_string(query)},
+        {"group", request.group.empty() ? "-" : request.group},
+        {"note", query == 0 ? note : ""}};
+    const std::size_t turn = p * o.queriesPerScene + query;
+    const std::vector<MethodPlan> plans =
+        planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options, o.seed, turn);
+    // Measured on the request only: its distances cost about a second per path on a mesh robot.
+    AlongFclPath along;
+    if (query == 0) {
+      const auto exact = std::find_if(plans.begin(), plans.end(),
+                                      [](const MethodPlan& m) { return m.method == "FCL"; });
+      if (exact != plans.end()) {
+        along = alongFclPath(exact->plan, *calibrated.model, audit, o.resolution);
+      }
+    }
+    const auto addRow = [&](const MethodPlan& each, double modelSupport,
+                            const ConfusionCounts& modelQuality, double trainS, double learnS) {
+      results.rows.push_back({queryColumns,
+                              "RRTConnect",
+                              each.method,
+                              outcomeOf(each, audit, o.resolution),
+                              {{"support", modelSupport},
+                               {"accuracy", modelQuality.accuracy()},
+                               {"tpr", modelQuality.tpr()},
+                               {"train_s", trainS},
+                               {"self_train_s", selfTrainSeconds},
+                               {"learn_s", learnS},
+                               {"fcl_path_near_walls", along.nearWalls},
+                               {"fcl_path_called_colliding", along.calledColliding}}});
+    };
+    for (const MethodPlan& each : plans) {
+      if (o.learnFromVerification && each.method == "Fastron") {
+        proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
+      }
+      addRow(each, support, quality, trainSeconds, learnSeconds);
+    }
+    if (split) {
+      seedPlanners(o.seed, turn);
+      addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
+             obstaclesSupport, splitQuality, obstaclesTrain, 0);
+    }
+    if (obstacles) {  // last: it learns, and keeps what it learns for the scene's next queries
+      // Scored as it plans this query: on the obstacles' labels, its oracle's.
+      const std::shared_ptr<const Model> model = obstacles->model();
+      const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
+      seedPlanners(o.seed, turn);
+      PlannerOptions learning = options;
+      learning.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `fcl`
+      addRow({"Fastron obstacles",
+              planVerifiedLearning(*obstacles, fcl, limits, from, to, learning), 0},
+             static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
+    }
+  }
+}
+
 }  // namespace
 
 PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
@@ -157,154 +334,30 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
     std::map<std::string, std::size_t> kept;
     std::erase_if(problems, [&](const Problem& p) { return ++kept[p.family] > 2; });
   }
-  Robot robot = loadRobot(o.robot, UrdfOptions{.searchPaths = o.packagePaths}, o.srdf);
-  const JointLimits limits = robot.limits();
-  const FeatureMap features = robotFeatures(robot, o.features);
-  const CheckerOptions checking{.selfCollision = o.selfCollision};
+  const RobotDescription description =
+      loadRobotDescription(o.robot, UrdfOptions{.searchPaths = o.packagePaths}, o.srdf);
+  results.warnings = description.srdf.warnings;
   if (o.selfModel && !o.selfCollision) {
     throw InvalidArgument("motion-bench: a self-collision model needs self-collision checked");
   }
-  // The robot's self-collision model, learned once: self-collision does not depend on the scene.
-  const std::size_t samples = trainingSamples(o);
-  const std::size_t updates = trainingUpdates(o);
-  std::shared_ptr<const CollisionChecker> selfModel;
-  double selfTrainSeconds = 0;
-  if (o.selfModel) {
-    if (progress) progress("motion-bench: learning the robot's self-collisions");
-    ProxyCollisionDetector self(
-        std::make_shared<FclChecker>(robot, Scene{}, checking),
-        robotFeatures(robot, FeatureKind::JointScaling),
-        withoutBand(experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed)));
-    selfTrainSeconds = train(self, o.quick ? 2000 : o.selfTrainingPoints, updates);
-    selfModel = std::make_shared<ModelChecker>(self.model(), "Fastron self");
-  }
+  RobotModels models;
   for (std::size_t p = 0; p < problems.size(); ++p) {
     const Problem& problem = problems[p];
     if (progress)
       progress("motion-bench: " + progressLine("problem", p, problems.size()) + " (" +
                problem.family + "/" + problem.scene.filename().string() + ")");
-    Scene scene = loadScene(problem.scene);
-    const PlanRequest request = loadMoveItRequest(problem.request);
-    const RequestEnds ends = requestEnds(robot, request, problem.request.string());
-    const Eigen::VectorXd& start = ends.start;
-    const Eigen::VectorXd& goal = ends.goal;
-    const std::string note = allowGrasp(robot, scene, goal);
-    auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
-    const FclChecker audit(robot, scene, checking);
-
-    const ProxyParams params = withKernelOptions(
-        forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision)), o);
-    ProxyCollisionDetector proxy(fcl, features, params);
-    const double trainSeconds = train(proxy, samples, updates);
-    CalibratedModel calibrated = proxy.calibratedModel();
-    auto support = static_cast<double>(calibrated.model->supportCount());
-    // The models' accuracy beside their speed: fresh uniform configurations of this scene,
-    // labelled by the audit FCL (self-collision included when it is checked).
-    Rng testRng(o.seed * 104729 + p);
-    const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
-    const Labels truth = labelConfigurations(audit, test, 1);
-    ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
-    // With self-collision checked: a model of this scene's obstacles alone (its oracle ignores
-    // self-collision), for "Fastron obstacles" (self-collisions left to verification, and learned
-    // from it) and, with the robot's self-collision model, for the split source.
-    std::unique_ptr<ProxyCollisionDetector> obstacles;
-    Labels obstacleTruth;  // of `test`, by FCL without self-collision
-    double obstaclesSupport = 0, obstaclesTrain = 0;
-    ConfusionCounts splitQuality;
-    std::shared_ptr<const CollisionChecker> split;
-    if (o.selfCollision) {
-      const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
-      // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the
-      // split plans on no hybrid.
-      obstacles = std::make_unique<ProxyCollisionDetector>(
-          obstacleFcl, features,
-          withKernelOptions(
-              withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))),
-              o));
-      obstaclesTrain = train(*obstacles, samples, updates);
-      const std::shared_ptr<const Model> obstacleModel = obstacles->model();
-      obstaclesSupport = static_cast<double>(obstacleModel->supportCount());
-      obstacleTruth = labelConfigurations(*obstacleFcl, test, 1);
-      if (selfModel) {
-        split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
-            std::make_shared<ModelChecker>(obstacleModel), selfModel});
-        const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
-        splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
-      }
+    try {
+      runProblem(problem, p, description, o, progress, models, results);
+    } catch (const std::exception& e) {  // recorded; the other problems still run
+      results.skipped.push_back({{{"family", problem.family},
+                                  {"problem", problem.id},
+                                  {"query", "0"},
+                                  {"group", ""},
+                                  {"note", ""}},
+                                 e.what()});
+      if (progress) progress("motion-bench: skipped " + problem.id + ": " + e.what());
     }
-
-    Rng rng(o.seed * 7919 + p);
-    const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
-    for (std::size_t query = 0; query < o.queriesPerScene; ++query) {
-      // Query 0 is the request; the others join two configurations free under FCL.
-      const auto freeConfiguration = [&] {
-        return sampleFree(
-            *fcl, [&] { return uniformIn(limits, rng); }, "configuration");
-      };
-      const Eigen::VectorXd from = query == 0 ? start : freeConfiguration();
-      const Eigen::VectorXd to = query == 0 ? goal : freeConfiguration();
-      double learnSeconds = 0;
-      if (o.learnFromVerification && query > 0) {  // what the last query's plan taught it
-        learnSeconds = std::chrono::duration<double>(proxy.learnObservations().total).count();
-        calibrated = proxy.calibratedModel();
-        support = static_cast<double>(calibrated.model->supportCount());
-        quality = evaluate(*calibrated.model, test, truth);  // each row scores the model it used
-      }
-      const std::vector<std::pair<std::string, std::string>> queryColumns{
-          {"family", problem.family},
-          {"problem", problem.id},
-          {"query", std::to_string(query)},
-          {"note", query == 0 ? note : ""}};
-      const std::size_t turn = p * o.queriesPerScene + query;
-      const std::vector<MethodPlan> plans =
-          planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options, o.seed, turn);
-      // Measured on the request only: its distances cost about a second per path on a mesh robot.
-      AlongFclPath along;
-      if (query == 0) {
-        const auto exact = std::find_if(plans.begin(), plans.end(),
-                                        [](const MethodPlan& m) { return m.method == "FCL"; });
-        if (exact != plans.end()) {
-          along = alongFclPath(exact->plan, *calibrated.model, audit, o.resolution);
-        }
-      }
-      const auto addRow = [&](const MethodPlan& each, double modelSupport,
-                              const ConfusionCounts& modelQuality, double trainS, double learnS) {
-        results.rows.push_back({queryColumns,
-                                "RRTConnect",
-                                each.method,
-                                outcomeOf(each, audit, o.resolution),
-                                {{"support", modelSupport},
-                                 {"accuracy", modelQuality.accuracy()},
-                                 {"tpr", modelQuality.tpr()},
-                                 {"train_s", trainS},
-                                 {"self_train_s", selfTrainSeconds},
-                                 {"learn_s", learnS},
-                                 {"fcl_path_near_walls", along.nearWalls},
-                                 {"fcl_path_called_colliding", along.calledColliding}}});
-      };
-      for (const MethodPlan& each : plans) {
-        if (o.learnFromVerification && each.method == "Fastron") {
-          proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
-        }
-        addRow(each, support, quality, trainSeconds, learnSeconds);
-      }
-      if (split) {
-        seedPlanners(o.seed, turn);
-        addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
-               obstaclesSupport, splitQuality, obstaclesTrain, 0);
-      }
-      if (obstacles) {  // last: it learns, and keeps what it learns for the scene's next queries
-        // Scored as it plans this query: on the obstacles' labels, its oracle's.
-        const std::shared_ptr<const Model> model = obstacles->model();
-        const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
-        seedPlanners(o.seed, turn);
-        PlannerOptions learning = options;
-        learning.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `fcl`
-        addRow({"Fastron obstacles",
-                planVerifiedLearning(*obstacles, fcl, limits, from, to, learning), 0},
-               static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
-      }
-    }
+    writeRowsSoFar(results, o.resultsFile);
   }
   return results;
 }
@@ -334,6 +387,38 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
                "learn_s in results.csv, not in the totals)."
              : "")
      << "\n";
+
+  std::vector<std::string> groups;
+  for (const PlanRow& row : r.rows) {
+    const std::string& group = row.queryValue("group");
+    if (std::find(groups.begin(), groups.end(), group) == groups.end()) groups.push_back(group);
+  }
+  std::string groupList;
+  for (const std::string& g : groups) groupList += (groupList.empty() ? "" : ", ") + g;
+  md << "\nPlanning group" << (groups.size() == 1 ? "" : "s") << " (the requests' group_name; "
+     << "'-' for none, the robot's actuated joints): " << (groupList.empty() ? "none" : groupList)
+     << ".\n";
+  if (!r.warnings.empty()) {
+    md << "\nWarnings (" << r.warnings.size() << "; the run went on past them):\n\n";
+    for (const std::string& w : r.warnings) md << "- " << w << "\n";
+  }
+  const std::size_t problemCount = [&] {
+    std::vector<std::string> seen;
+    for (const PlanRow& row : r.rows) {
+      const std::string key = row.queryValue("family") + "/" + row.queryValue("problem");
+      if (std::find(seen.begin(), seen.end(), key) == seen.end()) seen.push_back(key);
+    }
+    return seen.size();
+  }();
+  md << "\nProblems run: " << problemCount << "; skipped: " << r.skipped.size() << ".\n";
+  if (!r.skipped.empty()) {
+    md << "\n| Family | Problem | Why it was skipped |\n|---|---|---|\n";
+    for (const SkippedQuery& q : r.skipped) {
+      std::string why = q.error;
+      std::replace(why.begin(), why.end(), '|', '/');
+      md << "| " << q.query[0].second << " | " << q.query[1].second << " | " << why << " |\n";
+    }
+  }
 
   using experiments::RowFilter;
   // The median (or mean) of `value` over the rows matching `where`.

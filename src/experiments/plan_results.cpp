@@ -38,9 +38,11 @@ double PlanRow::figure(std::string_view column) const {
 
 Table PlanRows::table() const {
   Table table;
-  if (rows.empty()) return table;
-  const std::vector<std::string> queryColumns = namesOf(rows.front().query);
-  const std::vector<std::string> figureColumns = namesOf(rows.front().figures);
+  if (rows.empty() && skipped.empty()) return table;
+  const std::vector<std::string> queryColumns =
+      namesOf(rows.empty() ? skipped.front().query : rows.front().query);
+  const std::vector<std::string> figureColumns =
+      rows.empty() ? std::vector<std::string>{} : namesOf(rows.front().figures);
   table.columns = queryColumns;
   for (const char* column :
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
@@ -80,6 +82,17 @@ Table PlanRows::table() const {
         o.plannedOn};
     cells.insert(cells.end(), plan.begin(), plan.end());
     for (const auto& [name, value] : row.figures) cells.push_back(cell(value));
+    table.add(std::move(cells));
+  }
+  for (const SkippedQuery& query : skipped) {
+    if (namesOf(query.query) != queryColumns)
+      throw InvalidArgument("a skipped query's columns differ from the plan rows'");
+    std::vector<std::string> cells;
+    for (const auto& [name, value] : query.query) cells.push_back(value);
+    const std::string nan = cell(std::nan(""));
+    cells.insert(cells.end(), {"", "", "0", "skipped: " + query.error});
+    cells.resize(table.columns.size() - 1, nan);  // plan columns, then the figures; planned_on
+    cells.insert(cells.end() - static_cast<std::ptrdiff_t>(figureColumns.size()), "");
     table.add(std::move(cells));
   }
   return table;

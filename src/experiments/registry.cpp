@@ -179,6 +179,7 @@ std::vector<Experiment> makeRegistry() {
                    o.robot = s.robot;
                    o.packagePaths = s.packagePaths;
                    o.srdf = s.srdf;
+                   o.resultsFile = s.resultsFile;
                    o.selfCollision = s.selfCollision;
                    o.queriesPerScene = s.queriesPerScene;
                    o.selfModel = s.selfModel;

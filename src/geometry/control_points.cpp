@@ -76,12 +76,9 @@ struct Candidate {
 /// itself or an ancestor, whose parent joint is actuated (or the root). Links joined by fixed or
 /// held joints share it.
 std::size_t rigidBodyOf(const Robot& robot, std::size_t link) {
-  const auto& actuated = robot.actuatedJoints();
   for (;;) {
     const int joint = robot.links()[link].parentJoint;
-    if (joint < 0 || std::find(actuated.begin(), actuated.end(), joint) != actuated.end()) {
-      return link;
-    }
+    if (joint < 0 || robot.followsConfiguration(joint)) return link;
     link = static_cast<std::size_t>(robot.joints()[static_cast<std::size_t>(joint)].parent);
   }
 }
@@ -266,6 +263,13 @@ std::uint64_t kinematicsChecksum(const Robot& robot) {
     hashDoubles(h, &held, 1);
   }
   for (const int a : robot.actuatedJoints()) hashBytes(h, &a, sizeof(a));
+  for (const MimicJoint& m :
+       robot.mimicJoints()) {  // none on robots without mimics: old hashes hold
+    hashBytes(h, &m.joint, sizeof(m.joint));
+    hashBytes(h, &m.source, sizeof(m.source));
+    hashDoubles(h, &m.multiplier, 1);
+    hashDoubles(h, &m.offset, 1);
+  }
   return h;
 }
 
@@ -287,7 +291,13 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     const Joint& joint = joints[j];
     const auto parent = static_cast<std::size_t>(joint.parent);
     const auto child = static_cast<std::size_t>(joint.child);
-    const auto position = std::find(actuated.begin(), actuated.end(), static_cast<int>(j));
+    // The configuration coordinate that turns the joint: its own, or its source's for a mimic.
+    const auto mimic =
+        std::find_if(robot.mimicJoints().begin(), robot.mimicJoints().end(),
+                     [&](const MimicJoint& m) { return m.joint == static_cast<int>(j); });
+    const bool mimics = mimic != robot.mimicJoints().end();
+    const int driver = mimics ? mimic->source : static_cast<int>(j);
+    const auto position = std::find(actuated.begin(), actuated.end(), driver);
     if (position == actuated.end()) {
       stepOf[child] = stepOf[parent];
       inStep[child] =
@@ -299,6 +309,10 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     Step<double> step;
     step.parent = stepOf[parent];
     step.joint = static_cast<int>(position - actuated.begin());
+    if (mimics) {
+      step.scale = mimic->multiplier;
+      step.offset = mimic->offset;
+    }
     step.prismatic = joint.type == JointType::Prismatic;
     step.fixed = toFrame<Frame<double>>(fixed.linear() * align, fixed.translation());
     stepOf[child] = static_cast<int>(all.size());
@@ -335,8 +349,12 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     chain_.points.push_back({step, {local.x(), local.y(), local.z()}});
   }
   for (const auto& step : chain_.steps) {
-    chainF_.steps.push_back(
-        {step.parent, step.joint, step.prismatic, {castArray<float>(step.fixed.m)}});
+    chainF_.steps.push_back({step.parent,
+                             step.joint,
+                             static_cast<float>(step.scale),
+                             static_cast<float>(step.offset),
+                             step.prismatic,
+                             {castArray<float>(step.fixed.m)}});
   }
   for (const auto& point : chain_.points) {
     chainF_.points.push_back({point.step, castArray<float>(point.local)});
@@ -345,6 +363,8 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     detail::LaneStep& lane = laneSteps_.emplace_back();
     lane.parent = step.parent;
     lane.joint = step.joint;
+    lane.scale = step.scale;
+    lane.offset = step.offset;
     lane.prismatic = step.prismatic ? 1 : 0;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 4; ++j) lane.fixed[4 * i + j] = step.fixed(i, j);
@@ -381,7 +401,8 @@ void RobotPointKinematics::place(const double* q, T* out) const {
   std::array<T, kMaxKinematicSteps> values, cosines, sines;
   std::array<Columns, kMaxKinematicSteps> frames;
   // NOLINTEND(cppcoreguidelines-pro-type-member-init)
-  for (std::size_t s = 0; s < n; ++s) values[s] = static_cast<T>(q[c.steps[s].joint]);
+  for (std::size_t s = 0; s < n; ++s)
+    values[s] = c.steps[s].scale * static_cast<T>(q[c.steps[s].joint]) + c.steps[s].offset;
   cosSin(values.data(), n, cosines.data(), sines.data());
   for (std::size_t s = 0; s < n; ++s) {
     const Step<T>& step = c.steps[s];

@@ -56,6 +56,10 @@ void forwardKinematics(const Robot& robot, const double* q, KinematicsData& data
   const auto& actuated = robot.actuatedJoints();
   for (std::size_t i = 0; i < actuated.size(); ++i)
     data.jointPositions[static_cast<std::size_t>(actuated[i])] = q[i];
+  for (const MimicJoint& m : robot.mimicJoints()) {
+    data.jointPositions[static_cast<std::size_t>(m.joint)] =
+        m.multiplier * data.jointPositions[static_cast<std::size_t>(m.source)] + m.offset;
+  }
   data.linkPoses[static_cast<std::size_t>(robot.rootLink())] = base;
   const auto& joints = robot.joints();
   for (std::size_t j = 0; j < joints.size(); ++j) {
@@ -75,8 +79,10 @@ KinematicsData kinematicsAtZero(const Robot& robot, const Eigen::Isometry3d& bas
 
 std::vector<std::uint8_t> shapesMovedByConfiguration(const Robot& robot) {
   std::vector<std::uint8_t> actuated(robot.joints().size(), 0);
-  for (const int j : robot.actuatedJoints()) actuated[static_cast<std::size_t>(j)] = 1;
-  // Joints come parent before child: a link moves if its joint is actuated or its parent moves.
+  for (std::size_t j = 0; j < actuated.size(); ++j)
+    actuated[j] = robot.followsConfiguration(static_cast<int>(j)) ? 1 : 0;
+  // Joints come parent before child: a link moves if its joint follows the configuration or its
+  // parent moves.
   std::vector<std::uint8_t> linkMoves(robot.links().size(), 0);
   for (std::size_t j = 0; j < robot.joints().size(); ++j) {
     const Joint& joint = robot.joints()[j];

@@ -31,7 +31,9 @@ void placeRegister(const LaneChain& c, const double* q, std::size_t count, float
     const LaneStep& step = c.steps[s];
     Floats value = {};  // lanes past `count` turn by 0 and are never written out
     for (std::size_t l = 0; l < count; ++l) {
-      value[l] = static_cast<float>(q[l * c.dof + static_cast<std::size_t>(step.joint)]);
+      value[l] =
+          step.scale * static_cast<float>(q[l * c.dof + static_cast<std::size_t>(step.joint)]) +
+          step.offset;
     }
     Floats* f = frames[s].m;
     const float* b = step.fixed;

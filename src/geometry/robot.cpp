@@ -105,12 +105,63 @@ Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joint
     validate(s.shape, where + ", link '" + links_[static_cast<std::size_t>(s.link)].name + "'");
   }
 
+  resolveMimics();
   held_.resize(joints_.size(), 0.0);
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     held_[j] = std::clamp(0.0, joints_[j].lower, joints_[j].upper);
-    if (joints_[j].movable() && joints_[j].lower < joints_[j].upper)
+    if (joints_[j].movable() && !joints_[j].mimic && joints_[j].lower < joints_[j].upper)
       actuated_.push_back(static_cast<int>(j));
   }
+  for (const MimicJoint& m : mimics_) {
+    held_[static_cast<std::size_t>(m.joint)] =
+        m.multiplier * held_[static_cast<std::size_t>(m.source)] + m.offset;
+  }
+}
+
+void Robot::resolveMimics() {
+  // A mimic of a mimic follows the end of the chain: multipliers multiply, offsets carry.
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    if (!joints_[j].movable()) joints_[j].mimic.reset();  // nothing to follow with: as MoveIt
+    if (!joints_[j].mimic) continue;
+    const std::string at = "robot '" + name_ + "', joint '" + joints_[j].name + "'";
+    MimicJoint resolved{static_cast<int>(j), -1, 1, 0};
+    std::string followed = joints_[j].mimic->joint;
+    resolved.multiplier = joints_[j].mimic->multiplier;
+    resolved.offset = joints_[j].mimic->offset;
+    for (std::size_t hops = 0;; ++hops) {
+      const auto it = std::find_if(joints_.begin(), joints_.end(),
+                                   [&](const Joint& other) { return other.name == followed; });
+      if (it == joints_.end())
+        throw InvalidArgument(at + " mimics joint '" + followed + "', which the robot lacks");
+      if (!it->movable())
+        throw InvalidArgument(at + " mimics joint '" + followed + "', which is fixed");
+      if (hops > joints_.size()) throw InvalidArgument(at + ": its mimics form a cycle");
+      if (!it->mimic) {
+        resolved.source = static_cast<int>(it - joints_.begin());
+        break;
+      }
+      resolved.offset = resolved.multiplier * it->mimic->offset + resolved.offset;
+      resolved.multiplier *= it->mimic->multiplier;
+      followed = it->mimic->joint;
+    }
+    if (!std::isfinite(resolved.multiplier) || !std::isfinite(resolved.offset))
+      throw InvalidArgument(at + ": its mimic multiplier and offset must be finite");
+    mimics_.push_back(resolved);
+  }
+  for (const MimicJoint& m : mimics_) {
+    joints_[static_cast<std::size_t>(m.joint)].mimic =
+        Mimic{joints_[static_cast<std::size_t>(m.source)].name, m.multiplier, m.offset};
+  }
+}
+
+bool Robot::followsConfiguration(int joint) const {
+  const auto actuated = [&](int j) {
+    return std::find(actuated_.begin(), actuated_.end(), j) != actuated_.end();
+  };
+  if (actuated(joint)) return true;
+  const auto m = std::find_if(mimics_.begin(), mimics_.end(),
+                              [&](const MimicJoint& each) { return each.joint == joint; });
+  return m != mimics_.end() && actuated(m->source);
 }
 
 int Robot::linkIndex(std::string_view name) const {
@@ -129,7 +180,7 @@ std::vector<std::string> Robot::actuatedJointNames() const {
 std::vector<std::string> Robot::movableJointNames() const {
   std::vector<std::string> names;
   for (const Joint& j : joints_) {
-    if (j.movable()) names.push_back(j.name);
+    if (j.movable() && !j.mimic) names.push_back(j.name);
   }
   return names;
 }
@@ -142,6 +193,10 @@ void Robot::setActuatedJoints(const std::vector<std::string>& names) {
     const Joint& joint = joints_[static_cast<std::size_t>(j)];
     if (!joint.movable())
       throw InvalidArgument("robot '" + name_ + "': joint '" + n + "' is fixed");
+    if (joint.mimic) {
+      throw InvalidArgument("robot '" + name_ + "': joint '" + n + "' mimics joint '" +
+                            joint.mimic->joint + "' (actuate that one)");
+    }
     if (!(joint.lower < joint.upper)) {
       throw InvalidArgument("robot '" + name_ + "': joint '" + n + "' has no range to move in");
     }
@@ -156,12 +211,19 @@ void Robot::setActuatedJoints(const std::vector<std::string>& names) {
 void Robot::setHeldPosition(std::string_view joint, double value) {
   const int j = jointIndex(joint);
   const Joint& jt = joints_[static_cast<std::size_t>(j)];
+  if (jt.mimic) {
+    throw InvalidArgument("robot '" + name_ + "': joint '" + jt.name + "' mimics joint '" +
+                          jt.mimic->joint + "' and follows it");
+  }
   if (!std::isfinite(value) || value < jt.lower - 1e-9 || value > jt.upper + 1e-9) {
     throw InvalidArgument("robot '" + name_ + "': held position " + std::to_string(value) +
                           " of joint '" + jt.name + "' is outside its limits [" +
                           std::to_string(jt.lower) + ", " + std::to_string(jt.upper) + "]");
   }
   held_[static_cast<std::size_t>(j)] = value;
+  for (const MimicJoint& m : mimics_) {
+    if (m.source == j) held_[static_cast<std::size_t>(m.joint)] = m.multiplier * value + m.offset;
+  }
 }
 
 JointLimits Robot::limits() const {

@@ -64,39 +64,63 @@ std::vector<RobotEntry> shippedRobots() {
                              catalogue.parent_path());
 }
 
-Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options,
-                const std::filesystem::path& srdf) {
-  const auto withSrdf = [&](Robot robot) {
-    if (!srdf.empty()) robot.allowedCollisions().merge(loadSrdfDisabledCollisions(srdf, robot));
-    return robot;
+namespace {
+
+/// The SRDF's disabled collisions added to the robot, its groups and warnings to `into`.
+void applySrdf(const std::filesystem::path& file, RobotDescription& into) {
+  Srdf srdf = loadSrdf(file, into.robot);
+  into.robot.allowedCollisions().merge(srdf.disabledCollisions);
+  into.srdf.disabledCollisions.merge(srdf.disabledCollisions);
+  for (SrdfGroup& group : srdf.groups) {  // a later SRDF's group replaces one of the same name
+    std::erase_if(into.srdf.groups, [&](const SrdfGroup& g) { return g.name == group.name; });
+    into.srdf.groups.push_back(std::move(group));
+  }
+  into.srdf.warnings.insert(into.srdf.warnings.end(), srdf.warnings.begin(), srdf.warnings.end());
+}
+
+Robot loadShipped(const RobotEntry& entry, const UrdfOptions& options) {
+  UrdfOptions shipped = options;
+  shipped.searchPaths.push_back(entry.urdf.parent_path());  // its package:// meshes
+  Robot robot = loadUrdf(entry.urdf, shipped);
+  robot.setActuatedJoints(entry.joints);
+  for (const auto& [joint, value] : entry.held) robot.setHeldPosition(joint, value);
+  for (const auto& [a, b] : entry.allowedCollisions) {
+    robot.linkIndex(a);  // both links must exist
+    robot.linkIndex(b);
+    robot.allowedCollisions().allow(a, b);
+  }
+  return robot;
+}
+
+}  // namespace
+
+RobotDescription loadRobotDescription(const std::string& nameOrPath, const UrdfOptions& options,
+                                      const std::filesystem::path& srdf) {
+  const auto withSrdf = [&](RobotDescription description) {
+    if (!srdf.empty()) applySrdf(srdf, description);
+    return description;
   };
   const std::filesystem::path asPath(nameOrPath);
   if (asPath.extension() == ".urdf" || std::filesystem::is_regular_file(asPath)) {
     if (!std::filesystem::is_regular_file(asPath))
       throw FileNotFound(nameOrPath + ": URDF file not found");
-    return withSrdf(loadUrdf(asPath, options));
+    return withSrdf({loadUrdf(asPath, options), {}});
   }
   std::string names;
   for (const RobotEntry& entry : shippedRobots()) {
     names += (names.empty() ? "" : ", ") + entry.name;
     if (entry.name != nameOrPath) continue;
-    UrdfOptions shipped = options;
-    shipped.searchPaths.push_back(entry.urdf.parent_path());  // its package:// meshes
-    Robot robot = loadUrdf(entry.urdf, shipped);
-    robot.setActuatedJoints(entry.joints);
-    for (const auto& [joint, value] : entry.held) robot.setHeldPosition(joint, value);
-    for (const auto& [a, b] : entry.allowedCollisions) {
-      robot.linkIndex(a);  // both links must exist
-      robot.linkIndex(b);
-      robot.allowedCollisions().allow(a, b);
-    }
-    if (!entry.srdf.empty()) {
-      robot.allowedCollisions().merge(loadSrdfDisabledCollisions(entry.srdf, robot));
-    }
-    return withSrdf(std::move(robot));
+    RobotDescription description{loadShipped(entry, options), {}};
+    if (!entry.srdf.empty()) applySrdf(entry.srdf, description);
+    return withSrdf(std::move(description));
   }
   throw FileError("'" + nameOrPath + "' is neither a shipped robot (" + names +
                   ") nor a URDF file");
+}
+
+Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options,
+                const std::filesystem::path& srdf) {
+  return loadRobotDescription(nameOrPath, options, srdf).robot;
 }
 
 }  // namespace fastron

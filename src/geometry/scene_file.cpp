@@ -1,5 +1,9 @@
 #include "fastron/geometry/scene_file.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
 #include "fastron/geometry/mesh_loader.h"
@@ -141,6 +145,46 @@ Scene parseSceneText(const std::string& yaml, const std::string& source,
   return scene;
 }
 
+/// A MoveIt joint_state map (`name` and `position` lists of one length) inside `what`.
+NamedPositions jointState(const Reader& r, const YAML::Node& state, const std::string& what) {
+  const std::string at = what + ".joint_state";
+  const YAML::Node names = r.list(r.required(state, "name", at), at + ".name");
+  const YAML::Node positions = r.list(r.required(state, "position", at), at + ".position");
+  if (names.size() != positions.size()) r.fail(state, at + ": one position per name is needed");
+  NamedPositions read;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    read.names.push_back(r.text(names[i], what + " joint name"));
+    read.positions.push_back(r.number(positions[i], what + " position of " + read.names.back()));
+  }
+  return read;
+}
+
+/// A PlanningScene's robot_state: its joint_state, and the virtual joint's transform as the
+/// robot's base.
+void readRobotState(const Reader& r, const YAML::Node& state, Scene& scene) {
+  if (const YAML::Node joints = state["joint_state"]; joints && joints["name"])
+    scene.robotState = jointState(r, joints, "robot_state");
+  const YAML::Node multi = state["multi_dof_joint_state"];
+  if (!multi || !multi["transforms"]) return;
+  const YAML::Node transforms =
+      r.list(multi["transforms"], "robot_state.multi_dof_joint_state.transforms");
+  if (transforms.size() == 0) return;
+  if (transforms.size() > 1)
+    r.fail(transforms,
+           "robot_state.multi_dof_joint_state: one transform (the virtual joint's) is "
+           "supported, found " +
+               std::to_string(transforms.size()));
+  const YAML::Node t = transforms[0];
+  const std::string what = "robot_state.multi_dof_joint_state.transforms[0]";
+  const auto q = r.numbers(r.required(t, "rotation", what), 4, what + " rotation [x, y, z, w]");
+  const Eigen::Quaterniond rotation(q[3], q[0], q[1], q[2]);
+  if (rotation.norm() < 1e-9) r.fail(t, what + " rotation is a zero quaternion");
+  scene.robotBase = Eigen::Isometry3d::Identity();
+  scene.robotBase.linear() = rotation.normalized().toRotationMatrix();
+  scene.robotBase.translation() =
+      r.vector3(r.required(t, "translation", what), what + " translation");
+}
+
 Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
@@ -219,6 +263,7 @@ Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
       }
     }
   }
+  if (const YAML::Node state = root["robot_state"]) readRobotState(r, state, scene);
   if (const YAML::Node acm = root["allowed_collision_matrix"]) {
     const YAML::Node names = r.list(r.required(acm, "entry_names", "allowed_collision_matrix"),
                                     "allowed_collision_matrix entry_names");
@@ -245,19 +290,9 @@ PlanRequest parseRequestText(const std::string& yaml, const std::string& source)
   const YAML::Node root = parseYaml(yaml, source);
   PlanRequest request;
   if (root["group_name"]) request.group = r.text(root["group_name"], "group_name");
-  const YAML::Node state =
-      r.required(r.required(root, "start_state", "the request"), "joint_state", "start_state");
-  const YAML::Node names =
-      r.list(r.required(state, "name", "start_state.joint_state"), "start_state.joint_state.name");
-  const YAML::Node positions = r.list(r.required(state, "position", "start_state.joint_state"),
-                                      "start_state.joint_state.position");
-  if (names.size() != positions.size())
-    r.fail(state, "start_state.joint_state: one position per name is needed");
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    request.start.names.push_back(r.text(names[i], "start_state joint name"));
-    request.start.positions.push_back(
-        r.number(positions[i], "start position of " + request.start.names.back()));
-  }
+  request.start = jointState(
+      r, r.required(r.required(root, "start_state", "the request"), "joint_state", "start_state"),
+      "start_state");
   const YAML::Node goals = r.required(root, "goal_constraints", "the request");
   if (!goals.IsSequence() || goals.size() == 0)
     r.fail(goals, "goal_constraints must be a non-empty list");
@@ -295,6 +330,21 @@ PlanRequest loadMoveItRequest(const std::filesystem::path& path) {
   return parseMoveItRequest(readFile(path, "motion plan request"), path.string());
 }
 
+double jointValueWithinLimits(const Joint& joint, double value, const std::string& what) {
+  const auto fail = [&](const std::string& why) {
+    throw InvalidArgument(what + ": joint '" + joint.name + "' at " + std::to_string(value) + why);
+  };
+  if (!std::isfinite(value)) fail(" is not a number");
+  if (joint.type == JointType::Continuous)  // as MoveIt's enforceBounds: the same angle
+    return std::remainder(value, 2 * std::numbers::pi);
+  if (value < joint.lower - kJointBoundsMargin || value > joint.upper + kJointBoundsMargin) {
+    fail(" is outside its limits [" + std::to_string(joint.lower) + ", " +
+         std::to_string(joint.upper) + "] by more than the bounds margin " +
+         std::to_string(kJointBoundsMargin));
+  }
+  return std::clamp(value, joint.lower, joint.upper);
+}
+
 std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositions& positions,
                                           const std::string& what) {
   std::vector<double> q;
@@ -303,15 +353,40 @@ std::vector<double> actuatedConfiguration(const Robot& robot, const NamedPositio
     const auto it = std::find(positions.names.begin(), positions.names.end(), joint.name);
     if (it == positions.names.end())
       throw InvalidArgument(what + " has no position for joint '" + joint.name + "'");
-    const double v = positions.positions[static_cast<std::size_t>(it - positions.names.begin())];
-    if (v < joint.lower - 1e-9 || v > joint.upper + 1e-9) {
-      throw InvalidArgument(what + ": joint '" + joint.name + "' at " + std::to_string(v) +
-                            " is outside its limits [" + std::to_string(joint.lower) + ", " +
-                            std::to_string(joint.upper) + "]");
-    }
-    q.push_back(v);
+    q.push_back(jointValueWithinLimits(
+        joint, positions.positions[static_cast<std::size_t>(it - positions.names.begin())], what));
   }
   return q;
+}
+
+RequestRobot robotForRequest(Robot robot, const std::vector<SrdfGroup>& groups, const Scene& scene,
+                             const PlanRequest& request, const std::string& source) {
+  RequestRobot result{std::move(robot), {}};
+  Robot& r = result.robot;
+  const auto group = std::find_if(groups.begin(), groups.end(),
+                                  [&](const SrdfGroup& g) { return g.name == request.group; });
+  if (group != groups.end()) {
+    if (group->joints.empty())
+      throw InvalidArgument(source + ": group '" + request.group + "' moves no joint of robot '" +
+                            r.name() + "'");
+    r.setActuatedJoints(group->joints);
+  } else if (!request.group.empty() && !groups.empty()) {
+    result.warning = source + ": the SRDF has no group '" + request.group +
+                     "': planning the robot's actuated joints";
+  }
+  const auto hold = [&](const NamedPositions& state, const std::string& what) {
+    for (std::size_t i = 0; i < state.names.size(); ++i) {
+      const auto joint = std::find_if(r.joints().begin(), r.joints().end(),
+                                      [&](const Joint& j) { return j.name == state.names[i]; });
+      if (joint == r.joints().end() || !joint->movable() || joint->mimic ||
+          r.followsConfiguration(static_cast<int>(joint - r.joints().begin())))
+        continue;
+      r.setHeldPosition(joint->name, jointValueWithinLimits(*joint, state.positions[i], what));
+    }
+  };
+  hold(scene.robotState, source + ": the scene's robot_state");
+  hold(request.start, source + ": start_state");
+  return result;
 }
 
 RequestEnds requestEnds(const Robot& robot, const PlanRequest& request, const std::string& source) {

@@ -134,6 +134,13 @@ std::map<std::string, std::size_t> validateXml(const TiXmlElement* robot,
     }
     if (const TiXmlElement* axis = joint->FirstChildElement("axis"))
       requireFinite(axis, "xyz", 3, at(source, axis));
+    if (const TiXmlElement* mimic = joint->FirstChildElement("mimic")) {
+      if (mimic->Attribute("joint") == nullptr)
+        throw FileError(at(source, mimic) + ": <mimic> of joint '" + (name ? name : "") +
+                        "' has no joint attribute");
+      requireFinite(mimic, "multiplier", 1, at(source, mimic));
+      requireFinite(mimic, "offset", 1, at(source, mimic));
+    }
     if (const TiXmlElement* limit = joint->FirstChildElement("limit")) {
       requireFinite(limit, "lower", 1, at(source, limit));
       requireFinite(limit, "upper", 1, at(source, limit));
@@ -318,6 +325,9 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
       if (!j->limits) throw FileError(source + ": joint '" + name + "' has no <limit>");
       joint.lower = j->limits->lower;
       joint.upper = j->limits->upper;
+    }
+    if (j->mimic) {
+      joint.mimic = Mimic{j->mimic->joint_name, j->mimic->multiplier, j->mimic->offset};
     }
     joints.push_back(std::move(joint));
   }

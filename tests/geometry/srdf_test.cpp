@@ -20,7 +20,7 @@ using ::testing::HasSubstr;
 /// The FileError message of parsing `xml` as an SRDF for the primitive Panda.
 std::string srdfError(const std::string& xml) {
   try {
-    parseSrdfDisabledCollisions(xml, "bad.srdf", loadRobot("panda"));
+    parseSrdf(xml, "bad.srdf", loadRobot("panda"));
   } catch (const FileError& e) {
     return e.what();
   }
@@ -29,17 +29,92 @@ std::string srdfError(const std::string& xml) {
 
 TEST(Srdf, ReadsTheDisabledPairs) {
   const Robot panda = loadRobot("panda");
-  const AllowedCollisionMatrix disabled = parseSrdfDisabledCollisions(
+  const Srdf srdf = parseSrdf(
       "<robot name=\"panda\">\n"
       "  <group name=\"arm\"><chain base_link=\"panda_link0\" tip_link=\"panda_link8\"/></group>\n"
       "  <disable_collisions link1=\"panda_link3\" link2=\"panda_link5\" reason=\"Never\"/>\n"
       "  <disable_collisions link1=\"panda_hand\" link2=\"panda_link6\" reason=\"Never\"/>\n"
       "</robot>\n",
       "two.srdf", panda);
+  const AllowedCollisionMatrix& disabled = srdf.disabledCollisions;
   EXPECT_EQ(disabled.size(), 2u);
   EXPECT_TRUE(disabled.allowed("panda_link5", "panda_link3"));
   EXPECT_TRUE(disabled.allowed("panda_hand", "panda_link6"));
   EXPECT_FALSE(disabled.allowed("panda_hand", "panda_link5"));
+  EXPECT_TRUE(srdf.warnings.empty());
+}
+
+// MoveIt warns about entries that name links the URDF lacks (a MoveIt configuration written for
+// a fuller URDF than the one in use) and skips them; so do we, and say where each one was.
+TEST(Srdf, EntriesNamingAbsentLinksAreSkippedWithAWarning) {
+  const Srdf srdf = parseSrdf(
+      "<robot name=\"panda\">\n"
+      "  <disable_collisions link1=\"panda_link1\" link2=\"panda_elbow\"/>\n"
+      "  <disable_collisions link1=\"panda_link3\" link2=\"panda_link5\"/>\n"
+      "  <group name=\"arm\"><joint name=\"panda_joint1\"/><joint name=\"camera_joint\"/></group>\n"
+      "  <end_effector name=\"eef\" parent_link=\"tool0\" group=\"hand\"/>\n"
+      "  <virtual_joint name=\"world\" type=\"fixed\" parent_frame=\"world\" "
+      "child_link=\"panda_link0\"/>\n"
+      "</robot>\n",
+      "moveit.srdf", loadRobot("panda"));
+  EXPECT_EQ(srdf.disabledCollisions.size(), 1u);
+  EXPECT_TRUE(srdf.disabledCollisions.allowed("panda_link3", "panda_link5"));
+  EXPECT_EQ(srdf.group("arm").joints, std::vector<std::string>{"panda_joint1"});
+  ASSERT_EQ(srdf.warnings.size(), 4u);
+  EXPECT_THAT(srdf.warnings[0], HasSubstr("moveit.srdf:5: <end_effector> names group 'hand'"));
+  EXPECT_EQ(srdf.warnings[1],
+            "moveit.srdf:2: link 'panda_elbow', which robot 'panda' does not have, is named by 1 "
+            "entry (the first a <disable_collisions>): skipped, as MoveIt does");
+  EXPECT_THAT(srdf.warnings[2], HasSubstr("moveit.srdf:4: joint 'camera_joint'"));
+  EXPECT_THAT(srdf.warnings[3], HasSubstr("moveit.srdf:5: link 'tool0'"));
+}
+
+// A link the URDF lacks is one warning, however many entries name it.
+TEST(Srdf, OneWarningPerAbsentLink) {
+  const Srdf srdf = parseSrdf(
+      "<robot name=\"panda\">\n"
+      "  <disable_collisions link1=\"panda_link1\" link2=\"camera\"/>\n"
+      "  <disable_collisions link1=\"panda_link2\" link2=\"camera\"/>\n"
+      "  <disable_collisions link1=\"camera\" link2=\"panda_link3\"/>\n"
+      "</robot>\n",
+      "camera.srdf", loadRobot("panda"));
+  ASSERT_EQ(srdf.warnings.size(), 1u);
+  EXPECT_THAT(srdf.warnings[0], HasSubstr("camera.srdf:2: link 'camera', which robot 'panda' does "
+                                          "not have, is named by 3 entries"));
+  EXPECT_EQ(srdf.disabledCollisions.size(), 0u);
+}
+
+// Groups resolve as MoveIt resolves them: joints, links (their parent joint), chains (the joints
+// between the two ends) and subgroups, each joint once; fixed joints give none.
+TEST(Srdf, GroupsResolveToTheirMovableJoints) {
+  const Srdf srdf = parseSrdf(
+      "<robot name=\"panda\">\n"
+      "  <group name=\"both\"><group name=\"wrist\"/><group name=\"arm\"/></group>\n"
+      "  <group name=\"arm\"><chain base_link=\"panda_link0\" tip_link=\"panda_hand\"/></group>\n"
+      "  <group name=\"wrist\"><link name=\"panda_link7\"/><joint name=\"panda_joint6\"/>"
+      "<joint name=\"panda_joint8\"/></group>\n"
+      "  <group name=\"upper\"><chain base_link=\"panda_link3\" "
+      "tip_link=\"panda_link1\"/></group>\n"
+      "</robot>\n",
+      "groups.srdf", loadRobot("panda"));
+  EXPECT_TRUE(srdf.warnings.empty());
+  const std::vector<std::string> arm = {"panda_joint1", "panda_joint2", "panda_joint3",
+                                        "panda_joint4", "panda_joint5", "panda_joint6",
+                                        "panda_joint7"};
+  EXPECT_EQ(srdf.group("arm").joints, arm);
+  EXPECT_EQ(srdf.group("wrist").joints, (std::vector<std::string>{"panda_joint7", "panda_joint6"}));
+  EXPECT_EQ(
+      srdf.group("both").joints,
+      (std::vector<std::string>{"panda_joint7", "panda_joint6", "panda_joint1", "panda_joint2",
+                                "panda_joint3", "panda_joint4", "panda_joint5"}));
+  // A chain whose base lies below its tip runs up through their common ancestor.
+  EXPECT_EQ(srdf.group("upper").joints, (std::vector<std::string>{"panda_joint3", "panda_joint2"}));
+  try {
+    srdf.group("gripper");
+    FAIL() << "no error";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("no group 'gripper' (it has: both, arm, wrist, upper)"));
+  }
 }
 
 TEST(Srdf, ErrorsNameTheFileLineAndElement) {
@@ -47,20 +122,45 @@ TEST(Srdf, ErrorsNameTheFileLineAndElement) {
               HasSubstr("bad.srdf:"));
   EXPECT_THAT(srdfError("<robot name=\"panda\">\n  <disable_collisions link1=\"a\"\n</robot>"),
               HasSubstr("malformed XML"));
-  EXPECT_THAT(srdfError("<robot name=\"panda\">\n"
-                        "  <disable_collisions link1=\"panda_link1\" link2=\"panda_elbow\"/>\n"
-                        "</robot>"),
-              HasSubstr("bad.srdf:2: <disable_collisions>: robot 'panda' has no link "
-                        "'panda_elbow'"));
   EXPECT_THAT(srdfError("<robot name=\"panda\">\n\n  <disable_collisions link1=\"panda_link1\"/>\n"
                         "</robot>"),
               HasSubstr("bad.srdf:3: <disable_collisions> needs both link1 and link2"));
-  EXPECT_THAT(srdfError("<robot name=\"ur3\"/>"),
-              HasSubstr("the SRDF is for robot 'ur3', not 'panda'"));
+  EXPECT_THAT(srdfError("<robot>\n<group/></robot>"),
+              HasSubstr("bad.srdf:2: <group> needs a name attribute"));
+  EXPECT_THAT(srdfError("<robot><group name=\"a\"/>\n<group name=\"a\"/></robot>"),
+              HasSubstr("bad.srdf:2: <group> 'a' is defined twice"));
+  EXPECT_THAT(srdfError("<robot><group name=\"a\"><group name=\"b\"/></group>\n"
+                        "<group name=\"b\"><group name=\"a\"/></group></robot>"),
+              HasSubstr("contains itself through its subgroups"));
+  EXPECT_THAT(
+      srdfError("<robot><group name=\"a\"><chain base_link=\"panda_link0\"/></group></robot>"),
+      HasSubstr("<chain> needs a tip_link attribute"));
   EXPECT_THAT(srdfError("<semantic/>"), HasSubstr("not an SRDF file"));
   EXPECT_THAT(srdfError("not xml at all"), HasSubstr("malformed XML"));
-  EXPECT_THROW(loadSrdfDisabledCollisions("/nonexistent/panda.srdf", loadRobot("panda")),
-               FileError);
+  EXPECT_THROW(loadSrdf("/nonexistent/panda.srdf", loadRobot("panda")), FileError);
+  // Another robot's name is MoveIt's warning, not an error.
+  const Srdf other = parseSrdf("<robot name=\"ur3\"/>", "ur3.srdf", loadRobot("panda"));
+  ASSERT_EQ(other.warnings.size(), 1u);
+  EXPECT_THAT(other.warnings[0], HasSubstr("is for robot 'ur3', not 'panda'"));
+}
+
+// Baxter's MoveIt configuration as MotionBenchMaker ships it: its SRDF names links the URDF lacks
+// (collision_head_link, ...), and its both_arms group is made of two subgroups.
+TEST(Srdf, BaxterMoveItConfigurationLoadsWithWarnings) {
+  const std::filesystem::path folder =
+      std::filesystem::path(FASTRON_SHARED_DIR) / "data/baxter-moveit";
+  const RobotDescription baxter =
+      loadRobotDescription((folder / "baxter.urdf").string(), {}, folder / "baxter.srdf");
+  EXPECT_FALSE(baxter.srdf.warnings.empty());
+  EXPECT_LT(baxter.srdf.warnings.size(), 20u);  // one per absent link, not one per entry
+  for (const std::string& w : baxter.srdf.warnings)
+    EXPECT_THAT(w, HasSubstr("skipped, as MoveIt does"));
+  EXPECT_THAT(baxter.srdf.warnings.front(), HasSubstr("link 'collision_head_link'"));
+  const std::vector<std::string>& both = baxter.srdf.group("both_arms").joints;
+  ASSERT_EQ(both.size(), 14u);
+  EXPECT_EQ(both.front(), "right_s0");
+  EXPECT_EQ(both.back(), "left_w2");
+  EXPECT_EQ(baxter.srdf.group("left_arm").joints.size(), 7u);
 }
 
 class SrdfFile : public test::TempDir {};

@@ -53,13 +53,19 @@ struct MotionBenchOptions {
   double simplifyTime = 0.1;
   /// How every checker's whole paths are simplified (repairs' bridges always take Shortcuts).
   PathSimplification simplification = PathSimplification::Full;
+  /// Where the rows so far (results.csv's format) are written after each problem, so that an
+  /// interrupted run leaves what it finished (empty: nowhere).
+  std::filesystem::path resultsFile;
 };
 
-/// Each problem: Fastron trained on the scene, then RRT-Connect with Fastron and Hybrid (verified
-/// and repaired) and with FCL on each query. One row per (family, problem, query, method); query 0
-/// is the request. A goal that touches objects with the hand only is a grasp: hand-object
-/// contacts are allowed (as MoveIt's touch links do), and `note` says so. Throws FileError naming
-/// the folder when it holds no problems, and the file of a problem that cannot be read.
+/// Each problem: the robot as the request plans it (robotForRequest: the request's SRDF group
+/// actuated, other joints where the scene and the start state put them), Fastron trained on the
+/// scene, then RRT-Connect with Fastron and Hybrid (verified and repaired) and with FCL on each
+/// query. One row per (family, problem, query, method); query 0 is the request. A goal that
+/// touches objects with the hand only is a grasp: hand-object contacts are allowed (as MoveIt's
+/// touch links do), and `note` says so. A problem that cannot be run (a file that cannot be read,
+/// a request the robot cannot take) is recorded in PlanRows::skipped with its error, and the run
+/// goes on. Throws FileError naming the folder when it holds no problems, or the robot's files.
 PlanRows runMotionBench(const MotionBenchOptions& options, const Progress& progress);
 std::string motionBenchReport(const PlanRows& results, const MotionBenchOptions& options);
 

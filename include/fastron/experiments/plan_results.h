@@ -57,13 +57,25 @@ struct PlanRow {
   double figure(std::string_view column) const;
 };
 
+/// A query that could not be run, and why (e.g. a problem file that cannot be read).
+struct SkippedQuery {
+  std::vector<std::pair<std::string, std::string>> query;  ///< as PlanRow::query
+  std::string error;
+};
+
 struct PlanRows {
   std::vector<PlanRow> rows;
+  /// The queries a batch run went on past: a row each in table(), in no summary.
+  std::vector<SkippedQuery> skipped;
+  /// What the run noticed and went on past, for the report (e.g. SRDF entries naming links the
+  /// robot lacks).
+  std::vector<std::string> warnings;
 
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
   /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, planned_on), then the
-  /// figures. Throws InvalidArgument when the rows do not share their query and figure columns.
+  /// figures; then a row per skipped query (status "skipped: " and the error, no method, NaN
+  /// figures). Throws InvalidArgument when the rows do not share their query and figure columns.
   Table table() const;
 };
 

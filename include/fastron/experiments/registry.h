@@ -44,6 +44,9 @@ struct ExperimentSettings {
   bool selfModel = false;
   bool learnFromVerification = false;
   std::optional<std::size_t> samples, updates;  ///< motion-bench: each scene's training
+  /// Where a long batch run (motion-bench) writes its rows so far, in results.csv's format, so
+  /// that an interrupted run leaves them (empty: nowhere).
+  std::filesystem::path resultsFile;
 };
 
 /// What an experiment produced: the rows of results.csv, further tables by file name (e.g.

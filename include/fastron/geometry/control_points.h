@@ -92,8 +92,9 @@ class RobotPointKinematics final : public PointKinematics {
   /// about (or translation along) the local z axis by the joint's value.
   template <class T>
   struct Step {
-    int parent = -1;  ///< step whose frame this one's hangs off, -1 for the base
-    int joint = 0;    ///< index into the configuration
+    int parent = -1;          ///< step whose frame this one's hangs off, -1 for the base
+    int joint = 0;            ///< index into the configuration
+    T scale = 1, offset = 0;  ///< the joint's value: scale * that coordinate + offset (mimics)
     bool prismatic = false;
     Frame<T> fixed;
   };

@@ -4,6 +4,7 @@
 // Descriptions are values; per-call scratch lives in KinematicsData (kinematics.h).
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,6 +18,13 @@ namespace FASTRON_API fastron {
 
 enum class JointType { Revolute, Continuous, Prismatic, Fixed };
 
+/// A joint that follows another (URDF's <mimic>): its position is multiplier * the other's +
+/// offset.
+struct Mimic {
+  std::string joint;  ///< the followed joint; after Robot's constructor, one that mimics none
+  double multiplier = 1, offset = 0;
+};
+
 struct Joint {
   std::string name;
   JointType type = JointType::Fixed;
@@ -24,6 +32,7 @@ struct Joint {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< child frame in the parent's
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           ///< unit, in the child frame
   double lower = 0, upper = 0;  ///< position limits; a continuous joint gets [-pi, pi]
+  std::optional<Mimic> mimic;   ///< set when the joint follows another: never actuated
 
   bool movable() const { return type != JointType::Fixed; }
 };
@@ -40,11 +49,20 @@ struct LinkShape {
   Shape shape;
 };
 
+/// A mimic joint resolved: joints()[joint] is at multiplier * joints()[source] + offset.
+struct MimicJoint {
+  int joint = -1, source = -1;
+  double multiplier = 1, offset = 0;
+};
+
 class Robot {
  public:
   /// Checks the tree (unique names, one root, valid indices, no cycles) and orders the joints
-  /// parent before child. Every movable joint is actuated, in tree order, until
-  /// setActuatedJoints says otherwise. Throws InvalidArgument naming the fault.
+  /// parent before child. A mimic of a mimic is resolved to the joint at the end of the chain;
+  /// a fixed joint's mimic is dropped (it has nothing to follow with, and MoveIt ignores it).
+  /// Every movable joint that mimics none is actuated, in tree order, until setActuatedJoints
+  /// says otherwise. Throws InvalidArgument naming the fault (a mimic of an unknown or fixed
+  /// joint, or a cycle of mimics among them).
   Robot(std::string name, std::vector<Link> links, std::vector<Joint> joints,
         std::vector<LinkShape> shapes);
 
@@ -63,13 +81,20 @@ class Robot {
   const std::vector<int>& actuatedJoints() const { return actuated_; }
   std::size_t dof() const { return actuated_.size(); }
   std::vector<std::string> actuatedJointNames() const;
+  /// Movable joints that mimic none: those a configuration or a held position may set.
   std::vector<std::string> movableJointNames() const;
   /// Makes these movable joints, in this order, the configuration. Throws InvalidArgument for an
-  /// unknown, fixed or repeated joint, or an empty list.
+  /// unknown, fixed, mimic or repeated joint, or an empty list.
   void setActuatedJoints(const std::vector<std::string>& names);
-  /// The value a joint that is not actuated keeps (default: 0, or the nearest limit).
+  /// The value a joint that is not actuated keeps (default: 0, or the nearest limit); its mimics
+  /// follow. Throws InvalidArgument for a mimic joint or a value outside the limits.
   void setHeldPosition(std::string_view joint, double value);
   double heldPosition(int joint) const { return held_[static_cast<std::size_t>(joint)]; }
+  /// Every mimic joint, parent before child; forward kinematics sets each after the others.
+  const std::vector<MimicJoint>& mimicJoints() const { return mimics_; }
+  /// True when the joint's position depends on the configuration: it is actuated, or it mimics
+  /// an actuated joint.
+  bool followsConfiguration(int joint) const;
 
   /// Limits of the actuated joints, for the model's input scaling.
   JointLimits limits() const;
@@ -96,7 +121,10 @@ class Robot {
   int root_ = 0;
   std::vector<int> actuated_;
   std::vector<double> held_;  // per joint
+  std::vector<MimicJoint> mimics_;
   AllowedCollisionMatrix allowed_;
+
+  void resolveMimics();
 };
 
 }  // namespace fastron

@@ -8,6 +8,7 @@
 
 #include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
+#include "fastron/geometry/srdf.h"
 #include "fastron/geometry/urdf.h"
 
 namespace FASTRON_API fastron {
@@ -33,10 +34,23 @@ std::vector<RobotEntry> shippedRobots();
 std::vector<RobotEntry> parseRobotCatalogue(const std::string& yaml, const std::string& source,
                                             const std::filesystem::path& directory);
 
+/// A robot with what its SRDFs say of it.
+struct RobotDescription {
+  Robot robot;  ///< the SRDFs' disabled collisions among its allowed ones
+  /// The catalogue's SRDF and then the given one, merged: a later group replaces one of the same
+  /// name; the warnings of both (entries naming links the URDF lacks, skipped).
+  Srdf srdf;
+};
+
 /// A shipped robot by name (its catalogue joints actuated, its allowed pairs and SRDF applied;
 /// package:// meshes found beside its URDF), or else a URDF file (every movable joint actuated).
-/// A non-empty `srdf` adds that file's disabled collisions (loadSrdfDisabledCollisions). Throws
+/// A non-empty `srdf` adds that file's disabled collisions and groups (loadSrdf). Throws
 /// FileError when it is neither, naming the shipped robots.
+RobotDescription loadRobotDescription(const std::string& nameOrPath,
+                                      const UrdfOptions& options = {},
+                                      const std::filesystem::path& srdf = {});
+
+/// loadRobotDescription's robot, for callers that need neither the groups nor the warnings.
 Robot loadRobot(const std::string& nameOrPath, const UrdfOptions& options = {},
                 const std::filesystem::path& srdf = {});
 

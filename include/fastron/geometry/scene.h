@@ -48,6 +48,12 @@ struct Obstacle {
   std::optional<Motion> motion;
 };
 
+/// Joint positions by name (a MoveIt joint_state, or joint_constraints).
+struct NamedPositions {
+  std::vector<std::string> names;
+  std::vector<double> positions;
+};
+
 class Scene {
  public:
   /// Throws InvalidArgument for an empty or repeated name, an invalid shape, a non-finite pose
@@ -72,6 +78,9 @@ class Scene {
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   /// Link pairs that may touch, beyond the robot's adjacent links (self-collision only).
   AllowedCollisionMatrix allowedCollisions;
+  /// Where the scene puts the robot's joints (a MoveIt PlanningScene's robot_state.joint_state):
+  /// robotForRequest holds the joints a plan does not move there. Empty when the file says none.
+  NamedPositions robotState;
 
  private:
   std::size_t indexOf(std::string_view name) const;

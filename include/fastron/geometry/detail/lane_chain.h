@@ -15,6 +15,7 @@ inline constexpr std::size_t kMaxLaneSteps = 64;
 struct LaneStep {
   int parent = -1;
   int joint = 0;
+  float scale = 1, offset = 0;  // the joint's value: scale * q[joint] + offset (mimic joints)
   int prismatic = 0;
   float fixed[12] = {};  // NOLINT(modernize-avoid-c-arrays): the 3x4 transform, row by row
 };
