@@ -119,15 +119,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "motion-bench: active-learning updates of each scene's models after those "
                   "samples, and of --self-model's (default 3; --quick 1)");
   cmd->add_flag("--learn-from-verification", o->settings.learnFromVerification,
-                "motion-bench: between a scene's queries, the model learns the exact answers of "
-                "the last plan's verification and repair that it got wrong");
+                "motion-bench: between a scene's queries, the paper's model learns the exact "
+                "answers of the last plan's verification and repair that it got wrong");
   cmd->add_flag("--self-model", o->settings.selfModel,
                 "motion-bench with --self-collision: also plan on a self-collision model learned "
                 "once for the robot beside each scene's obstacle model (method 'Fastron split')");
   cmd->add_flag("--self-collision", o->settings.selfCollision,
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped); "
-                "adds method 'Fastron obstacles': a model of each scene's obstacles alone that "
-                "learns from its plans' verification");
+                "the default method 'Fastron' then models each scene's obstacles alone and "
+                "leaves self-collisions to verification");
   cmd->add_option("--time-limit", o->settings.timeLimit, "planning experiments: seconds per query")
       ->check(numberAbove(0));
   cmd->add_option("--resolution", o->settings.resolution,

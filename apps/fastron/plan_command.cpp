@@ -190,9 +190,9 @@ int runPlan(const PlanOptions& o) {
     plan = planVerified(CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}, fcl, limits,
                         start, goal, options);
   } else {
-    // A model trained here learns the obstacles alone: self-collisions, when checked, are left
-    // to verification (docs/planning.md, "Fastron obstacles": on the mesh Panda 9-27x FCL on
-    // both samples, where a model of obstacles and self-collisions together reached 1.4-20x).
+    // The default method (bench motion-bench's "Fastron", experiments::kDefaultMethod): a model
+    // trained here learns the obstacles alone, self-collisions, when checked, are left to
+    // verification (docs/planning.md).
     // It plans on the model, then on a hybrid asking FCL about every "collides" (the obstacles'
     // FCL, the model's oracle: a relaxation of the exact checker), then on FCL (no calibrated
     // band needed); with --learning-rounds N it learns what verification found it got wrong and

@@ -42,20 +42,37 @@ void describeRobot(const Robot& robot, const std::string& description,
 /// Every shipped robot, or only the one named; a name that is not shipped is a URDF file, read
 /// with the options' package paths and SRDF.
 int runRobots(const RobotOptions& options) {
+  // The SRDF's planning groups, after the robot: what --group can choose.
+  const auto describeGroups = [](const Srdf& srdf) {
+    if (srdf.groups.empty()) return;
+    std::cout << "  SRDF groups:\n";
+    for (const SrdfGroup& g : srdf.groups) {
+      std::string joints;
+      for (const std::string& j : g.joints) joints += (joints.empty() ? "" : ", ") + j;
+      std::cout << "    " << g.name << " (" << g.joints.size()
+                << (g.joints.size() == 1 ? " joint" : " joints")
+                << (joints.empty() ? "" : ": " + joints) << ")\n";
+    }
+  };
   bool shown = false;
   for (const RobotEntry& entry : shippedRobots()) {
     if (!options.robot.empty() && entry.name != options.robot) continue;
-    const Robot robot = loadRobotFromOptions({.robot = entry.name,
-                                              .joints = {},
-                                              .packagePaths = options.packagePaths,
-                                              .srdf = options.srdf});
-    describeRobot(robot, entry.description, entry.urdf,
+    const RobotDescription description =
+        robotDescriptionFromOptions({.robot = entry.name,
+                                     .joints = {},
+                                     .packagePaths = options.packagePaths,
+                                     .srdf = options.srdf,
+                                     .group = options.group});
+    describeRobot(description.robot, entry.description, entry.urdf,
                   options.srdf.empty() ? entry.srdf : std::filesystem::path(options.srdf),
                   entry.held);
+    if (!options.robot.empty()) describeGroups(description.srdf);
     shown = true;
   }
   if (!shown) {
-    describeRobot(loadRobotFromOptions(options), "a URDF file", options.robot, options.srdf, {});
+    const RobotDescription description = robotDescriptionFromOptions(options);
+    describeRobot(description.robot, "a URDF file", options.robot, options.srdf, {});
+    describeGroups(description.srdf);
   }
   return 0;
 }
@@ -129,7 +146,9 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--package-path", files->packagePaths,
                   "folder searched for package:// and relative mesh paths (repeatable)");
   cmd->add_option("--srdf", files->srdf,
-                  "MoveIt SRDF: its disable_collisions pairs are skipped (and not surveyed)");
+                  "MoveIt SRDF: its disable_collisions pairs are skipped (and not surveyed), its "
+                  "groups listed");
+  cmd->add_option("--group", files->group, "an SRDF group whose joints are actuated");
   cmd->callback([only, survey, options, files, &exitCode] {
     files->robot = *only;
     if (*survey) {
@@ -137,8 +156,8 @@ void addRobotsCommand(CLI::App& app, int& exitCode) {
       exitCode = runSurvey(*files, *options);
       return;
     }
-    if (only->empty() && !files->srdf.empty())
-      throw InvalidArgument("--srdf needs a robot name or URDF file");
+    if (only->empty() && (!files->srdf.empty() || !files->group.empty()))
+      throw InvalidArgument("--srdf and --group need a robot name or URDF file");
     exitCode = runRobots(*files);
   });
 }

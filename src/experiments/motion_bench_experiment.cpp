@@ -147,6 +147,35 @@ ProxyParams withKernelOptions(ProxyParams params, const MotionBenchOptions& o) {
   return params;
 }
 
+/// "Median end-to-end time of FCL / of each method, training included (...): RRTConnect: NAME
+/// N.Nx ...": per solved plan, its total plus its scene's training shared by `queries` queries
+/// (with one, the requests alone).
+std::string endToEndSpeedups(const PlanRows& r, const RowFilter& where, std::size_t queries) {
+  const auto median = [&](const std::string& method) {
+    std::vector<double> values;
+    for (const PlanRow& row : r.rows) {
+      if ((where && !where(row)) || row.method != method || !row.outcome.solved) continue;
+      if (queries == 1 && row.queryValue("query") != "0") continue;
+      const double training = method == "FCL" ? 0 : row.figure("train_s");
+      values.push_back(row.outcome.totalSeconds + training / static_cast<double>(queries));
+    }
+    return values.empty() ? std::numeric_limits<double>::quiet_NaN() : summarize(values).median;
+  };
+  std::ostringstream md;
+  md << "Median end-to-end time of FCL / of each method, training included ("
+     << (queries == 1 ? std::string("one query") : std::to_string(queries) + " queries")
+     << " per scene): RRTConnect:";
+  const double base = median("FCL");
+  for (const std::string& method : methodsOf(r, where)) {
+    if (method == "FCL") continue;
+    char ratio[96];
+    std::snprintf(ratio, sizeof ratio, " %s %.1fx", method.c_str(), base / median(method));
+    md << ratio;
+  }
+  md << ".\n";
+  return md.str();
+}
+
 /// What a problem's robot shares with the problems before it: models and features depend on the
 /// robot's actuated joints and held positions (kinematicsChecksum), which each request may set.
 struct RobotModels {
@@ -221,32 +250,28 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
   const Labels truth = labelConfigurations(audit, test, 1);
   ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
-  // With self-collision checked: a model of this scene's obstacles alone (its oracle ignores
-  // self-collision), for "Fastron obstacles" (self-collisions left to verification, and learned
-  // from it) and, with the robot's self-collision model, for the split source.
-  std::unique_ptr<ProxyCollisionDetector> obstacles;
-  Labels obstacleTruth;  // of `test`, by FCL without self-collision
-  double obstaclesSupport = 0, obstaclesTrain = 0;
+  // The default method's model (what `fastron plan` trains): of this scene's obstacles alone, its
+  // oracle FCL without self-collision when self-collision is checked (self-collisions left to
+  // verification, and learned from it), else the exact FCL itself. With the robot's
+  // self-collision model beside it, also the split source.
+  const auto obstacleFcl = o.selfCollision ? std::make_shared<FclChecker>(robot, scene) : fcl;
+  // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the split
+  // plans on no hybrid.
+  ProxyCollisionDetector obstacles(
+      obstacleFcl, features,
+      withKernelOptions(
+          withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))), o));
+  const double obstaclesTrain = train(obstacles, samples, updates);
+  const Labels obstacleTruth =  // of `test`, by the model's oracle
+      o.selfCollision ? labelConfigurations(*obstacleFcl, test, 1) : truth;
   ConfusionCounts splitQuality;
   std::shared_ptr<const CollisionChecker> split;
-  if (o.selfCollision) {
-    const auto obstacleFcl = std::make_shared<FclChecker>(robot, scene);
-    // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the
-    // split plans on no hybrid.
-    obstacles = std::make_unique<ProxyCollisionDetector>(
-        obstacleFcl, features,
-        withKernelOptions(
-            withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))), o));
-    obstaclesTrain = train(*obstacles, samples, updates);
-    const std::shared_ptr<const Model> obstacleModel = obstacles->model();
-    obstaclesSupport = static_cast<double>(obstacleModel->supportCount());
-    obstacleTruth = labelConfigurations(*obstacleFcl, test, 1);
-    if (selfModel) {
-      split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
-          std::make_shared<ModelChecker>(obstacleModel), selfModel});
-      const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
-      splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
-    }
+  const auto obstaclesSupport = static_cast<double>(obstacles.model()->supportCount());
+  if (selfModel) {
+    split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
+        std::make_shared<ModelChecker>(obstacles.model()), selfModel});
+    const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
+    splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
   }
 
   Rng rng(o.seed * 7919 + p);
@@ -281,46 +306,51 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
       const auto exact = std::find_if(plans.begin(), plans.end(),
                                       [](const MethodPlan& m) { return m.method == "FCL"; });
       if (exact != plans.end()) {
-        along = alongFclPath(exact->plan, *calibrated.model, audit, o.resolution);
+        along = alongFclPath(exact->plan, *obstacles.model(), audit, o.resolution);
       }
     }
+    std::vector<PlanRow> rows;  // the default method's first
     const auto addRow = [&](const MethodPlan& each, double modelSupport,
                             const ConfusionCounts& modelQuality, double trainS, double learnS) {
-      results.rows.push_back({queryColumns,
-                              "RRTConnect",
-                              each.method,
-                              outcomeOf(each, audit, o.resolution),
-                              {{"support", modelSupport},
-                               {"accuracy", modelQuality.accuracy()},
-                               {"tpr", modelQuality.tpr()},
-                               {"train_s", trainS},
-                               {"self_train_s", selfTrainSeconds},
-                               {"learn_s", learnS},
-                               {"fcl_path_near_walls", along.nearWalls},
-                               {"fcl_path_called_colliding", along.calledColliding}}});
+      rows.push_back({queryColumns,
+                      "RRTConnect",
+                      each.method,
+                      outcomeOf(each, audit, o.resolution),
+                      {{"support", modelSupport},
+                       {"accuracy", modelQuality.accuracy()},
+                       {"tpr", modelQuality.tpr()},
+                       {"train_s", trainS},
+                       {"self_train_s", selfTrainSeconds},
+                       {"learn_s", learnS},
+                       {"fcl_path_near_walls", along.nearWalls},
+                       {"fcl_path_called_colliding", along.calledColliding}}});
     };
     for (const MethodPlan& each : plans) {
       if (o.learnFromVerification && each.method == "Fastron") {
         proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
       }
-      addRow(each, support, quality, trainSeconds, learnSeconds);
+      MethodPlan named = each;  // the paper's recipe, beside the default method
+      if (each.method != "FCL") named.method = each.method + " (paper)";
+      addRow(named, support, quality, trainSeconds, learnSeconds);
     }
     if (split) {
       seedPlanners(o.seed, turn);
       addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
              obstaclesSupport, splitQuality, obstaclesTrain, 0);
     }
-    if (obstacles) {  // last: it learns, and keeps what it learns for the scene's next queries
-      // Scored as it plans this query: on the obstacles' labels, its oracle's.
-      const std::shared_ptr<const Model> model = obstacles->model();
+    {  // planned last (it learns, and keeps what it learns for the scene's next queries), listed
+       // first. Scored as it plans this query: on its oracle's labels.
+      const std::shared_ptr<const Model> model = obstacles.model();
       const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
       seedPlanners(o.seed, turn);
       PlannerOptions learning = options;
       learning.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `fcl`
-      addRow({"Fastron obstacles",
-              planVerifiedLearning(*obstacles, fcl, limits, from, to, learning), 0},
+      addRow({kDefaultMethod, planVerifiedLearning(obstacles, fcl, limits, from, to, learning), 0},
              static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
     }
+    results.rows.push_back(std::move(rows.back()));
+    rows.pop_back();
+    for (PlanRow& row : rows) results.rows.push_back(std::move(row));
   }
 }
 
@@ -364,28 +394,45 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
 
 std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
   std::ostringstream md;
+  const PlannerOptions planner = plannerOptions(o, PlannerType::RrtConnect);
   md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\n"
      << featureSentence(o.features) << " Robot " << o.robot
      << (o.srdf.empty() ? "" : " with the disabled collisions of " + o.srdf.string())
      << (o.selfCollision ? ", self-collision checked by FCL" : ", self-collision not checked")
-     << "; for each problem Fastron is trained on the scene (" << trainingSamples(o)
+     << "; for each problem the models are trained on the scene (" << trainingSamples(o)
      << " samples, then " << trainingUpdates(o) << " active-learning updates"
      << (o.gamma ? ", gamma " + cell(*o.gamma) : "") << (o.beta ? ", beta " + cell(*o.beta) : "")
-     << ") and RRT-Connect plans with Fastron and Hybrid (verified and "
-        "repaired with FCL) and with FCL, "
-     << o.queriesPerScene << " quer" << (o.queriesPerScene == 1 ? "y" : "ies")
+     << ") and RRT-Connect plans with each method, " << o.queriesPerScene << " quer"
+     << (o.queriesPerScene == 1 ? "y" : "ies")
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
         "every "
      << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
      << (o.quick ? ", quick mode" : "") << ". "
      << simplificationSentence(o.simplifyTime, o.simplification)
-     << " Training is reported beside the plans, not in them; the end-to-end time adds each "
-        "scene's training, shared by its queries."
+     << " Plan times exclude training; the end-to-end lines add each scene's training, shared by "
+        "its queries."
      << (o.learnFromVerification
-             ? " Before each query after a scene's first, Fastron's model learns the exact answers "
-               "of the last plan's verification and repair that it got wrong (no oracle call; "
-               "learn_s in results.csv, not in the totals)."
+             ? " Before each query after a scene's first, the paper's model learns the exact "
+               "answers of the last plan's verification and repair that it got wrong (no oracle "
+               "call; learn_s in results.csv, not in the totals)."
              : "")
+     << "\n\n"
+     << "Default method: " << kDefaultMethod
+     << " (what `fastron plan` does): a model of the scene's obstacles "
+     << (o.selfCollision ? "alone (self-collisions left to verification, and learned from it)"
+                         : "(FCL's labels)")
+     << "; when it finds no path within "
+     << durationText(std::min(planner.approximateShare, planner.modelShare) * planner.timeLimit)
+     << ", a hybrid asking FCL" << (o.selfCollision ? " without self-collision" : "")
+     << " about each \"collides\" plans with half the planner's range; its path is verified and "
+        "repaired with FCL"
+     << (planner.learningRounds > 0 ? ", learning what verification finds it got wrong first" : "")
+     << ". Fastron (paper) and Hybrid (paper): the paper's recipe, a model of everything FCL "
+        "checks with a calibrated band (Hybrid asks FCL inside it), verified and repaired with "
+        "FCL."
+     << (o.selfModel ? " Fastron split: the default method's obstacle model beside a "
+                       "self-collision model learned once for the robot, verified and repaired."
+                     : "")
      << "\n";
 
   std::vector<std::string> groups;
@@ -435,56 +482,47 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
   };
   // Per family, and over all: medians and means of the total time per valid plan, training per
   // scene, and Fastron's end-to-end time (total + training / queries per scene).
+  // Per family, and over all: the plan table, speed-ups without and with training, the models.
   const auto summary = [&](const RowFilter& where) {
     std::ostringstream out;
-    out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"});
+    out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"})
+        << endToEndSpeedups(r, where, 1);
+    if (o.queriesPerScene > 1) out << endToEndSpeedups(r, where, o.queriesPerScene);
     // A scene's training, once: the rows of its first query.
     const auto firstQueryOf = [&](const char* method) -> RowFilter {
       return [&, method](const PlanRow& row) {
         return (!where || where(row)) && row.method == method && row.queryValue("query") == "0";
       };
     };
-    const auto rowsOf = [&](const std::string& method) -> RowFilter {
-      return [&, method](const PlanRow& row) {
-        return (!where || where(row)) && row.method == method;
-      };
-    };
     // A method's model over the scenes: medians of training time and |S|, means of accuracy and
     // TPR (each scene's first query, as trained).
-    struct ModelFigures {
-      double train, support, accuracy, tpr;
+    const auto modelLine = [&](const char* method, const char* labels) {
+      const RowFilter first = firstQueryOf(method);
+      char line[400];
+      std::snprintf(line, sizeof line,
+                    "- %s: trained in a median %s, |S| median %.0f, accuracy %.3f and TPR %.3f "
+                    "(means over scenes; %s).\n",
+                    method, durationText(statistic(first, figure("train_s"), true)).c_str(),
+                    statistic(first, figure("support"), true),
+                    statistic(first, figure("accuracy"), false),
+                    statistic(first, figure("tpr"), false), labels);
+      return std::string(line);
     };
-    const auto modelOf = [&](const RowFilter& firstQueries) {
-      return ModelFigures{statistic(firstQueries, figure("train_s"), true),
-                          statistic(firstQueries, figure("support"), true),
-                          statistic(firstQueries, figure("accuracy"), false),
-                          statistic(firstQueries, figure("tpr"), false)};
-    };
-    const ModelFigures fastron = modelOf(firstQueryOf("Fastron"));
-    const auto total = [&](const std::string& method, bool median) {
-      const RowFilter of = rowsOf(method);
-      return statistic([&](const PlanRow& row) { return of(row) && row.outcome.solved; },
-                       [](const PlanRow& row) { return row.outcome.totalSeconds; }, median);
-    };
-    // The median total of `method`'s plans plus a scene's training shared by its queries.
-    const auto endToEnd = [&](const std::string& method, double trainSeconds) {
-      return total(method, true) + trainSeconds / static_cast<double>(o.queriesPerScene);
-    };
-    char line[800];
-    std::snprintf(line, sizeof line,
-                  "Training per scene: median %s (|S| median %.0f; the trained model's accuracy "
-                  "%.3f and TPR %.3f, means over scenes, against FCL on %zu fresh uniform "
-                  "configurations per scene). End-to-end per query with %zu "
-                  "quer%s per scene, median total + training / queries: Fastron %s, Hybrid %s, "
-                  "FCL %s (FCL / Fastron %.2fx).\n",
-                  durationText(fastron.train).c_str(), fastron.support, fastron.accuracy,
-                  fastron.tpr, testPoints(o), o.queriesPerScene,
-                  o.queriesPerScene == 1 ? "y" : "ies",
-                  durationText(endToEnd("Fastron", fastron.train)).c_str(),
-                  durationText(endToEnd("Hybrid", fastron.train)).c_str(),
-                  durationText(total("FCL", true)).c_str(),
-                  total("FCL", true) / endToEnd("Fastron", fastron.train));
-    out << '\n' << line;
+    char sample[160];
+    std::snprintf(sample, sizeof sample,
+                  "against FCL on %zu fresh uniform configurations per scene", testPoints(o));
+    out << "\nModels per scene:\n"
+        << modelLine(kDefaultMethod, o.selfCollision
+                                         ? "on the obstacles' labels, FCL without self-collision"
+                                         : sample)
+        << modelLine("Fastron (paper)", sample);
+    if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf("Fastron split"))) {
+      out << modelLine("Fastron split",
+                       "with the self-collision model, against FCL with self-collision")
+          << "  (the robot's self-collision model: "
+          << durationText(statistic(firstQueryOf("Fastron split"), figure("self_train_s"), true))
+          << " once, not counted per scene)\n";
+    }
     // Along FCL's paths of the requests (NaN where FCL found none).
     const auto along = [&](const char* name) {
       std::vector<double> values;
@@ -495,61 +533,27 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       }
       return values.empty() ? std::numeric_limits<double>::quiet_NaN() : summarize(values).median;
     };
+    char line[400];
     std::snprintf(line, sizeof line,
-                  "Along FCL's own path of each request (its states every %g rad, all free): a "
-                  "median %.0f%% of them within %.0f cm of an obstacle, and the model calls a "
-                  "median %.0f%% of them colliding.\n",
+                  "\nAlong FCL's own path of each request (its states every %g rad, all free): a "
+                  "median %.0f%% of them within %.0f cm of an obstacle, and the default method's "
+                  "model calls a median %.0f%% of them colliding.\n",
                   o.resolution, 100 * along("fcl_path_near_walls"), 100 * kNearWalls,
                   100 * along("fcl_path_called_colliding"));
     out << line;
-    const RowFilter split = firstQueryOf("Fastron split");
-    if (std::any_of(r.rows.begin(), r.rows.end(), split)) {
-      const ModelFigures model = modelOf(split);
-      const double splitEndToEnd = endToEnd("Fastron split", model.train);
+    const auto relearned = [](const PlanRow& row) {
+      return static_cast<double>(row.outcome.relearned);
+    };
+    if (planner.learningRounds > 0) {
       std::snprintf(line, sizeof line,
-                    "Fastron split: obstacle model per scene median %s (|S| median %.0f; with "
-                    "the self-collision model, accuracy %.3f and TPR %.3f on the same "
-                    "configurations), the robot's self-collision model %s once; end-to-end per "
-                    "query %s without the self-collision model (FCL / Fastron split %.2fx).\n",
-                    durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
-                    durationText(statistic(split, figure("self_train_s"), true)).c_str(),
-                    durationText(splitEndToEnd).c_str(), total("FCL", true) / splitEndToEnd);
-      out << line;
-    }
-    const RowFilter obstacles = firstQueryOf("Fastron obstacles");
-    if (std::any_of(r.rows.begin(), r.rows.end(), obstacles)) {
-      const ModelFigures model = modelOf(obstacles);
-      const double obstaclesEndToEnd = endToEnd("Fastron obstacles", model.train);
-      const auto relearned = [](const PlanRow& row) {
-        return static_cast<double>(row.outcome.relearned);
-      };
-      const PlannerOptions planner = plannerOptions(o, PlannerType::RrtConnect);
-      const unsigned rounds = planner.learningRounds;
-      char learning[160] = "its colliding paths are repaired at once";
-      if (rounds > 0) {
-        std::snprintf(learning, sizeof learning,
-                      "when verification finds its path colliding it learns the answers it got "
-                      "wrong and plans again, up to %u times (mean %.2f times a query)",
-                      rounds, statistic(rowsOf("Fastron obstacles"), relearned, false));
-      }
-      // The boxes planVerifiedLearning gives the model's first plan and, within it, a plan
-      // between substitute ends.
-      const double modelShare = std::min(planner.approximateShare, planner.modelShare);
-      const double substituteShare = std::min(modelShare, planner.substituteShare);
-      std::snprintf(
-          line, sizeof line,
-          "Fastron obstacles: a model of the scene's obstacles alone (self-collisions left to "
-          "verification), trained in a median %s (|S| median %.0f; accuracy %.3f and TPR %.3f "
-          "on the obstacles' labels of the same configurations); when it finds no path within "
-          "%s (%.2g%% of the time limit; %s between substitute ends, when it calls the start or "
-          "goal colliding), a hybrid asking FCL without self-collision (the model's oracle) about "
-          "each \"collides\" plans with half the planner's range; "
-          "%s; "
-          "end-to-end per query %s (FCL / Fastron obstacles %.2fx).\n",
-          durationText(model.train).c_str(), model.support, model.accuracy, model.tpr,
-          durationText(modelShare * planner.timeLimit).c_str(), 100 * modelShare,
-          durationText(substituteShare * planner.timeLimit).c_str(), learning,
-          durationText(obstaclesEndToEnd).c_str(), total("FCL", true) / obstaclesEndToEnd);
+                    "When verification finds its path colliding, %s learns the answers it got "
+                    "wrong and plans again, up to %u times (mean %.2f times a query).\n",
+                    kDefaultMethod, planner.learningRounds,
+                    statistic(
+                        [&](const PlanRow& row) {
+                          return (!where || where(row)) && row.method == kDefaultMethod;
+                        },
+                        relearned, false));
       out << line;
     }
     return out.str();
@@ -586,8 +590,8 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
        << row.method << " | " << plan.status << " | " << ms(plan.planSeconds) << " | "
        << ms(plan.verifySeconds) << " | " << ms(plan.repairSeconds) << " | "
        << ms(plan.totalSeconds) << " | " << length << " | " << collides << " | "
-       << (row.method == "Fastron" ? ms(row.figure("train_s")) : "—") << " | "
-       << row.queryValue("note") << " |\n";
+       << (row.method != "FCL" ? ms(row.figure("train_s")) : "—") << " | " << row.queryValue("note")
+       << " |\n";
   }
   return md.str();
 }

@@ -1,5 +1,6 @@
 #include "fastron/experiments/problem_families.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -48,12 +49,19 @@ Eigen::Vector3d structureOrigin(ProblemFamily family) {
                                        : Eigen::Vector3d(-0.15, 0, -1.02);
 }
 
+// The object's place on the base plate before any variation: the target the structure is lifted
+// to bring within a robot's reach.
+Eigen::Vector3d nominalTarget(ProblemFamily family) {
+  const double above = family == ProblemFamily::Cage ? 0.035 : 0.07;
+  return structureOrigin(family) + Eigen::Vector3d(0.8, 0, 0.46 + above + 0.12);
+}
+
 // The whole structure turned about the robot's z axis and shifted, as MotionBenchMaker varies its
-// scenes, with the object at a random place on the base plate.
-Scene placeStructure(ProblemFamily family, Rng& rng, Eigen::Vector3d& target) {
+// scenes, with the object at a random place on the base plate; all of it raised by `lift`.
+Scene placeStructure(ProblemFamily family, Rng& rng, double lift, Eigen::Vector3d& target) {
   std::uniform_real_distribution<double> unit(-1, 1);
   const double yaw = 0.35 * unit(rng);
-  const Eigen::Vector3d shift(0.08 * unit(rng), 0.12 * unit(rng), 0.05 * unit(rng));
+  const Eigen::Vector3d shift(0.08 * unit(rng), 0.12 * unit(rng), 0.05 * unit(rng) + lift);
   const Eigen::Isometry3d place =
       makePose(Eigen::Vector3d::Zero(), {0, 0, yaw}) * makePose(structureOrigin(family) + shift);
   Scene scene;
@@ -94,6 +102,36 @@ bool findConfiguration(const Robot& robot, int tip, const FclChecker& checker, s
     }
   }
   return false;
+}
+
+// Lifts of the structure (m) for a robot that cannot reach into it where MotionBenchMaker puts it
+// for the Panda: those that bring the most of the tip's places (at uniform configurations) within
+// `reach` of the nominal target first. A lift of 0 keeps the benchmark's own layout.
+std::vector<double> liftsByReach(const Robot& robot, int tip, ProblemFamily family, double reach) {
+  constexpr double kStep = 0.05, kMost = 2.0;
+  constexpr std::size_t kSamples = 20000;
+  Rng rng(7);
+  const Configurations q = uniformConfigurations(robot.limits(), kSamples, rng);
+  KinematicsData kinematics = makeKinematicsData(robot);
+  const Eigen::Vector3d target = nominalTarget(family);
+  std::vector<std::pair<std::size_t, double>> scored;  // (tips within reach, lift)
+  std::vector<Eigen::Vector3d> tips;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    forwardKinematics(robot, q.row(i).data(), kinematics);
+    tips.push_back(kinematics.linkPoses[static_cast<std::size_t>(tip)].translation());
+  }
+  for (double lift = -kMost; lift <= kMost + 1e-9; lift += kStep) {
+    const Eigen::Vector3d at = target + Eigen::Vector3d(0, 0, lift);
+    const auto near = static_cast<std::size_t>(
+        std::count_if(tips.begin(), tips.end(),
+                      [&](const Eigen::Vector3d& p) { return (p - at).norm() <= reach; }));
+    if (near > 0) scored.emplace_back(near, lift);
+  }
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<double> lifts;
+  for (const auto& [near, lift] : scored) lifts.push_back(lift);
+  return lifts;
 }
 
 // Of the child of the last actuated joint and the links fixed to it, the one farthest from it: the
@@ -145,24 +183,41 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
   Rng rng(options.seed);
   std::vector<GeneratedProblem> problems;
   constexpr int kPlacements = 20;
-  while (problems.size() < options.count) {
-    GeneratedProblem problem;
-    bool found = false;
-    for (int placement = 0; placement < kPlacements && !found; ++placement) {
+  // The benchmark's layout (lift 0) unless the first problem finds no start and goal there; then
+  // the lifts that bring the structure within the robot's reach, best first, a few placements each.
+  std::vector<double> lifts{0.0};
+  constexpr std::size_t kLiftsTried = 6;
+  constexpr int kPlacementsPerLift = 4;
+  const auto tryPlacements = [&](double lift, int placements, GeneratedProblem& problem) {
+    for (int placement = 0; placement < placements; ++placement) {
       Eigen::Vector3d target;
-      problem.scene = placeStructure(options.family, rng, target);
+      problem.scene = placeStructure(options.family, rng, lift, target);
       const FclChecker checker(robot, problem.scene, {.selfCollision = options.selfCollision});
       const auto nearTarget = [&](const Eigen::Vector3d& p) {
         return (p - target).norm() <= options.reach;
       };
-      // In front of the robot, between it and the structure, above its base.
-      const auto ready = [](const Eigen::Vector3d& p) {
-        return p.x() > 0.15 && p.x() < 0.35 && std::abs(p.y()) < 0.25 && p.z() > 0.3 && p.z() < 0.7;
+      // In front of the robot, between it and the structure, above its base (raised with it).
+      const auto ready = [lift](const Eigen::Vector3d& p) {
+        return p.x() > 0.15 && p.x() < 0.35 && std::abs(p.y()) < 0.25 && p.z() > 0.3 + lift &&
+               p.z() < 0.7 + lift;
       };
-      found = findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, nearTarget,
-                                problem.goal) &&
-              findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, ready,
-                                problem.start);
+      if (findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, nearTarget,
+                            problem.goal) &&
+          findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, ready,
+                            problem.start))
+        return true;
+    }
+    return false;
+  };
+  while (problems.size() < options.count) {
+    GeneratedProblem problem;
+    bool found = tryPlacements(lifts.front(), kPlacements, problem);
+    if (!found && problems.empty()) {
+      const std::vector<double> byReach = liftsByReach(robot, tip, options.family, options.reach);
+      for (std::size_t i = 0; i < byReach.size() && i < kLiftsTried && !found; ++i) {
+        found = tryPlacements(byReach[i], kPlacementsPerLift, problem);
+        if (found) lifts = {byReach[i]};
+      }
     }
     if (!found) {
       throw Error("no free start and goal for problem " + std::to_string(problems.size() + 1) +

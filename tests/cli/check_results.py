@@ -7,6 +7,7 @@ the vectorised model far more than FCL's code, which is not instrumented.
 """
 import csv
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -73,10 +74,10 @@ def check_sweep(rows, parameter):
             fail(f"support_ratio out of (0, 1]: {row}")
 
 
-def check_plans(rows, methods, every_method_solves=True):
+def check_plans(rows, methods, every_method_solves=True, paper="Fastron"):
     """Planning experiments: every final path is free under FCL, times add up, and (unless the
     queries are hard enough that any planner may time out, as the UR3 shelf's) each method solves
-    something."""
+    something. `paper` names the paper's model-only method (its plans ask FCL nothing)."""
     found = {r["method"] for r in rows}
     if found != set(methods):
         fail(f"methods {sorted(found)}, expected {sorted(methods)}")
@@ -84,7 +85,7 @@ def check_plans(rows, methods, every_method_solves=True):
         if row["solved"] not in ("0", "1"):
             fail(f"solved must be 0 or 1: {row}")
         share = value(row, "exact_share")
-        expected_share = {"Fastron": 0, "GJK": 0, "FCL": 1}.get(row["method"])
+        expected_share = {paper: 0, "GJK": 0, "FCL": 1}.get(row["method"])
         if not 0 <= share <= 1 or (expected_share is not None and share != expected_share):
             fail(f"share of plan queries FCL answered out of place: {row}")
         if row["solved"] == "1":
@@ -108,7 +109,7 @@ def check_plans(rows, methods, every_method_solves=True):
             continue
         if row["fallback"] == "1" and row["planned_on"] != exact:
             fail(f"a whole-motion fallback planned on {row['planned_on']!r}, not {exact!r}: {row}")
-        if row["method"] == "Fastron" and row["fallback"] == "0" and row["planned_on"] not in (
+        if row["method"] == paper and row["fallback"] == "0" and row["planned_on"] not in (
                 "Fastron", "Fastron+" + exact):
             fail(f"a Fastron path planned on {row['planned_on']!r}: {row}")
     for method in methods if every_method_solves else []:
@@ -160,29 +161,29 @@ def main():
             fail(f"planners {sorted({r['planner'] for r in rows})}")
     elif name == "motion-bench":
         # The split model plans only with --self-model, whose run reports its training.
-        split = "Fastron split: obstacle model per scene" in report
-        # The obstacle model plans whenever self-collision is checked (then the split may too).
-        obstacles = "Fastron obstacles: a model of the scene's obstacles alone" in report
-        check_plans(rows, ["Fastron", "Hybrid", "FCL"] + (["Fastron split"] if split else []) +
-                    (["Fastron obstacles"] if obstacles else []))
+        split = "- Fastron split: trained in" in report
+        if "Default method: Fastron (what `fastron plan` does)" not in report:
+            fail("report.md does not name the default method")
+        if not re.search(r"Median end-to-end time of FCL / of each method, training included "
+                         r"\(one query per scene\): RRTConnect: Fastron [0-9.]+x", report):
+            fail("report.md has no end-to-end line with training for the default method")
+        check_plans(rows, ["Fastron", "Fastron (paper)", "Hybrid (paper)", "FCL"] +
+                    (["Fastron split"] if split else []), paper="Fastron (paper)")
         if split != any(r["method"] == "Fastron split" for r in rows):
             fail("report.md and results.csv disagree about the split model")
-        if split and not obstacles:
-            fail("the split model's run has no obstacle model row")
         for row in rows:
             relearned = value(row, "relearned")
-            if row["method"] != "Fastron obstacles" and (relearned != 0 or value(row, "relearn_s") != 0):
-                fail(f"only the obstacle model learns within a query: {row}")
+            if row["method"] != "Fastron" and (relearned != 0 or value(row, "relearn_s") != 0):
+                fail(f"only the default method learns within a query: {row}")
             if relearned > 3 or (relearned > 0 and not 0 < value(row, "relearn_s") <= value(row, "plan_s")):
                 fail(f"learning rounds out of place: {row}")
         # Every model's accuracy and TPR beside its speed, scored against FCL per scene.
         rate_columns([r for r in rows if r["method"] != "FCL"], ["accuracy", "tpr"])
         for row in rows:
-            if row["method"] in ("Fastron", "Fastron split", "Fastron obstacles") and math.isnan(
-                    value(row, "accuracy")):
+            if row["method"] != "FCL" and math.isnan(value(row, "accuracy")):
                 fail(f"no accuracy for a model: {row}")
-        if "the trained model's accuracy" not in report:
-            fail("report.md does not give the trained model's accuracy")
+        if "Models per scene:\n- Fastron: trained in" not in report:
+            fail("report.md does not give the trained models' accuracy")
         # Along FCL's own path of each request: rates, measured wherever FCL solved the request.
         rate_columns(rows, ["fcl_path_near_walls", "fcl_path_called_colliding"])
         for row in rows:

@@ -11,6 +11,7 @@
 #include "fastron/core/error.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/srdf.h"
 #include "fastron/geometry/urdf.h"
@@ -253,6 +254,29 @@ TEST(RequestRobot, SceneFilesGiveTheRobotState) {
                     "s.yaml");
               }),
               HasSubstr("s.yaml:3: robot_state.joint_state: one position per name is needed"));
+}
+
+// The validation robots (scripts/make_validation_robots.py): their SRDFs name the catalogue's
+// joints as a group, their mimics drive the gripper, and the links their SRDFs name that the URDF
+// lacks are warnings.
+TEST(ValidationRobots, LoadWithTheirGroupsMimicsAndWarnings) {
+  const RobotDescription arm = loadRobotDescription("gripper-arm");
+  EXPECT_EQ(arm.robot.dof(), 6u);
+  EXPECT_EQ(arm.robot.mimicJoints().size(), 5u);
+  EXPECT_EQ(arm.srdf.group("manipulator").joints, arm.robot.actuatedJointNames());
+  EXPECT_EQ(arm.srdf.group("arm_and_gripper").joints.back(), "finger_joint");
+  ASSERT_EQ(arm.srdf.warnings.size(), 1u);
+  EXPECT_THAT(arm.srdf.warnings[0], HasSubstr("link 'camera_link'"));
+  const KinematicsData home = kinematicsAtZero(arm.robot);
+  EXPECT_LT((linkOrigin(arm.robot, home, "flange") - Eigen::Vector3d(0, 0.105, 1.095)).norm(),
+            1e-12);
+
+  const RobotDescription mobile = loadRobotDescription("mobile-arm");
+  EXPECT_EQ(mobile.robot.dof(), 8u);
+  EXPECT_EQ(mobile.srdf.group("arm_with_torso").joints, mobile.robot.actuatedJointNames());
+  EXPECT_EQ(mobile.srdf.group("arm").joints.size(), 7u);
+  EXPECT_EQ(mobile.srdf.warnings.size(), 2u);  // base_laser_link, estop_link
+  EXPECT_EQ(mobile.robot.heldPosition(mobile.robot.jointIndex("r_gripper_finger_joint")), 0.04);
 }
 
 }  // namespace

@@ -211,14 +211,14 @@ TEST_F(Urdf, MalformedFilesNameTheProblem) {
       HasSubstr("invalid URDF"));
   EXPECT_THAT(messageOf<FileError>([&] { loadUrdf(path("absent.urdf")); }),
               HasSubstr("absent.urdf: cannot open"));
-  EXPECT_THAT(
-      messageOf<FileError>([&] { loadRobot("not_a_robot"); }),
-      HasSubstr("neither a shipped robot (rod2, rod4, baxter, ur3, panda, panda-mesh, psm)"));
+  EXPECT_THAT(messageOf<FileError>([&] { loadRobot("not_a_robot"); }),
+              HasSubstr("neither a shipped robot (rod2, rod4, baxter, ur3, panda, panda-mesh, psm, "
+                        "gripper-arm, mobile-arm)"));
 }
 
 TEST(RobotLibrary, EveryShippedRobotLoadsWithItsJoints) {
   const auto robots = shippedRobots();
-  ASSERT_EQ(robots.size(), 7u);
+  ASSERT_EQ(robots.size(), 9u);
   for (const RobotEntry& entry : robots) {
     const Robot robot = loadRobot(entry.name);
     EXPECT_EQ(robot.actuatedJointNames(), entry.joints) << entry.name;

@@ -12,6 +12,10 @@
 
 namespace fastron::experiments {
 
+/// The method `fastron plan` uses by default, reported first: a model of the scene's obstacles
+/// (self-collisions left to verification), planned on with planVerifiedLearning.
+inline constexpr const char* kDefaultMethod = "Fastron";
+
 struct MotionBenchOptions {
   /// A family: a folder of sceneNNNN.yaml / requestNNNN.yaml pairs; or a folder of families
   /// (sub-folders of such pairs), each reported on its own and all together.
@@ -29,9 +33,9 @@ struct MotionBenchOptions {
   /// the robot (joint space, empty scene) beside each scene's model of obstacles only, verified
   /// and repaired with FCL (self-collision included) like the rest.
   bool selfModel = false;
-  /// Between a scene's queries, Fastron's model learns the exact answers of the last plan's
-  /// verification and repair that it got wrong (ProxyCollisionDetector::learnObservations: the
-  /// scene stands still, so no oracle call).
+  /// Between a scene's queries, the paper's model ("Fastron (paper)") learns the exact answers of
+  /// the last plan's verification and repair that it got wrong
+  /// (ProxyCollisionDetector::learnObservations: the scene stands still, so no oracle call).
   bool learnFromVerification = false;
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
   std::uint64_t seed = 1;
@@ -60,12 +64,13 @@ struct MotionBenchOptions {
 
 /// Each problem: the robot as the request plans it (robotForRequest: the request's SRDF group
 /// actuated, other joints where the scene and the start state put them), Fastron trained on the
-/// scene, then RRT-Connect with Fastron and Hybrid (verified and repaired) and with FCL on each
-/// query. One row per (family, problem, query, method); query 0 is the request. A goal that
-/// touches objects with the hand only is a grasp: hand-object contacts are allowed (as MoveIt's
-/// touch links do), and `note` says so. A problem that cannot be run (a file that cannot be read,
-/// a request the robot cannot take) is recorded in PlanRows::skipped with its error, and the run
-/// goes on. Throws FileError naming the folder when it holds no problems, or the robot's files.
+/// scene, then RRT-Connect with the default method (kDefaultMethod), the paper's "Fastron
+/// (paper)" and "Hybrid (paper)" (verified and repaired) and FCL on each query. One row per
+/// (family, problem, query, method); query 0 is the request. A goal that touches objects with the
+/// hand only is a grasp: hand-object contacts are allowed (as MoveIt's touch links do), and `note`
+/// says so. A problem that cannot be run (a file that cannot be read, a request the robot cannot
+/// take) is recorded in PlanRows::skipped with its error, and the run goes on. Throws FileError
+/// naming the folder when it holds no problems, or the robot's files.
 PlanRows runMotionBench(const MotionBenchOptions& options, const Progress& progress);
 std::string motionBenchReport(const PlanRows& results, const MotionBenchOptions& options);
 

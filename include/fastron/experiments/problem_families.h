@@ -49,10 +49,13 @@ struct GeneratedProblem {
 
 /// `options.count` problems, the same for the same robot and options. The structure is placed
 /// 0.45-1.15 m in front of the robot's base (+x) as MotionBenchMaker places it for the Panda: the
-/// cage's floor 0.26 m above the base, the box's 0.58 m below it. Made for an arm of the Panda's
-/// reach standing at the origin. Throws InvalidArgument for bad options or an
-/// unknown tip link, and Error when no start or goal is found in 20 placements (a robot that
-/// cannot reach into the structure).
+/// cage's floor 0.26 m above the base, the box's 0.58 m below it. A robot that finds no start and
+/// goal there for the first problem (another height, a mobile base, a torso) gets the structure
+/// raised or lowered instead, by the lifts that bring the most of its tip's places at uniform
+/// configurations near the object first (a few placements each), and keeps the first that works
+/// for every problem; the start region is raised with it. Throws InvalidArgument for bad options
+/// or an unknown tip link, and Error when no start or goal is found (a robot that cannot reach
+/// into the structure).
 std::vector<GeneratedProblem> generateProblems(const Robot& robot, const ProblemOptions& options);
 
 /// Writes each problem as sceneNNNN.yaml and requestNNNN.yaml (NNNN from 0001) into `folder`,
