@@ -54,7 +54,8 @@ struct PlanOptions {
   std::size_t samples = 5000, updates = 3;
   unsigned learningRounds = PlannerOptions{}.learningRounds;
   std::optional<double> gamma, beta;
-  double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1;
+  double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1,
+         range = 0;
   std::uint64_t seed = 1;
   PathSimplification simplification = PathSimplification::Full;
   bool selfCollision = false;
@@ -160,6 +161,7 @@ int runPlan(const PlanOptions& o) {
   const CheckerOptions checkerOptions{o.selfCollision, o.padding};
   const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
+                               .range = o.range,
                                .resolution = o.resolution,
                                .modelResolution = o.modelResolution,
                                .timeLimit = o.timeLimit,
@@ -283,6 +285,10 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--time-limit", o->timeLimit, "seconds per planning query")
       ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd->add_option("--range", o->range,
+                  "longest tree edge in joint space (default: OMPL's, a fifth of the diagonal of "
+                  "the joint limits)")
       ->check(numberAbove(0));
   cmd->add_option("--simplify-time", o->simplifyTime,
                   "seconds of OMPL path simplification (0: the planner's path as found)")

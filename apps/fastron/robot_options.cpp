@@ -1,6 +1,7 @@
 #include "robot_options.h"
 
 #include <iostream>
+#include <map>
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/control_points.h"
@@ -78,6 +79,12 @@ void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
   cmd.add_option("--control-per-body", options.automatic.maxPerBody,
                  "fk: at most this many automatic control points on one rigid body (0: no limit)")
       ->capture_default_str();
+  cmd.add_option("--control-rule", options.automatic.rule,
+                 "fk: how automatic control points are chosen: spread (the points that move "
+                 "most) or cover (spread along the chain)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, ControlPointRule>{
+          {"spread", ControlPointRule::Spread}, {"cover", ControlPointRule::Cover}}))
+      ->default_str("spread");
 }
 
 FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot) {

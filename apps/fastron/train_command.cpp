@@ -160,23 +160,30 @@ std::vector<double> grownMargins(const std::vector<double>& margins) {
   return used;
 }
 
-/// The second candidate of the held-out rounds: one more automatic control point than `features`
-/// and beta kMorePointsBeta, when `features` are the automatic task-space ones of a scene without
-/// self-collision labels (where it was measured) and the rule has a point more to give; none
-/// otherwise.
-std::vector<ModelCandidate> secondCandidate(const TrainOptions& o, const Robot& robot,
+/// The other candidates of the held-out rounds, when `features` are the automatic task-space ones
+/// of a scene without self-collision labels (where they were measured): one more automatic
+/// control point than `features` and beta kMorePointsBeta, by the spread rule (when it has a point
+/// more to give) and by the cover rule (ControlPointRule::Cover, which the robots of other makers
+/// needed: docs/algorithms.md); none otherwise.
+std::vector<ModelCandidate> otherCandidates(const TrainOptions& o, const Robot& robot,
                                             const FeatureMap& features, const TrainParams& params) {
   if (!o.secondCandidate || o.selfCollision || features.kind() != FeatureKind::Kinematic ||
       !o.features.controlLinks.empty() || o.features.automatic.maxPoints == 0) {
     return {};
   }
-  ControlPointOptions more = o.features.automatic;
-  ++more.maxPoints;
-  std::vector<ControlPoint> points = defaultControlPoints(robot, more);
-  if (points.size() * 3 <= features.featureDim()) return {};
   TrainParams candidateParams = params;
   candidateParams.beta = kMorePointsBeta;
-  return {{robotFeatures(robot, FeatureKind::Kinematic, std::move(points)), candidateParams}};
+  std::vector<ModelCandidate> candidates;
+  for (const ControlPointRule rule : {ControlPointRule::Spread, ControlPointRule::Cover}) {
+    ControlPointOptions more = o.features.automatic;
+    ++more.maxPoints;
+    more.rule = rule;
+    std::vector<ControlPoint> points = defaultControlPoints(robot, more);
+    if (rule == o.features.automatic.rule && points.size() * 3 <= features.featureDim()) continue;
+    candidates.push_back(
+        {robotFeatures(robot, FeatureKind::Kinematic, std::move(points)), candidateParams});
+  }
+  return candidates;
 }
 
 /// fastron train --robot R --scene S: FCL-labelled uniform samples and Algorithm 1, then either
@@ -222,7 +229,7 @@ int trainOnScene(const TrainOptions& o) {
       grownOracles.push_back(grown.back().get());
     }
     const std::vector<ModelCandidate> alternatives =
-        secondCandidate(o, robot, features, params.train);
+        otherCandidates(o, robot, features, params.train);
     Rng rng(o.seed);
     const HeldOutTraining trained = trainToHeldOutTargets(
         *fcl, features, params.train, o.samples, o.heldOut, rng, 0, grownOracles, alternatives);

@@ -167,22 +167,31 @@ void bindGeometry(py::module_& m) {
   m.def(
       "robot_features",
       [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points,
-         std::size_t maxPoints, double minSpacing, std::size_t maxPerBody) {
+         std::size_t maxPoints, double minSpacing, std::size_t maxPerBody,
+         const std::string& rule) {
         const FeatureKind parsed = parseFeatureKind(kind);
         if (parsed == FeatureKind::JointScaling) return robotFeatures(robot, parsed);
+        if (rule != "spread" && rule != "cover")
+          throw InvalidArgument("control point rule must be 'spread' or 'cover', got '" + rule +
+                                "'");
+        const ControlPointOptions options{
+            .rule = rule == "cover" ? ControlPointRule::Cover : ControlPointRule::Spread,
+            .maxPoints = maxPoints,
+            .minSpacing = minSpacing,
+            .maxPerBody = maxPerBody};
         return robotFeatures(robot, parsed,
-                             points.empty()
-                                 ? defaultControlPoints(robot, {maxPoints, minSpacing, maxPerBody})
-                                 : namedControlPoints(robot, points));
+                             points.empty() ? defaultControlPoints(robot, options)
+                                            : namedControlPoints(robot, points));
       },
       py::arg("robot"), py::arg("kind") = "fk",
       py::arg("control_points") = std::vector<std::string>{}, py::kw_only(),
       py::arg("max_points") = ControlPointOptions{}.maxPoints,
       py::arg("min_spacing") = ControlPointOptions{}.minSpacing,
-      py::arg("max_per_body") = ControlPointOptions{}.maxPerBody,
+      py::arg("max_per_body") = ControlPointOptions{}.maxPerBody, py::arg("rule") = "spread",
       "The features a model of `robot` learns on: 'fk' (world positions of control points: "
       "'LINK' or 'LINK@X:Y:Z'; default: chosen automatically, at most max_points of them, "
-      "min_spacing metres apart on average, max_per_body on one rigid body; 0 = no limit) or "
+      "min_spacing metres apart on average, max_per_body on one rigid body; 0 = no limit; rule "
+      "'spread' (the points that move most) or 'cover' (spread along the chain)) or "
       "'joints' (joint scaling).");
   m.def(
       "load_model",

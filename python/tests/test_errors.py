@@ -108,5 +108,7 @@ def test_bad_robot_and_planning_arguments(baxter, baxter_fcl):
         fastron.ProxyCollisionDetector(42, fastron.robot_features(baxter))
     with pytest.raises(fastron.InvalidArgument, match="nope"):
         fastron.robot_features(baxter, "fk", ["nope"])
+    with pytest.raises(fastron.InvalidArgument, match="'spread' or 'cover', got 'near'"):
+        fastron.robot_features(baxter, rule="near")
     with pytest.raises(fastron.Error, match="initialize"):
         fastron.ProxyCollisionDetector(baxter_fcl, fastron.robot_features(baxter)).model()

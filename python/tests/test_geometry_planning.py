@@ -29,6 +29,11 @@ def test_automatic_control_points_follow_their_limits(baxter):
     assert fastron.robot_features(baxter, max_points=2).feature_dim == 6
     assert fastron.robot_features(baxter, max_points=0).feature_dim > 12
     assert fastron.robot_features(baxter, "joints", max_points=2).feature_dim == 7
+    # The cover rule spreads the points along the chain: other points, as many.
+    cover = fastron.robot_features(baxter, rule="cover")
+    assert cover.feature_dim == 12
+    q = np.array([0.3, -0.2, 0.1, 1.0, 0.2, 0.5, 0.0])
+    assert not np.allclose(cover.map(q), fastron.robot_features(baxter).map(q))
     mesh = fastron.load_robot("panda-mesh")
     # Three points at most on the hand's rigid body; without the limit it takes all four.
     a = fastron.robot_features(mesh).map(np.zeros(7))

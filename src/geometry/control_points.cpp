@@ -178,6 +178,57 @@ void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
   for (std::size_t k = 0; k < count; ++k) detail::sinCos(angles[k], sines[k], cosines[k]);
 }
 
+/// Whether a rigid body holds options.maxPerBody chosen points already.
+bool bodyFull(const std::vector<const Candidate*>& chosen, const Candidate& c,
+              const ControlPointOptions& options) {
+  const auto onBody = std::count_if(chosen.begin(), chosen.end(),
+                                    [&](const Candidate* other) { return other->body == c.body; });
+  return options.maxPerBody > 0 && static_cast<std::size_t>(onBody) >= options.maxPerBody;
+}
+
+/// ControlPointRule::Spread: most movement first; the stable sort keeps tree order (parents
+/// first) among equals.
+std::vector<const Candidate*> bySpread(std::vector<Candidate>& candidates,
+                                       const ControlPointOptions& options) {
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.spread > b.spread; });
+  std::vector<const Candidate*> chosen;
+  for (const Candidate& c : candidates) {
+    if (options.maxPoints > 0 && chosen.size() == options.maxPoints) break;
+    const bool tooClose = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* other) {
+      return meanDistance(c, *other) < std::max(options.minSpacing, kStaticTolerance);
+    });
+    if (!tooClose && !bodyFull(chosen, c, options)) chosen.push_back(&c);
+  }
+  return chosen;
+}
+
+/// ControlPointRule::Cover: the candidate that moves most, then each time the one least
+/// explained by the points chosen (its mean distance to the nearest, capped by how much it moves
+/// at all: a point that barely moves needs no point of its own).
+std::vector<const Candidate*> byCover(const std::vector<Candidate>& candidates,
+                                      const ControlPointOptions& options) {
+  std::vector<const Candidate*> chosen;
+  std::vector<double> uncovered;  // per candidate
+  for (const Candidate& c : candidates) uncovered.push_back(c.spread);
+  for (;;) {
+    if (options.maxPoints > 0 && chosen.size() == options.maxPoints) break;
+    std::size_t best = candidates.size();
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (bodyFull(chosen, candidates[i], options)) continue;
+      // Ties keep tree order (parents first).
+      if (best == candidates.size() || uncovered[i] > uncovered[best]) best = i;
+    }
+    if (best == candidates.size() ||
+        (!chosen.empty() && uncovered[best] < std::max(options.minSpacing, kStaticTolerance)))
+      break;
+    chosen.push_back(&candidates[best]);
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      uncovered[i] = std::min(uncovered[i], meanDistance(candidates[i], candidates[best]));
+  }
+  return chosen;
+}
+
 }  // namespace
 
 std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
@@ -189,22 +240,9 @@ std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
   std::vector<Candidate> candidates = candidatePoints(robot);
   place(robot, candidates);
   std::erase_if(candidates, [](const Candidate& c) { return c.spread < kStaticTolerance; });
-  // Most movement first; the stable sort keeps tree order (parents first) among equals.
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.spread > b.spread; });
-  std::vector<const Candidate*> chosen;
-  for (const Candidate& c : candidates) {
-    if (options.maxPoints > 0 && chosen.size() == options.maxPoints) break;
-    const bool tooClose = std::any_of(chosen.begin(), chosen.end(), [&](const Candidate* other) {
-      return meanDistance(c, *other) < std::max(options.minSpacing, kStaticTolerance);
-    });
-    const auto onBody = std::count_if(chosen.begin(), chosen.end(), [&](const Candidate* other) {
-      return other->body == c.body;
-    });
-    const bool bodyFull =
-        options.maxPerBody > 0 && static_cast<std::size_t>(onBody) >= options.maxPerBody;
-    if (!tooClose && !bodyFull) chosen.push_back(&c);
-  }
+  const std::vector<const Candidate*> chosen = options.rule == ControlPointRule::Spread
+                                                   ? bySpread(candidates, options)
+                                                   : byCover(candidates, options);
   if (chosen.empty()) {
     throw InvalidArgument(
         "robot '" + robot.name() +

@@ -202,6 +202,32 @@ TEST(ControlPoints, AtMostThreeAutomaticPointsOnOneRigidBody) {
   EXPECT_EQ(onGripper(defaultControlPoints(panda, {.maxPerBody = 1})), 1);
 }
 
+// The spread rule, tuned on Baxter and the Panda, puts every point of the mobile manipulator
+// near its hand; the cover rule spreads them along the arm, where its held-out misses were
+// (elbow, upper arm: docs/algorithms.md).
+TEST(ControlPoints, TheCoverRuleSpreadsPointsAlongTheChain) {
+  const Robot mobile = loadRobot("mobile-arm");
+  const auto linksOf = [](const std::vector<ControlPoint>& points) {
+    std::vector<std::string> links;
+    for (const ControlPoint& p : points) links.push_back(p.link);
+    return links;
+  };
+  const std::vector<std::string> spread = linksOf(defaultControlPoints(mobile));
+  const std::vector<std::string> cover =
+      linksOf(defaultControlPoints(mobile, {.rule = ControlPointRule::Cover}));
+  EXPECT_THAT(spread, ::testing::ElementsAre("l_gripper_finger_link", "r_gripper_finger_link",
+                                             "gripper_link", "wrist_flex_link"));
+  EXPECT_THAT(cover, ::testing::ElementsAre("l_gripper_finger_link", "forearm_roll_link",
+                                            "wrist_flex_link", "upperarm_roll_link"));
+  EXPECT_EQ(defaultControlPoints(mobile, {.rule = ControlPointRule::Cover}),
+            defaultControlPoints(mobile, {.rule = ControlPointRule::Cover}));
+  // Every point the cover took is at least the spacing from the others, on average.
+  EXPECT_EQ(defaultControlPoints(mobile, {.rule = ControlPointRule::Cover, .maxPoints = 2}).size(),
+            2u);
+  EXPECT_LE(
+      defaultControlPoints(mobile, {.rule = ControlPointRule::Cover, .minSpacing = 10}).size(), 1u);
+}
+
 TEST(ControlPoints, RefusesUnknownLinksAndNoPoints) {
   const Robot baxter = loadRobot("baxter");
   EXPECT_THAT(messageOf<InvalidArgument>([&] { namedControlPoints(baxter, {"no_such_link"}); }),

@@ -17,8 +17,22 @@
 
 namespace FASTRON_API fastron {
 
+/// How defaultControlPoints orders the candidates it takes.
+enum class ControlPointRule {
+  /// By how much they move, the points far down the chain first (measured on Baxter and the
+  /// Panda: docs/algorithms.md).
+  Spread,
+  /// A greedy cover of the moving geometry: the point that moves most, then each time the one
+  /// least explained by the points taken (its mean distance to the nearest of them, capped by how
+  /// much it moves at all), so that the points spread along the chain (a hand, then an elbow, an
+  /// upper arm) rather than crowd the hand. Measured on robots the spread rule was not tuned on:
+  /// docs/algorithms.md, "Control points on robots of other makers".
+  Cover,
+};
+
 /// How control points are chosen automatically (see defaultControlPoints).
 struct ControlPointOptions {
+  ControlPointRule rule = ControlPointRule::Spread;
   /// At most this many points (0 = every candidate left after the spacing rule). More points
   /// cost query time and, measured on Baxter and the Panda, do not buy accuracy (the points far
   /// down the chain are the ones that collide): docs/algorithms.md.
@@ -38,10 +52,11 @@ struct ControlPointOptions {
 /// but no moving descendant, the far end of its geometry (the centre of the face of its bounding
 /// box farthest from the link origin along the longest side). The candidates are placed at 64
 /// seeded random configurations; a candidate that stays within 1 mm of one place is dropped.
-/// The rest are taken in order of how much they move (standard deviation of the position, the
-/// points far down the chain first), skipping one closer than options.minSpacing on average to
-/// a point already taken or on a rigid body that has options.maxPerBody points already, up to
-/// options.maxPoints. The result depends only on the robot.
+/// The rest are taken in the order of options.rule (Spread: how much they move, the standard
+/// deviation of the position; Cover: see ControlPointRule), skipping one closer than
+/// options.minSpacing on average to a point already taken or on a rigid body that has
+/// options.maxPerBody points already, up to options.maxPoints. The result depends only on the
+/// robot and the options.
 std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
                                                const ControlPointOptions& options = {});
 
