@@ -128,6 +128,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped); "
                 "the default method 'Fastron' then models each scene's obstacles alone and "
                 "leaves self-collisions to verification");
+  cmd->add_option("--range", o->settings.range,
+                  "motion-bench: longest tree edge of every method's planner, joint units "
+                  "(default: OMPL's, a fifth of the diagonal of the joint limits)")
+      ->check(numberAbove(0));
   cmd->add_option("--time-limit", o->settings.timeLimit, "planning experiments: seconds per query")
       ->check(numberAbove(0));
   cmd->add_option("--resolution", o->settings.resolution,

@@ -22,6 +22,7 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/self_model.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
@@ -104,7 +105,18 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
                                const std::shared_ptr<const FclChecker>& fcl,
                                const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
                                const PlannerOptions& options) {
-  const auto self = readModel(o.selfModel, robot, "self     ");
+  std::shared_ptr<const Model> self;
+  if (o.selfModel == "auto") {  // learned once for the robot, kept in the cache
+    const pipeline::SelfModel cached = pipeline::selfCollisionModel(robot, {.padding = o.padding});
+    self = cached.model;
+    std::cout << "self     " << cached.file.string() << ", "
+              << (cached.fromCache ? std::string("read from the cache")
+                                   : "trained in " + durationText(cached.trainSeconds) +
+                                         " and kept in the cache")
+              << ", " << self->supportCount() << " support points, features joints\n";
+  } else {
+    self = readModel(o.selfModel, robot, "self     ");
+  }
   const auto obstacles =
       !o.model.empty() ? readModel(o.model, robot, "model    ")
                        : trainObstacleModel(o, robot,
@@ -257,9 +269,11 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--self-model", o->selfModel,
                   "with --self-collision: a model of the robot's self-collisions (fastron train "
-                  "--robot R --self-collision); plan on it beside a model of the scene's "
-                  "obstacles alone, trained here or given with --model")
-      ->check(CLI::ExistingFile);
+                  "--robot R --self-collision), or 'auto': the robot's own, learned once and "
+                  "kept in the cache ($FASTRON_CACHE_DIR, else ~/.cache/fastron); plan on it "
+                  "beside a model of the scene's obstacles alone, trained here or given with "
+                  "--model")
+      ->check(CLI::ExistingFile | CLI::IsMember({"auto"}));
   cmd->add_option("--samples", o->samples, "training samples when no --model is given")
       ->capture_default_str()
       ->check(numberAbove(0));

@@ -16,6 +16,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/urdf.h"
+#include "fastron/pipeline/self_model.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
@@ -185,17 +186,22 @@ struct RobotModels {
   double selfTrainSeconds = 0;
 };
 
-/// The robot's self-collision model, learned once per kinematics: self-collision does not depend
-/// on the scene.
+/// The robot's self-collision model, learned once per robot and kept in the cache
+/// (pipeline::selfCollisionModel): self-collision does not depend on the scene.
 void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const Progress& progress,
                          RobotModels& models) {
-  if (progress) progress("motion-bench: learning the robot's self-collisions");
-  ProxyCollisionDetector self(
-      std::make_shared<FclChecker>(robot, Scene{}, CheckerOptions{.selfCollision = true}),
-      robotFeatures(robot, FeatureKind::JointScaling),
-      withoutBand(experimentProxyParams(FeatureKind::JointScaling, 5, 500, o.seed)));
-  models.selfTrainSeconds = train(self, o.quick ? 2000 : o.selfTrainingPoints, trainingUpdates(o));
-  models.selfModel = std::make_shared<ModelChecker>(self.model(), "Fastron self");
+  if (progress) progress("motion-bench: the robot's self-collision model");
+  const pipeline::SelfModel self =
+      pipeline::selfCollisionModel(robot, {.samples = o.quick ? 2000 : o.selfTrainingPoints,
+                                           .updates = trainingUpdates(o),
+                                           .seed = o.seed,
+                                           .cacheDirectory = o.selfModelCache});
+  if (progress)
+    progress("motion-bench: self-collision model " +
+             std::string(self.fromCache ? "read from " : "trained and kept in ") +
+             self.file.string());
+  models.selfTrainSeconds = self.trainSeconds;
+  models.selfModel = std::make_shared<ModelChecker>(self.model, "Fastron self");
 }
 
 /// `rows` as results.csv so far, written whole to a new file then moved over `path`: an
@@ -406,8 +412,9 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
      << (o.queriesPerScene == 1 ? "y" : "ies")
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
         "every "
-     << edgeSteps(o, "rad") << ", time limit " << o.timeLimit << " s, seed " << o.seed
-     << (o.quick ? ", quick mode" : "") << ". "
+     << edgeSteps(o, "rad") << ", range "
+     << (o.range > 0 ? cell(o.range) + " rad" : std::string("OMPL's default")) << ", time limit "
+     << o.timeLimit << " s, seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
      << simplificationSentence(o.simplifyTime, o.simplification)
      << " Plan times exclude training; the end-to-end lines add each scene's training, shared by "
         "its queries."
@@ -519,9 +526,14 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
     if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf("Fastron split"))) {
       out << modelLine("Fastron split",
                        "with the self-collision model, against FCL with self-collision")
-          << "  (the robot's self-collision model: "
-          << durationText(statistic(firstQueryOf("Fastron split"), figure("self_train_s"), true))
-          << " once, not counted per scene)\n";
+          << "  (the robot's self-collision model: learned once for the robot and kept in the "
+             "cache, not counted per scene; "
+          <<
+          [&] {
+            const double s = statistic(firstQueryOf("Fastron split"), figure("self_train_s"), true);
+            return s > 0 ? "trained in " + durationText(s) : std::string("read from it");
+          }()
+          << ")\n";
     }
     // Along FCL's paths of the requests (NaN where FCL found none).
     const auto along = [&](const char* name) {

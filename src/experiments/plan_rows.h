@@ -113,15 +113,17 @@ std::string speedups(const PlanRows& r, const RowFilter& where,
 
 std::vector<std::string> plannerNames(const std::vector<PlannerType>& types);
 
-/// The planner options of an experiment's options `o` (resolution, time limit, simplification)
-/// for a planner of `type`.
+/// The planner options of an experiment's options `o` (resolution, time limit, simplification,
+/// and the range where `o` has one) for a planner of `type`.
 PlannerOptions plannerOptions(const auto& o, PlannerType type) {
-  return {.type = type,
-          .resolution = o.resolution,
-          .modelResolution = o.modelResolution,
-          .timeLimit = o.timeLimit,
-          .simplifyTime = o.simplifyTime,
-          .simplification = o.simplification};
+  PlannerOptions options{.type = type,
+                         .resolution = o.resolution,
+                         .modelResolution = o.modelResolution,
+                         .timeLimit = o.timeLimit,
+                         .simplifyTime = o.simplifyTime,
+                         .simplification = o.simplification};
+  if constexpr (requires { o.range; }) options.range = o.range;  // where an experiment has one
+  return options;
 }
 
 /// The edge steps of an experiment's plans for its report: "0.03 rad (0.09 rad on a model and its

@@ -164,9 +164,9 @@ std::vector<Experiment> makeRegistry() {
                    return ExperimentOutput{plans.table(), {}, surgicalReport(plans, o)};
                  }});
   all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
-                 planningAnd({"problems", "robot", "package-path", "srdf", "self-collision",
-                              "self-model", "queries-per-scene", "learn-from-verification",
-                              "samples", "updates", "gamma", "beta"}),
+                 planningAnd({"problems", "robot", "package-path", "srdf", "range",
+                              "self-collision", "self-model", "queries-per-scene",
+                              "learn-from-verification", "samples", "updates", "gamma", "beta"}),
                  [](const ExperimentSettings& s, const Progress& progress) {
                    if (s.problems.empty()) {
                      throw InvalidArgument(
@@ -180,6 +180,7 @@ std::vector<Experiment> makeRegistry() {
                    o.packagePaths = s.packagePaths;
                    o.srdf = s.srdf;
                    o.resultsFile = s.resultsFile;
+                   o.range = s.range;
                    o.selfCollision = s.selfCollision;
                    o.queriesPerScene = s.queriesPerScene;
                    o.selfModel = s.selfModel;

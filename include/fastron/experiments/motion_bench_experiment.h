@@ -38,6 +38,9 @@ struct MotionBenchOptions {
   /// (ProxyCollisionDetector::learnObservations: the scene stands still, so no oracle call).
   bool learnFromVerification = false;
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
+  /// Where the self-collision model is kept and found again (pipeline::SelfModelOptions;
+  /// empty: pipeline::defaultCacheDirectory()).
+  std::filesystem::path selfModelCache;
   std::uint64_t seed = 1;
   bool quick = false;
   /// Uniform samples of each scene's models before active learning (unset: 5000, quick 1500).
@@ -51,6 +54,10 @@ struct MotionBenchOptions {
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
+  /// Longest tree edge of every method's RRT-Connect, joint units (0: OMPL's default, a fifth of
+  /// the diagonal of the joint limits: 3.3 rad in Baxter's 14 joints, where the exact baseline
+  /// failed; docs/planning.md, "Fourteen joints").
+  double range = 0;
   double resolution = 0.03;
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).

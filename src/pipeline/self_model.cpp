@@ -1,0 +1,163 @@
+#include "fastron/pipeline/self_model.h"
+
+#include <unistd.h>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "fastron/core/error.h"
+#include "fastron/core/model_file.h"
+#include "fastron/geometry/checker_options.h"
+#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+
+namespace fastron::pipeline {
+namespace {
+
+/// 64-bit FNV-1a, fed field by field.
+class Hash {
+ public:
+  void bytes(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+      h_ ^= p[i];
+      h_ *= 1099511628211ULL;
+    }
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  void doubles(const double* v, std::size_t n) { bytes(v, n * sizeof(double)); }
+  std::uint64_t digest() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ULL;
+};
+
+void hashShape(Hash& h, const Shape& shape) {
+  h.value(shape.index());
+  if (const auto* box = std::get_if<Box>(&shape)) h.doubles(box->size.data(), 3);
+  if (const auto* sphere = std::get_if<Sphere>(&shape)) h.value(sphere->radius);
+  if (const auto* cylinder = std::get_if<Cylinder>(&shape)) {
+    h.value(cylinder->radius);
+    h.value(cylinder->length);
+  }
+  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
+    h.value(capsule->radius);
+    h.value(capsule->length);
+  }
+  if (const auto* mesh = std::get_if<Mesh>(&shape)) {
+    for (const Eigen::Vector3d& v : mesh->mesh->vertices) h.doubles(v.data(), 3);
+    for (const Eigen::Vector3i& t : mesh->mesh->triangles) h.bytes(t.data(), 3 * sizeof(int));
+  }
+}
+
+/// The preset of the self-collision model: joint-space RQ kernel, gamma 5 and beta 500, no band
+/// (docs/planning.md, "A self-collision model learned once").
+ProxyParams selfModelParams(std::uint64_t seed) {
+  ProxyParams p;
+  p.train.kernel = {KernelType::RationalQuadratic, 5};
+  p.train.beta = 500;
+  p.train.maxIterations = 20000;
+  p.train.maxSupportPoints = kRobotSupportCap;
+  p.activeLearning.maxSamples = 500;
+  p.seed = seed;
+  p.calibrationSamples = 0;
+  return p;
+}
+
+/// The cached model, or none when the file is absent or does not fit the robot (a file of
+/// another version, cut short, or of other limits).
+std::shared_ptr<const Model> readCached(const std::filesystem::path& file, const Robot& robot) {
+  if (!std::filesystem::is_regular_file(file)) return nullptr;
+  try {
+    auto model = std::make_shared<const Model>(loadModel(file));
+    const JointLimits limits = robot.limits();
+    if (model->dim() != robot.dof() || model->features().kind() != FeatureKind::JointScaling ||
+        !model->limits().lower().isApprox(limits.lower()) ||
+        !model->limits().upper().isApprox(limits.upper()))
+      return nullptr;
+    return model;
+  } catch (const Error&) {
+    return nullptr;
+  }
+}
+
+}  // namespace
+
+std::filesystem::path defaultCacheDirectory() {
+  if (const char* dir = std::getenv("FASTRON_CACHE_DIR"); dir != nullptr && *dir != '\0')
+    return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0')
+    return std::filesystem::path(xdg) / "fastron";
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0')
+    return std::filesystem::path(home) / ".cache" / "fastron";
+  throw FileError(
+      "no cache folder for self-collision models: set FASTRON_CACHE_DIR (or XDG_CACHE_HOME or "
+      "HOME)");
+}
+
+std::uint64_t selfModelKey(const Robot& robot, const SelfModelOptions& options) {
+  Hash h;
+  h.value(kinematicsChecksum(robot));
+  for (const LinkShape& shape : robot.shapes()) {
+    h.value(shape.link);
+    h.doubles(shape.origin.matrix().data(), 16);
+    hashShape(h, shape.shape);
+  }
+  for (const auto& [a, b] : robot.selfCollisionPairs({})) {  // adjacency and allowed pairs
+    h.value(a);
+    h.value(b);
+  }
+  h.value(options.samples);
+  h.value(options.updates);
+  h.value(options.seed);
+  h.value(options.padding);
+  return h.digest();
+}
+
+std::filesystem::path selfModelFile(const Robot& robot, const SelfModelOptions& options) {
+  char key[17];
+  std::snprintf(key, sizeof key, "%016llx",
+                static_cast<unsigned long long>(selfModelKey(robot, options)));
+  const std::filesystem::path directory =
+      options.cacheDirectory.empty() ? defaultCacheDirectory() : options.cacheDirectory;
+  return directory / (robot.name() + "-" + key + ".fastron");
+}
+
+SelfModel selfCollisionModel(const Robot& robot, const SelfModelOptions& options) {
+  SelfModel result;
+  result.file = selfModelFile(robot, options);
+  if ((result.model = readCached(result.file, robot))) {
+    result.fromCache = true;
+    return result;
+  }
+  ProxyCollisionDetector self(
+      std::make_shared<FclChecker>(
+          robot, Scene{}, CheckerOptions{.selfCollision = true, .padding = options.padding}),
+      robotFeatures(robot, FeatureKind::JointScaling), selfModelParams(options.seed));
+  result.trainSeconds =
+      std::chrono::duration<double>(trainStatic(self, options.samples, options.updates).total)
+          .count();
+  result.model = self.model();
+  std::error_code error;
+  std::filesystem::create_directories(result.file.parent_path(), error);
+  if (error) {
+    throw FileError(result.file.parent_path().string() +
+                    ": cannot make the cache folder: " + error.message());
+  }
+  // A name of this process's own: two runs that train at once do not write one file.
+  const std::filesystem::path partial =
+      result.file.string() + "." + std::to_string(::getpid()) + ".part";
+  saveModel(*result.model, partial);
+  std::filesystem::rename(partial, result.file, error);
+  if (error) {
+    std::filesystem::remove(partial);
+    throw FileError(result.file.string() + ": cannot write: " + error.message());
+  }
+  return result;
+}
+
+}  // namespace fastron::pipeline
