@@ -88,18 +88,45 @@ void bindGeometry(py::module_& m) {
       .def("__repr__", [](const Robot& robot) {
         return "Robot('" + robot.name() + "', dof=" + std::to_string(robot.dof()) + ")";
       });
+  const auto description = [](const std::string& nameOrPath,
+                              const std::optional<std::filesystem::path>& srdf,
+                              const std::vector<std::filesystem::path>& packagePaths,
+                              const std::optional<std::string>& group) {
+    UrdfOptions options;
+    options.searchPaths = packagePaths;
+    RobotDescription d =
+        loadRobotDescription(nameOrPath, options, srdf.value_or(std::filesystem::path()));
+    if (group) d.robot.setActuatedJoints(d.srdf.group(*group).joints);
+    return d;
+  };
   m.def(
       "load_robot",
-      [](const std::string& nameOrPath, const std::optional<std::filesystem::path>& srdf,
-         const std::vector<std::filesystem::path>& packagePaths) {
-        UrdfOptions options;
-        options.searchPaths = packagePaths;
-        return loadRobot(nameOrPath, options, srdf.value_or(std::filesystem::path()));
+      [description](const std::string& nameOrPath, const std::optional<std::filesystem::path>& srdf,
+                    const std::vector<std::filesystem::path>& packagePaths,
+                    const std::optional<std::string>& group) {
+        return description(nameOrPath, srdf, packagePaths, group).robot;
       },
       py::arg("name_or_path"), py::kw_only(), py::arg("srdf") = py::none(),
       py::arg("package_paths") = std::vector<std::filesystem::path>{},
+      py::arg("group") = py::none(),
       "A shipped robot by name (see shipped_robots) or a URDF file; `srdf` adds a MoveIt SRDF's "
-      "disabled collisions; `package_paths` are where package:// meshes are looked up.");
+      "disabled collisions and groups; `group` actuates an SRDF group's joints; `package_paths` "
+      "are where package:// meshes are looked up.");
+  m.def(
+      "load_robot_description",
+      [description](const std::string& nameOrPath, const std::optional<std::filesystem::path>& srdf,
+                    const std::vector<std::filesystem::path>& packagePaths,
+                    const std::optional<std::string>& group) {
+        const RobotDescription d = description(nameOrPath, srdf, packagePaths, group);
+        py::dict groups;
+        for (const SrdfGroup& g : d.srdf.groups) groups[py::str(g.name)] = g.joints;
+        return py::make_tuple(d.robot, groups, d.srdf.warnings);
+      },
+      py::arg("name_or_path"), py::kw_only(), py::arg("srdf") = py::none(),
+      py::arg("package_paths") = std::vector<std::filesystem::path>{},
+      py::arg("group") = py::none(),
+      "As load_robot, with what its SRDFs say: (robot, groups: {name: [joints]}, warnings: "
+      "[str], one per link or joint the SRDF names and the URDF lacks, skipped as MoveIt does).");
   m.def(
       "shipped_robots", [] { return namesOf(shippedRobots()); },
       "Names of the robots shipped with Fastron.");
@@ -163,6 +190,24 @@ void bindGeometry(py::module_& m) {
       },
       py::arg("path"), py::arg("robot"),
       "A MoveIt MotionPlanRequest as (start, goal) configurations of the robot's actuated joints.");
+  m.def(
+      "robot_for_request",
+      [](const Robot& robot, const std::filesystem::path& request, const Scene& scene,
+         const std::map<std::string, std::vector<std::string>>& groups) {
+        std::vector<SrdfGroup> srdfGroups;
+        for (const auto& [name, joints] : groups) srdfGroups.push_back({name, joints});
+        const PlanRequest r = loadMoveItRequest(request);
+        RequestRobot planned = robotForRequest(robot, srdfGroups, scene, r, request.string());
+        const RequestEnds ends = requestEnds(planned.robot, r, request.string());
+        return py::make_tuple(planned.robot, toArray(ends.start), toArray(ends.goal),
+                              planned.warning);
+      },
+      py::arg("robot"), py::arg("request"), py::arg("scene"),
+      py::arg("groups") = std::map<std::string, std::vector<std::string>>{},
+      "A MoveIt request as MoveIt plans it: (robot, start, goal, warning), the robot with the "
+      "request's group actuated (from `groups`, as load_robot_description gives them) and its "
+      "other joints held where the scene's robot_state and the request's start state put them; "
+      "values within 0.05 of a limit clamped; warning says when the group is not in `groups`.");
 
   m.def(
       "robot_features",

@@ -435,6 +435,32 @@ def test_moveit_files():
     assert not fcl.in_collision(start) and not fcl.in_collision(goal)
 
 
+def test_moveit_configuration_as_moveit_reads_it():
+    shared = os.environ.get("FASTRON_SHARED_DIR")
+    if not shared or not pathlib.Path(shared, "data/baxter-moveit").is_dir():
+        pytest.skip("no Baxter MoveIt configuration (FASTRON_SHARED_DIR)")
+    folder = pathlib.Path(shared, "data/baxter-moveit")
+    robot, groups, warnings = fastron.load_robot_description(
+        str(folder / "baxter.urdf"), srdf=folder / "baxter.srdf")
+    assert len(groups["both_arms"]) == 14 and groups["left_hand"] == []
+    assert any("collision_head_link" in w and "skipped, as MoveIt does" in w for w in warnings)
+    left = fastron.load_robot(str(folder / "baxter.urdf"), srdf=folder / "baxter.srdf",
+                              group="left_arm")
+    assert left.dof == 7
+    problem = folder / "problems-easy"
+    scene = fastron.load_scene(problem / "scene0001.yaml")
+    planned, start, goal, warning = fastron.robot_for_request(
+        robot, problem / "request0001.yaml", scene, groups)
+    assert planned.dof == 14 and start.shape == goal.shape == (14,) and warning == ""
+    fcl = fastron.FclChecker(planned, scene)
+    assert not fcl.in_collision(start) and not fcl.in_collision(goal)
+    _, _, _, warning = fastron.robot_for_request(robot, problem / "request0001.yaml", scene,
+                                                 {"arms": groups["both_arms"]})
+    assert "no group 'both_arms'" in warning
+    with pytest.raises(fastron.InvalidArgument, match="no group 'arms'"):
+        fastron.load_robot(str(folder / "baxter.urdf"), srdf=folder / "baxter.srdf", group="arms")
+
+
 def test_help_shows_the_api():
     assert "f(q)" in fastron.Model.__doc__
     assert "numpy" in fastron.__doc__ or "array" in fastron.__doc__
