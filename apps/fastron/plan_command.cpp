@@ -22,6 +22,7 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -78,24 +79,23 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
   return model;
 }
 
-/// A detector of the scene's obstacles trained here on `oracle` (FCL without self-collision),
-/// without a calibrated band (nothing plans a hybrid on it). `what` says what it models, for the
-/// report.
-std::unique_ptr<ProxyCollisionDetector> trainObstacleModel(
-    const PlanOptions& o, const Robot& robot, const std::shared_ptr<const FclChecker>& oracle,
-    const std::string& what) {
+/// The model of the scene's obstacles (pipeline::trainSceneModel), reported on one line.
+pipeline::SceneModel trainObstacleModel(const PlanOptions& o, const Robot& robot,
+                                        const Scene& scene) {
   const FeatureMap features = featuresFromOptions(o.features, robot);
-  ProxyParams params =
-      withoutBand(forStaticScene(experimentProxyParams(features.kind(), 5, 500, o.seed)));
-  if (o.gamma) params.train.kernel.gamma = *o.gamma;
-  if (o.beta) params.train.beta = *o.beta;
-  auto proxy = std::make_unique<ProxyCollisionDetector>(oracle, features, params);
-  const StepReport trained = trainStatic(*proxy, o.samples, o.updates);
-  std::cout << "model    " << what << "trained on " << o.samples << " FCL-labelled samples and "
-            << o.updates << " active-learning updates in " << durationText(inSeconds(trained.total))
-            << ", " << proxy->model()->supportCount() << " support points, features "
+  pipeline::SceneModel model =
+      pipeline::trainSceneModel(robot, scene, CheckerOptions{o.selfCollision, o.padding}, features,
+                                {.samples = o.samples,
+                                 .updates = o.updates,
+                                 .seed = o.seed,
+                                 .gamma = o.gamma,
+                                 .beta = o.beta});
+  std::cout << "model    " << (o.selfCollision ? "of the obstacles, " : "") << "trained on "
+            << o.samples << " FCL-labelled samples and " << o.updates
+            << " active-learning updates in " << durationText(model.trainSeconds) << ", "
+            << model.detector->model()->supportCount() << " support points, features "
             << features.summary() << '\n';
-  return proxy;
+  return model;
 }
 
 /// --self-model: plans on the scene's obstacle model (read with --model, or trained here on FCL
@@ -117,13 +117,8 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
   } else {
     self = readModel(o.selfModel, robot, "self     ");
   }
-  const auto obstacles =
-      !o.model.empty() ? readModel(o.model, robot, "model    ")
-                       : trainObstacleModel(o, robot,
-                                            std::make_shared<const FclChecker>(
-                                                robot, scene, CheckerOptions{false, o.padding}),
-                                            "of the obstacles, ")
-                             ->model();
+  const auto obstacles = !o.model.empty() ? readModel(o.model, robot, "model    ")
+                                          : trainObstacleModel(o, robot, scene).detector->model();
   const auto both =
       std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
           std::make_shared<const ModelChecker>(obstacles),
@@ -204,22 +199,14 @@ int runPlan(const PlanOptions& o) {
     plan = planVerified(CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}, fcl, limits,
                         start, goal, options);
   } else {
-    // The default method (bench motion-bench's "Fastron", experiments::kDefaultMethod): a model
-    // trained here learns the obstacles alone, self-collisions, when checked, are left to
-    // verification (docs/planning.md).
-    // It plans on the model, then on a hybrid asking FCL about every "collides" (the obstacles'
-    // FCL, the model's oracle: a relaxation of the exact checker), then on FCL (no calibrated
-    // band needed); with --learning-rounds N it learns what verification found it got wrong and
-    // plans again before repairing.
-    const auto obstacles = o.selfCollision ? std::make_shared<const FclChecker>(
-                                                 robot, scene, CheckerOptions{false, o.padding})
-                                           : fcl;
-    const auto detector =
-        trainObstacleModel(o, robot, obstacles, o.selfCollision ? "of the obstacles, " : "");
+    // The default method (pipeline/scene_model.h; bench motion-bench's "Fastron"): a model of
+    // the obstacles alone, self-collisions, when checked, left to verification; with
+    // --learning-rounds N it learns what verification found it got wrong and plans again before
+    // repairing.
+    pipeline::SceneModel model = trainObstacleModel(o, robot, scene);
     PlannerOptions learning = options;
     learning.learningRounds = o.learningRounds;
-    learning.oracleRelaxesExact = true;
-    plan = planVerifiedLearning(*detector, fcl, limits, start, goal, learning);
+    plan = pipeline::planOnSceneModel(model, fcl, limits, start, goal, learning);
   }
 
   std::cout << "planner  " << plannerName(options.type) << " on " << o.checker

@@ -11,13 +11,14 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/presets.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron::experiments {
 
 // The paper's settings (Sec. IV-B) for joint-space models: gamma 10 and beta 100 for 4 joints, 5
 // and 500 above; 500 active-learning points per update. Task-space models take
-// defaultProxyParams' (experimentProxyParams).
+// defaultProxyParams' (pipeline::robotProxyParams).
 struct Case {
   std::size_t joints;
   std::string scene;
@@ -55,7 +56,7 @@ inline Scene sceneForTrial(const std::string& file, std::uint64_t seed) {
 }
 
 inline ProxyParams proxyParams(const Case& c, std::uint64_t seed, FeatureKind kind) {
-  return experimentProxyParams(kind, c.gamma, c.beta, seed);
+  return pipeline::robotProxyParams(kind, c.gamma, c.beta, seed);
 }
 
 }  // namespace fastron::experiments

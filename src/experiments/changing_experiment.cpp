@@ -1,4 +1,5 @@
 #include "fastron/experiments/changing_experiment.h"
+#include "fastron/pipeline/presets.h"
 
 #include <map>
 #include <sstream>
@@ -38,7 +39,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       auto gjk = std::make_shared<GjkChecker>(robot, scene);
       // The paper's pipeline has no uncertainty band: its update times are compared without the
       // calibration points (the planning experiments keep them for the Hybrid method).
-      ProxyParams params = withoutBand(proxyParams(c, seed, o.features));
+      ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
       if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
       if (o.beta > 0) params.train.beta = o.beta;
       if (o.kernelBlock) params.train.kernel.block = *o.kernelBlock;
@@ -47,7 +48,8 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
       if (o.warmStart) params = withWarmStart(params);
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
-          inJoints(fcl, limits, withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
+          inJoints(fcl, limits,
+                   pipeline::withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
       fromFcl.initialize(initial);
       fromGjk.initialize(initial);
       if (jointRow) inJoints.initialize(initial);

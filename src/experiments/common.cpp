@@ -223,29 +223,6 @@ Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double r
   return scene;
 }
 
-ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed) {
-  ProxyParams p;
-  p.train.kernel = {KernelType::RationalQuadratic, gamma};
-  p.train.beta = beta;
-  p.train.maxIterations = 20000;
-  p.train.maxSupportPoints = kRobotSupportCap;
-  p.activeLearning.maxSamples = 500;
-  p.seed = seed;
-  return p;
-}
-
-ProxyParams forStaticScene(ProxyParams params) {
-  params = withWarmStart(params);
-  params.activeLearning.maxSamples = 500;
-  params.relabelSupport = false;
-  return params;
-}
-
-ProxyParams withoutBand(ProxyParams params) {
-  params.calibrationSamples = 0;
-  return params;
-}
-
 std::string featureSentence(FeatureKind kind) {
   return kind == FeatureKind::Kinematic
              ? "Fastron learns on task-space features: the world positions of the robot's "
@@ -263,17 +240,6 @@ std::string simplificationSentence(double simplifyTime, PathSimplification simpl
             ? "as MoveIt does by default."
             : "by shortcutting and vertex reduction alone (no B-spline smoothing).");
   return s.str();
-}
-
-ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
-                                  std::uint64_t seed, bool selfCollisionLabels) {
-  if (kind == FeatureKind::JointScaling) return experimentProxyParams(jointGamma, jointBeta, seed);
-  const ProxyParams defaults = defaultProxyParams(kind, selfCollisionLabels);
-  ProxyParams p = experimentProxyParams(defaults.train.kernel.gamma, defaults.train.beta, seed);
-  p.train.kernel = defaults.train.kernel;  // with its point terms
-  p.activeLearning = defaults.activeLearning;
-  p.coldStart = defaults.coldStart;
-  return p;
 }
 
 }  // namespace fastron::experiments

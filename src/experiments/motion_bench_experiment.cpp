@@ -1,4 +1,5 @@
 #include "fastron/experiments/motion_bench_experiment.h"
+#include "fastron/pipeline/presets.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/urdf.h"
+#include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/verify_repair.h"
@@ -244,8 +246,10 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
   const FclChecker audit(robot, scene, checking);
 
-  const ProxyParams params = withKernelOptions(
-      forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p, o.selfCollision)), o);
+  const ProxyParams params =
+      withKernelOptions(pipeline::forStaticScene(pipeline::robotProxyParams(
+                            o.features, 5, 500, o.seed + p, o.selfCollision)),
+                        o);
   ProxyCollisionDetector proxy(fcl, features, params);
   const double trainSeconds = train(proxy, samples, updates);
   CalibratedModel calibrated = proxy.calibratedModel();
@@ -256,20 +260,19 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
   const Labels truth = labelConfigurations(audit, test, 1);
   ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
-  // The default method's model (what `fastron plan` trains): of this scene's obstacles alone, its
-  // oracle FCL without self-collision when self-collision is checked (self-collisions left to
-  // verification, and learned from it), else the exact FCL itself. With the robot's
-  // self-collision model beside it, also the split source.
-  const auto obstacleFcl = o.selfCollision ? std::make_shared<FclChecker>(robot, scene) : fcl;
-  // No band: planVerifiedLearning's hybrid asks this FCL about every "collides", and the split
-  // plans on no hybrid.
-  ProxyCollisionDetector obstacles(
-      obstacleFcl, features,
-      withKernelOptions(
-          withoutBand(forStaticScene(experimentProxyParams(o.features, 5, 500, o.seed + p))), o));
-  const double obstaclesTrain = train(obstacles, samples, updates);
+  // The default method's model (what `fastron plan` trains, pipeline::trainSceneModel): of this
+  // scene's obstacles alone (self-collisions, when checked, left to verification and learned
+  // from it). With the robot's self-collision model beside it, also the split source.
+  pipeline::SceneModel sceneModel = pipeline::trainSceneModel(robot, scene, checking, features,
+                                                              {.samples = samples,
+                                                               .updates = updates,
+                                                               .seed = o.seed + p,
+                                                               .gamma = o.gamma,
+                                                               .beta = o.beta});
+  ProxyCollisionDetector& obstacles = *sceneModel.detector;
+  const double obstaclesTrain = sceneModel.trainSeconds;
   const Labels obstacleTruth =  // of `test`, by the model's oracle
-      o.selfCollision ? labelConfigurations(*obstacleFcl, test, 1) : truth;
+      o.selfCollision ? labelConfigurations(*sceneModel.oracle, test, 1) : truth;
   ConfusionCounts splitQuality;
   std::shared_ptr<const CollisionChecker> split;
   const auto obstaclesSupport = static_cast<double>(obstacles.model()->supportCount());
@@ -349,9 +352,8 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
       const std::shared_ptr<const Model> model = obstacles.model();
       const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
       seedPlanners(o.seed, turn);
-      PlannerOptions learning = options;
-      learning.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `fcl`
-      addRow({kDefaultMethod, planVerifiedLearning(obstacles, fcl, limits, from, to, learning), 0},
+      addRow({kDefaultMethod,
+              pipeline::planOnSceneModel(sceneModel, fcl, limits, from, to, options), 0},
              static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
     }
     results.rows.push_back(std::move(rows.back()));

@@ -1,4 +1,5 @@
 #include "fastron/experiments/shelf_experiment.h"
+#include "fastron/pipeline/presets.h"
 
 #include <numbers>
 #include <sstream>
@@ -24,8 +25,9 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
   auto fcl = std::make_shared<FclChecker>(ur3, scene);
   auto gjk = std::make_shared<GjkChecker>(ur3, scene);
   const FclChecker audit(ur3, scene);
-  ProxyCollisionDetector proxy(fcl, robotFeatures(ur3, o.features, limits),
-                               forStaticScene(experimentProxyParams(o.features, 10, 100, o.seed)));
+  ProxyCollisionDetector proxy(
+      fcl, robotFeatures(ur3, o.features, limits),
+      pipeline::forStaticScene(pipeline::robotProxyParams(o.features, 10, 100, o.seed)));
   if (progress) progress("shelf: training the model");
   trainStatic(proxy, o.quick ? 2000 : 8000, o.quick ? 2 : 5);
   const CalibratedModel calibrated = proxy.calibratedModel();

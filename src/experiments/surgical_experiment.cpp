@@ -1,4 +1,5 @@
 #include "fastron/experiments/surgical_experiment.h"
+#include "fastron/pipeline/presets.h"
 
 #include <atomic>
 #include <sstream>
@@ -25,7 +26,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
   // The model learns a padded PSM3, so it stays conservative while the instruments move on
   // between its updates (paper, Sec. V-B).
   auto padded = std::make_shared<FclChecker>(psm, scene, CheckerOptions{.padding = o.padding});
-  ProxyParams params = experimentProxyParams(o.features, 10, 100, o.seed);
+  ProxyParams params = pipeline::robotProxyParams(o.features, 10, 100, o.seed);
   params.train.maxIterations = TrainParams{}.maxIterations;
   params.train.maxSupportPoints = TrainParams{}.maxSupportPoints;
   params.activeLearning.maxSamples = 300;

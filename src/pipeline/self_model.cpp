@@ -10,6 +10,7 @@
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
+#include "fastron/pipeline/presets.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace fastron::pipeline {
@@ -57,15 +58,7 @@ void hashShape(Hash& h, const Shape& shape) {
 /// The preset of the self-collision model: joint-space RQ kernel, gamma 5 and beta 500, no band
 /// (docs/planning.md, "A self-collision model learned once").
 ProxyParams selfModelParams(std::uint64_t seed) {
-  ProxyParams p;
-  p.train.kernel = {KernelType::RationalQuadratic, 5};
-  p.train.beta = 500;
-  p.train.maxIterations = 20000;
-  p.train.maxSupportPoints = kRobotSupportCap;
-  p.activeLearning.maxSamples = 500;
-  p.seed = seed;
-  p.calibrationSamples = 0;
-  return p;
+  return withoutBand(robotProxyParams(5, 500, seed));
 }
 
 /// The cached model, or none when the file is absent or does not fit the robot (a file of

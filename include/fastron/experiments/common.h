@@ -79,26 +79,6 @@ std::vector<double> clearances(const FclChecker& fcl, const Configurations& q);
 double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,
                           double minSeconds = 0.05);
 
-/// The pipeline settings the Baxter, UR3 and Panda experiments share: the rational-quadratic
-/// kernel of width `gamma`, conditional bias `beta`, 20000 iterations per update, at most 5000
-/// support points, 500 active-learning points per update (paper, Sec. IV-B).
-ProxyParams experimentProxyParams(double gamma, double beta, std::uint64_t seed);
-/// The same with the kernel, beta, active-learning points and cold start of `kind`
-/// (defaultProxyParams, given whether the labels include self-collisions) for task-space
-/// features, and `jointGamma`, `jointBeta` (the experiment's joint-space settings, e.g. the
-/// paper's) for joints.
-ProxyParams experimentProxyParams(FeatureKind kind, double jointGamma, double jointBeta,
-                                  std::uint64_t seed, bool selfCollisionLabels = false);
-/// `params` for a scene that stands still (`fastron plan`, motion-bench, shelf): the paper's update
-/// (withWarmStart) with 500 active-learning points for every kind of features. Updates from zero
-/// weights (defaultProxyParams) undo weights that a changing world made stale; where nothing goes
-/// stale they only grew the mesh Panda's models (motion-bench: |S| 1906 -> 3410, median 5.4x ->
-/// 4.6x FCL's; docs/algorithms.md).
-ProxyParams forStaticScene(ProxyParams params);
-/// `params` with no calibration points (ProxyParams::calibrationSamples = 0): for a model that
-/// plans without an uncertainty band, or the paper's pipeline, which has none.
-ProxyParams withoutBand(ProxyParams params);
-
 /// Up to `maxCubes` cubes (at least one) of random size in [minSide, maxSide], centred in the
 /// upper half of the ball of radius `reach` around the robot's base, and clear of the base.
 Scene randomCubes(std::size_t maxCubes, double minSide, double maxSide, double reach, Rng& rng);

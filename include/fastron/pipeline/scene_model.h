@@ -1,0 +1,54 @@
+#pragma once
+// The default method of planning in a scene (what `fastron plan` does, and bench motion-bench's
+// "Fastron"): a model of the scene's obstacles alone, trained in the scene, planned on and
+// verified and repaired with the exact checker.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "fastron/core/export.h"
+#include "fastron/core/feature_map.h"
+#include "fastron/geometry/checker_options.h"
+#include "fastron/geometry/fcl_checker.h"
+#include "fastron/planning/verify_repair.h"
+#include "fastron/proxy/proxy_collision_detector.h"
+
+namespace FASTRON_API fastron {
+namespace pipeline {
+
+/// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench.
+struct SceneModelOptions {
+  std::size_t samples = 5000;  ///< FCL-labelled uniform configurations
+  std::size_t updates = 3;     ///< active-learning updates after them
+  std::uint64_t seed = 1;
+  std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
+};
+
+/// A model of a scene's obstacles and the checker it learned from.
+struct SceneModel {
+  /// FCL on the scene without self-collision: a relaxation of the exact checker, which may
+  /// check self-collision too (self-collisions are left to verification).
+  std::shared_ptr<const FclChecker> oracle;
+  std::unique_ptr<ProxyCollisionDetector> detector;  ///< no band: it plans without one
+  double trainSeconds = 0;                           ///< labelling and training
+};
+
+/// Trains the model of `scene`'s obstacles for `robot` on `features` (pipeline::robotProxyParams
+/// of their kind, for a scene that stands still, without a band): `options.samples` labelled
+/// uniform configurations, then `options.updates` active-learning updates. `checking` is the
+/// exact checker's: its padding is the oracle's too.
+SceneModel trainSceneModel(const Robot& robot, const Scene& scene, const CheckerOptions& checking,
+                           const FeatureMap& features, const SceneModelOptions& options);
+
+/// The default method's plan: on the model, then on a hybrid asking the model's oracle about
+/// every "collides", then on `exact`; every path verified and repaired with `exact`
+/// (planVerifiedLearning with oracleRelaxesExact).
+VerifiedPlan planOnSceneModel(SceneModel& model,
+                              const std::shared_ptr<const CollisionChecker>& exact,
+                              const JointLimits& limits, const Eigen::VectorXd& start,
+                              const Eigen::VectorXd& goal, PlannerOptions options);
+
+}  // namespace pipeline
+}  // namespace fastron

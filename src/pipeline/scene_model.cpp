@@ -1,0 +1,33 @@
+#include "fastron/pipeline/scene_model.h"
+
+#include <chrono>
+
+#include "fastron/pipeline/presets.h"
+
+namespace fastron::pipeline {
+
+SceneModel trainSceneModel(const Robot& robot, const Scene& scene, const CheckerOptions& checking,
+                           const FeatureMap& features, const SceneModelOptions& options) {
+  SceneModel model;
+  model.oracle = std::make_shared<const FclChecker>(
+      robot, scene, CheckerOptions{.selfCollision = false, .padding = checking.padding});
+  ProxyParams params =
+      withoutBand(forStaticScene(robotProxyParams(features.kind(), 5, 500, options.seed)));
+  if (options.gamma) params.train.kernel.gamma = *options.gamma;
+  if (options.beta) params.train.beta = *options.beta;
+  model.detector = std::make_unique<ProxyCollisionDetector>(model.oracle, features, params);
+  model.trainSeconds = std::chrono::duration<double>(
+                           trainStatic(*model.detector, options.samples, options.updates).total)
+                           .count();
+  return model;
+}
+
+VerifiedPlan planOnSceneModel(SceneModel& model,
+                              const std::shared_ptr<const CollisionChecker>& exact,
+                              const JointLimits& limits, const Eigen::VectorXd& start,
+                              const Eigen::VectorXd& goal, PlannerOptions options) {
+  options.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `exact`
+  return planVerifiedLearning(*model.detector, exact, limits, start, goal, options);
+}
+
+}  // namespace fastron::pipeline

@@ -1,0 +1,68 @@
+// The default method's recipe: a model of a scene's obstacles, planned on and verified.
+
+#include "fastron/pipeline/scene_model.h"
+
+#include <gtest/gtest.h>
+
+#include "fastron/core/active_learning.h"
+#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_file.h"
+#include "fastron/planning/motion.h"
+
+namespace fastron::pipeline {
+namespace {
+
+Scene oneBox() {
+  Scene scene;
+  scene.add({"box", Box{Eigen::Vector3d(0.3, 0.3, 0.3)}, makePose({0.6, -0.5, 0.3}), std::nullopt});
+  return scene;
+}
+
+// The same seed gives the same model (the command and the experiments call this one recipe);
+// with self-collision checked, the model learns the obstacles alone: its oracle checks none.
+TEST(SceneModel, TheSameSeedGivesTheSameModelOfTheObstaclesAlone) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = oneBox();
+  const FeatureMap features = robotFeatures(baxter, FeatureKind::Kinematic);
+  const SceneModelOptions options{.samples = 1500, .updates = 1, .seed = 3};
+  SceneModel a = trainSceneModel(baxter, scene, {.selfCollision = true}, features, options);
+  SceneModel b = trainSceneModel(baxter, scene, {.selfCollision = true}, features, options);
+  EXPECT_GT(a.trainSeconds, 0);
+  Rng rng(9);
+  const Configurations q = uniformConfigurations(baxter.limits(), 400, rng);
+  EXPECT_EQ(a.detector->model()->scoreBatch(q), b.detector->model()->scoreBatch(q));
+  EXPECT_EQ(a.detector->model()->supportCount(), b.detector->model()->supportCount());
+  const FclChecker obstaclesOnly(baxter, scene);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const std::span<const double> c(q.row(i).data(), baxter.dof());
+    EXPECT_EQ(a.oracle->inCollision(c), obstaclesOnly.inCollision(c));
+  }
+  SceneModelOptions wider = options;
+  wider.gamma = 5;
+  EXPECT_EQ(trainSceneModel(baxter, scene, {}, features, wider).detector->model()->kernel().gamma,
+            5);
+}
+
+// Its plans are verified with the exact checker: the final path is free at the resolution.
+TEST(SceneModel, ItsPlansAreFreeUnderTheExactChecker) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = oneBox();
+  SceneModel model =
+      trainSceneModel(baxter, scene, {}, robotFeatures(baxter, FeatureKind::Kinematic),
+                      {.samples = 1500, .updates = 1});
+  const auto exact = std::make_shared<const FclChecker>(baxter, scene);
+  Eigen::VectorXd start(7), goal(7);
+  start << -1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  goal << 1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  const VerifiedPlan plan = planOnSceneModel(model, exact, baxter.limits(), start, goal,
+                                             {.resolution = 0.03, .timeLimit = 10});
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  const Configurations states = statesAlongPath(plan.path, 0.01);
+  for (Eigen::Index i = 0; i < states.rows(); ++i) {
+    EXPECT_FALSE(exact->inCollision(std::span<const double>(states.row(i).data(), 7))) << i;
+  }
+}
+
+}  // namespace
+}  // namespace fastron::pipeline
