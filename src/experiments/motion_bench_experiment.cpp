@@ -154,29 +154,19 @@ ProxyParams withKernelOptions(ProxyParams params, const MotionBenchOptions& o) {
 /// N.Nx ...": per solved plan, its total plus its scene's training shared by `queries` queries
 /// (with one, the requests alone).
 std::string endToEndSpeedups(const PlanRows& r, const RowFilter& where, std::size_t queries) {
-  const auto median = [&](const std::string& method) {
-    std::vector<double> values;
-    for (const PlanRow& row : r.rows) {
-      if ((where && !where(row)) || row.method != method || !row.outcome.solved) continue;
-      if (queries == 1 && row.queryValue("query") != "0") continue;
-      const double training = method == "FCL" ? 0 : row.figure("train_s");
-      values.push_back(row.outcome.totalSeconds + training / static_cast<double>(queries));
-    }
-    return values.empty() ? std::numeric_limits<double>::quiet_NaN() : summarize(values).median;
+  const RowFilter kept = [&](const PlanRow& row) {
+    return (!where || where(row)) && (queries > 1 || row.queryValue("query") == "0");
   };
-  std::ostringstream md;
-  md << "Median end-to-end time of FCL / of each method, training included ("
-     << (queries == 1 ? std::string("one query") : std::to_string(queries) + " queries")
-     << " per scene): RRTConnect:";
-  const double base = median("FCL");
-  for (const std::string& method : methodsOf(r, where)) {
-    if (method == "FCL") continue;
-    char ratio[96];
-    std::snprintf(ratio, sizeof ratio, " %s %.1fx", method.c_str(), base / median(method));
-    md << ratio;
-  }
-  md << ".\n";
-  return md.str();
+  return ratioLine(
+      r, kept, {"RRTConnect"},
+      "Median end-to-end time of FCL / of each method, training included (" +
+          (queries == 1 ? std::string("one query") : std::to_string(queries) + " queries") +
+          " per scene)",
+      [&](const PlanRow& row) {
+        const double training = row.method == "FCL" ? 0 : row.figure("train_s");
+        return row.outcome.totalSeconds + training / static_cast<double>(queries);
+      },
+      true);
 }
 
 /// What a problem's robot shares with the problems before it: models and features depend on the

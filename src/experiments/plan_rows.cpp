@@ -208,36 +208,47 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
 
 /// Per planner, FCL's total time over each other method's, from means and from medians over
 /// solved plans.
+std::string ratioLine(const PlanRows& r, const RowFilter& where,
+                      const std::vector<std::string>& planners, const std::string& lead,
+                      const std::function<double(const PlanRow&)>& value, bool median) {
+  std::ostringstream md;
+  md << lead << ":";
+  for (const std::string& planner : planners) {
+    const auto statistic = [&](const std::string& method) {
+      std::vector<double> values;
+      for (const PlanRow& row : r.rows) {
+        if ((!where || where(row)) && row.planner == planner && row.method == method &&
+            row.outcome.solved)
+          values.push_back(value(row));
+      }
+      const Summary s = summarize(values);
+      return median ? s.median : s.mean;
+    };
+    const double base = statistic("FCL");
+    md << (planner == planners.front() ? " " : "; ") << planner << ":";
+    for (const std::string& method : methodsOf(r, where)) {
+      if (method == "FCL") continue;
+      char buffer[96];
+      std::snprintf(buffer, sizeof buffer, " %s %.1fx", method.c_str(), base / statistic(method));
+      md << buffer;
+    }
+  }
+  md << ".\n";
+  return md.str();
+}
+
 std::string speedups(const PlanRows& r, const RowFilter& where,
                      const std::vector<std::string>& planners) {
-  std::ostringstream md;
   // Means carry the paper's comparison; medians are not swayed by the odd query that runs into
   // the time limit.
-  for (const bool median : {false, true}) {
-    md << (median ? "Median" : "\nMean")
-       << " total time of FCL / of each method (higher is faster than FCL):";
-    for (const std::string& planner : planners) {
-      const auto statistic = [&](const std::string& method) {
-        const Summary s = summaryOf(select(r, where,
-                                           [&](const PlanRow& row) {
-                                             return row.planner == planner &&
-                                                    row.method == method && row.outcome.solved;
-                                           }),
-                                    [](const PlanOutcome& o) { return o.totalSeconds; });
-        return median ? s.median : s.mean;
-      };
-      const double base = statistic("FCL");
-      md << (planner == planners.front() ? " " : "; ") << planner << ":";
-      for (const std::string& method : methodsOf(r, where)) {
-        if (method == "FCL") continue;
-        char buffer[64];
-        std::snprintf(buffer, sizeof buffer, " %s %.1fx", method.c_str(), base / statistic(method));
-        md << buffer;
-      }
-    }
-    md << ".\n";
-  }
-  return md.str();
+  const auto total = [](const PlanRow& row) { return row.outcome.totalSeconds; };
+  return "\n" +
+         ratioLine(r, where, planners,
+                   "Mean total time of FCL / of each method (higher is faster than FCL)", total,
+                   false) +
+         ratioLine(r, where, planners,
+                   "Median total time of FCL / of each method (higher is faster than FCL)", total,
+                   true);
 }
 
 std::vector<std::string> plannerNames(const std::vector<PlannerType>& types) {

@@ -111,6 +111,12 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
 std::string speedups(const PlanRows& r, const RowFilter& where,
                      const std::vector<std::string>& planners);
 
+/// One line "LEAD: PLANNER: METHOD N.Nx ...; PLANNER: ...": per planner, the median (or mean) of
+/// `value` over FCL's solved rows that `where` keeps, over the same of each other method.
+std::string ratioLine(const PlanRows& r, const RowFilter& where,
+                      const std::vector<std::string>& planners, const std::string& lead,
+                      const std::function<double(const PlanRow&)>& value, bool median);
+
 std::vector<std::string> plannerNames(const std::vector<PlannerType>& types);
 
 /// The planner options of an experiment's options `o` (resolution, time limit, simplification,
