@@ -170,6 +170,10 @@ std::vector<SrdfGroup> readGroups(const TiXmlElement* root, const SrdfReader& r,
     const TiXmlElement* g = byName.at(name);
     if (std::find(resolving.begin(), resolving.end(), name) != resolving.end())
       throw FileError(r.at(g) + " '" + name + "' contains itself through its subgroups");
+    constexpr std::size_t kDeepest = 64;  // real groups nest two or three deep
+    if (resolving.size() >= kDeepest)
+      throw FileError(r.at(g) + " '" + name + "': subgroups nest deeper than " +
+                      std::to_string(kDeepest));
     resolving.push_back(name);
     std::vector<std::string> joints;
     for (const TiXmlElement* e = g->FirstChildElement(); e != nullptr;

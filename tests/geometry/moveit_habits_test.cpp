@@ -167,6 +167,15 @@ TEST(MimicJoints, BadMimicsAreRefusedByName) {
               HasSubstr("mimics joint 'gripper_mount', which is fixed"));
   EXPECT_THAT(refused("multiplier=\"-1\"", "multiplier=\"nan\""),
               HasSubstr("<mimic> multiplier=\"nan\" needs 1 finite number"));
+  // Two joints that follow each other follow nothing.
+  const Robot base = trolley();
+  std::vector<Joint> joints = base.joints();
+  for (Joint& j : joints) {
+    if (j.name == "left_finger_joint") j.mimic = Mimic{"right_finger_joint", 1, 0};
+  }
+  EXPECT_THAT(test::messageOf<InvalidArgument>(
+                  [&] { Robot("trolley", base.links(), joints, base.shapes()); }),
+              HasSubstr("its mimics form a cycle"));
 }
 
 TEST(JointBounds, ValuesWithinTheMarginAreClampedAndContinuousJointsWrapped) {

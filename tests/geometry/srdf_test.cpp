@@ -135,6 +135,12 @@ TEST(Srdf, ErrorsNameTheFileLineAndElement) {
   EXPECT_THAT(
       srdfError("<robot><group name=\"a\"><chain base_link=\"panda_link0\"/></group></robot>"),
       HasSubstr("<chain> needs a tip_link attribute"));
+  std::string deep = "<robot>";
+  for (int i = 0; i < 100; ++i)
+    deep += "<group name=\"g" + std::to_string(i) + "\"><group name=\"g" + std::to_string(i + 1) +
+            "\"/></group>\n";
+  EXPECT_THAT(srdfError(deep + "<group name=\"g100\"/></robot>"),
+              HasSubstr("subgroups nest deeper than 64"));
   EXPECT_THAT(srdfError("<semantic/>"), HasSubstr("not an SRDF file"));
   EXPECT_THAT(srdfError("not xml at all"), HasSubstr("malformed XML"));
   EXPECT_THROW(loadSrdf("/nonexistent/panda.srdf", loadRobot("panda")), FileError);
