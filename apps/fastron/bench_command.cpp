@@ -113,11 +113,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_option("--samples", o->settings.samples,
                   "motion-bench: uniform samples of each scene's models before active learning "
-                  "(default 5000; --quick 1500)")
+                  "(default 2000; --quick 1500)")
       ->check(numberAbove(0));
   cmd->add_option("--updates", o->settings.updates,
                   "motion-bench: active-learning updates of each scene's models after those "
-                  "samples, and of --self-model's (default 3; --quick 1)");
+                  "samples, and of --self-model's (default 1)");
   cmd->add_flag("--learn-from-verification", o->settings.learnFromVerification,
                 "motion-bench: between a scene's queries, the paper's model learns the exact "
                 "answers of the last plan's verification and repair that it got wrong");

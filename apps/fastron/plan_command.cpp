@@ -53,7 +53,9 @@ struct PlanOptions {
   std::vector<double> start, goal;
   std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
   FeatureOptions features;
-  std::size_t samples = 5000, updates = 3;
+  // pipeline::SceneModelOptions' defaults: bench motion-bench measured them (docs/planning.md).
+  std::size_t samples = pipeline::SceneModelOptions{}.samples,
+              updates = pipeline::SceneModelOptions{}.updates;
   unsigned learningRounds = PlannerOptions{}.learningRounds;
   std::optional<double> gamma, beta;
   double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1,

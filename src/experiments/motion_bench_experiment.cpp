@@ -136,11 +136,11 @@ double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t upd
 }
 
 std::size_t trainingSamples(const MotionBenchOptions& o) {
-  return o.trainingPoints.value_or(o.quick ? 1500 : 5000);
+  return o.trainingPoints.value_or(o.quick ? 1500 : pipeline::SceneModelOptions{}.samples);
 }
 
 std::size_t trainingUpdates(const MotionBenchOptions& o) {
-  return o.updates.value_or(o.quick ? 1 : 3);
+  return o.updates.value_or(pipeline::SceneModelOptions{}.updates);
 }
 
 /// A scene model's parameters with the options' kernel width and conditional bias, if given.

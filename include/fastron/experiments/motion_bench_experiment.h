@@ -43,10 +43,11 @@ struct MotionBenchOptions {
   std::filesystem::path selfModelCache;
   std::uint64_t seed = 1;
   bool quick = false;
-  /// Uniform samples of each scene's models before active learning (unset: 5000, quick 1500).
+  /// Uniform samples of each scene's models before active learning (unset: those of
+  /// pipeline::SceneModelOptions, 2000; quick 1500).
   std::optional<std::size_t> trainingPoints;
   /// Active-learning updates of each scene's models after them, and of the self-collision model
-  /// (unset: 3, quick 1).
+  /// (unset: pipeline::SceneModelOptions', 1).
   std::optional<std::size_t> updates;
   /// Kernel width and conditional bias of each scene's models (unset: the features' defaults,
   /// defaultTrainParams); not of the robot's self-collision model.

@@ -18,10 +18,14 @@
 namespace FASTRON_API fastron {
 namespace pipeline {
 
-/// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench.
+/// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench. A
+/// model of 2000 samples and one update plans as fast as one of 5000 and three (it has fewer
+/// support points; verification catches what it gets wrong), and its training is what a plan
+/// with it must win back: on the held-out Panda families, FCL / Fastron with training counted
+/// went from 2.8x to 5.3x (docs/log/2026-11-28-robots-of-other-makers.md).
 struct SceneModelOptions {
-  std::size_t samples = 5000;  ///< FCL-labelled uniform configurations
-  std::size_t updates = 3;     ///< active-learning updates after them
+  std::size_t samples = 2000;  ///< FCL-labelled uniform configurations
+  std::size_t updates = 1;     ///< active-learning updates after them
   std::uint64_t seed = 1;
   std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
 };
