@@ -10,5 +10,6 @@ void bindCore(pybind11::module_& m);
 void bindGeometry(pybind11::module_& m);
 void bindProxy(pybind11::module_& m);
 void bindPlanning(pybind11::module_& m);
+void bindPipeline(pybind11::module_& m);
 
 }  // namespace fastron::python

@@ -16,4 +16,5 @@ PYBIND11_MODULE(_fastron, m) {
   fastron::python::bindGeometry(m);
   fastron::python::bindProxy(m);
   fastron::python::bindPlanning(m);
+  fastron::python::bindPipeline(m);
 }

@@ -7,6 +7,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "detector_holder.h"
 #include "fastron/core/error.h"
 #include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -26,15 +27,6 @@ std::shared_ptr<const CollisionChecker> oracleOf(py::handle oracle, std::size_t 
   throw InvalidArgument("oracle: expected a CollisionChecker or a callable q -> bool, got " +
                         typeName(oracle));
 }
-
-/// Stops the background thread without the GIL (its oracle may need it), then deletes.
-struct ReleasingDelete {
-  void operator()(ProxyCollisionDetector* detector) const {
-    py::gil_scoped_release released;
-    delete detector;
-  }
-};
-using DetectorHolder = std::unique_ptr<ProxyCollisionDetector, ReleasingDelete>;
 
 /// Threads that label for `oracle`: `requested`, but one for a Python oracle, which answers one
 /// call at a time (the GIL), so more threads only wait.

@@ -461,6 +461,34 @@ def test_moveit_configuration_as_moveit_reads_it():
         fastron.load_robot(str(folder / "baxter.urdf"), srdf=folder / "baxter.srdf", group="arms")
 
 
+def test_the_default_method_is_the_commands(baxter, fastron_command):
+    """Python's train_scene_model is the function `fastron plan` trains with: the same seed gives
+    the same model, and planning on it as the command does gives a path free under FCL."""
+    import re
+    import subprocess
+    scene_file = fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml"
+    three_boxes = fastron.load_scene(scene_file)  # as the command reads it (others move theirs)
+    out = subprocess.run([str(fastron_command), "plan", "--robot", "baxter", "--scene",
+                          str(scene_file), "--start=-1.2,0.3,0,1.2,0,0.5,0",
+                          "--goal=1.2,0.3,0,1.2,0,0.5,0", "--samples", "1200", "--seed", "3"],
+                         capture_output=True, text=True, check=False).stdout
+    cli_support = int(re.search(r"^model +trained on 1200 [^\n]*?, (\d+) support points", out,
+                                re.MULTILINE).group(1))
+    detector = fastron.train_scene_model(baxter, three_boxes, samples=1200, seed=3)
+    assert detector.model().support_count == cli_support
+    again = fastron.train_scene_model(baxter, three_boxes, samples=1200, seed=3)
+    q = uniform(baxter.limits, 300, 1)
+    assert np.array_equal(detector.model().score(q), again.model().score(q))
+    fcl = fastron.FclChecker(baxter, three_boxes)
+    plan = fastron.plan_verified(detector, fcl, np.array([-1.2, 0.3, 0, 1.2, 0, 0.5, 0]),
+                                 np.array([1.2, 0.3, 0, 1.2, 0, 0.5, 0]), resolution=0.03,
+                                 static_scene=True, oracle_relaxes_exact=True)
+    assert plan.solved and fastron.check_path(fcl, plan.path, 0.01)
+    with pytest.raises(fastron.InvalidArgument):
+        fastron.train_scene_model(baxter, three_boxes, fastron.robot_features(
+            fastron.load_robot("ur3")))
+
+
 def test_help_shows_the_api():
     assert "f(q)" in fastron.Model.__doc__
     assert "numpy" in fastron.__doc__ or "array" in fastron.__doc__
