@@ -172,7 +172,7 @@ std::string endToEndSpeedups(const PlanRows& r, const RowFilter& where, std::siz
 /// What a problem's robot shares with the problems before it: models and features depend on the
 /// robot's actuated joints and held positions (kinematicsChecksum), which each request may set.
 struct RobotModels {
-  std::uint64_t checksum = 0;
+  std::optional<std::uint64_t> checksum;  ///< none before the first problem's robot
   FeatureMap features;
   std::shared_ptr<const CollisionChecker> selfModel;  ///< with MotionBenchOptions::selfModel
   double selfTrainSeconds = 0;
@@ -217,8 +217,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
                                                forRequest.warning) == results.warnings.end())
     results.warnings.push_back(forRequest.warning);
   const Robot& robot = forRequest.robot;
-  if (const std::uint64_t checksum = kinematicsChecksum(robot);
-      checksum != models.checksum || p == 0) {
+  if (const std::uint64_t checksum = kinematicsChecksum(robot); checksum != models.checksum) {
     models = {checksum, robotFeatures(robot, o.features), nullptr, 0};
     if (o.selfModel) learnSelfCollisions(robot, o, progress, models);
   }
