@@ -162,9 +162,9 @@ std::vector<double> grownMargins(const std::vector<double>& margins) {
 
 /// The other candidates of the held-out rounds, when `features` are the automatic task-space ones
 /// of a scene without self-collision labels (where they were measured): one more automatic
-/// control point than `features` and beta kMorePointsBeta, by the spread rule (when it has a point
-/// more to give) and by the cover rule (ControlPointRule::Cover, which the robots of other makers
-/// needed: docs/algorithms.md); none otherwise.
+/// control point than `features` and beta kMorePointsBeta (or --beta, when given), by the spread
+/// rule (when it has a point more to give) and by the cover rule (ControlPointRule::Cover, which
+/// the robots of other makers needed: docs/algorithms.md); none otherwise.
 std::vector<ModelCandidate> otherCandidates(const TrainOptions& o, const Robot& robot,
                                             const FeatureMap& features, const TrainParams& params) {
   if (!o.secondCandidate || o.selfCollision || features.kind() != FeatureKind::Kinematic ||
@@ -172,7 +172,7 @@ std::vector<ModelCandidate> otherCandidates(const TrainOptions& o, const Robot& 
     return {};
   }
   TrainParams candidateParams = params;
-  candidateParams.beta = kMorePointsBeta;
+  candidateParams.beta = o.beta.value_or(kMorePointsBeta);  // a user's --beta holds for every model
   std::vector<ModelCandidate> candidates;
   for (const ControlPointRule rule : {ControlPointRule::Spread, ControlPointRule::Cover}) {
     ControlPointOptions more = o.features.automatic;
@@ -380,6 +380,7 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--second-candidate,!--no-second-candidate", o->secondCandidate,
                 "with --scene and automatic fk control points, no --self-collision: a round that "
                 "misses the targets also trains a model with one more control point and beta 10 "
+                "(or --beta) "
                 "on the same samples, and the one closer to the targets is kept (default: on)");
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
   cmd->add_option("--gamma", o->gamma,
