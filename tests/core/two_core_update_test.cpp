@@ -102,7 +102,10 @@ TEST(HelperThread, AHelperThatKeepsTheCallerWaitingIsLetGo) {
     slowRounds += session.run(2, body) ? 1 : 0;
   }
   ASSERT_FALSE(session.helped()) << "the helper shared " << slowRounds << " rounds";
-  EXPECT_EQ(slowRounds, 4);
+  // At least the four late rounds: a round in which the caller itself was preempted for longer
+  // than the helper's 5 ms is shared without keeping it waiting (seen once in CI beside a busy
+  // training run), and does not count towards letting the helper go.
+  EXPECT_GE(slowRounds, 4);
   std::array<std::thread::id, 2> ranOn{};
   auto body = [&](std::size_t c) { ranOn[c] = std::this_thread::get_id(); };
   EXPECT_FALSE(session.run(2, body));
