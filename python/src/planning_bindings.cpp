@@ -120,7 +120,17 @@ struct PythonVerifiedPlan {
   bool wholePathReplanned = false;
   py::array_t<double> exactX;
   py::array_t<std::int8_t> exactY;
+  py::list attempts;  // (source, status, seconds) per plan before verification
+  std::uint64_t exactChecks = 0, relaxedChecks = 0;
 };
+
+py::list attemptsOf(const VerifiedPlan& plan) {
+  py::list attempts;
+  for (const PlanAttempt& a : plan.attempts) {
+    attempts.append(py::make_tuple(a.source, std::string(toString(a.status)), inSeconds(a.time)));
+  }
+  return attempts;
+}
 
 PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
   return {std::string(toString(plan.status)),
@@ -134,7 +144,10 @@ PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
           plan.relearned,
           plan.wholePathReplanned,
           toArray(plan.exactAnswers.points),
-          toArray(plan.exactAnswers.labels)};
+          toArray(plan.exactAnswers.labels),
+          attemptsOf(plan),
+          plan.exactChecks,
+          plan.relaxedChecks};
 }
 
 }  // namespace
@@ -172,6 +185,13 @@ void bindPlanning(py::module_& m) {
                     "Paths on the model that verification found colliding and the detector "
                     "learned from before planning again (learning_rounds).")
       .def_readonly("whole_path_replanned", &PythonVerifiedPlan::wholePathReplanned)
+      .def_readonly("attempts", &PythonVerifiedPlan::attempts,
+                    "Where the planning time went: (source, status, seconds) of every plan "
+                    "before verification, in order (the model, its hybrid, the exact checker).")
+      .def_readonly("exact_checks", &PythonVerifiedPlan::exactChecks,
+                    "Configurations the exact checker answered for this plan.")
+      .def_readonly("relaxed_checks", &PythonVerifiedPlan::relaxedChecks,
+                    "Those the detector's oracle answered in its place (oracle_relaxes_exact).")
       .def_property_readonly(
           "exact_answers",
           [](const PythonVerifiedPlan& p) { return py::make_tuple(p.exactX, p.exactY); },

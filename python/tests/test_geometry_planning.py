@@ -350,6 +350,12 @@ def test_plan_verified_in_a_static_scene_on_a_relaxed_oracle(baxter):
             assert np.array_equal(plan.path[0], start) and np.array_equal(plan.path[-1], goal)
             assert fastron.check_path(exact, plan.path, 0.05), plan
             assert plan.planned_on in ("Fastron", "Fastron+FCL", "FCL"), plan.planned_on
+            # Where the time went: the verified path's plan last, each attempt within the time.
+            # (a repair that plans the whole motion again is no attempt: it is repair time)
+            assert plan.attempts and plan.attempts[-1][1] == "solved", plan.attempts
+            assert plan.whole_path_replanned or plan.attempts[-1][0] == plan.planned_on
+            assert sum(a[2] for a in plan.attempts) <= plan.plan_seconds + 1e-9
+            assert plan.exact_checks > 0  # verification at least
         assert plan.relearned == 0
     assert solved >= 2
     assert detector.model_version == version  # without learning_rounds the model stays

@@ -182,7 +182,9 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
        << " ticks planned nothing: the boxes left no free start or goal on a side of the "
           "workspace.\n\n";
   }
-  md << planTable(t, {}, {"RRTConnect"}) << speedups(t, {}, {"RRTConnect"});
+  md << planTable(t, {}, {"RRTConnect"}) << speedups(t, {}, {"RRTConnect"})
+     << "\nWhere the time goes (medians over solved plans):\n\n"
+     << timeBreakdown(t, {}, {"RRTConnect"});
   return md.str();
 }
 

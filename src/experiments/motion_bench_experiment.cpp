@@ -486,6 +486,8 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
     out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"})
         << endToEndSpeedups(r, where, 1);
     if (o.queriesPerScene > 1) out << endToEndSpeedups(r, where, o.queriesPerScene);
+    out << "\nWhere the time goes (medians over solved plans):\n\n"
+        << timeBreakdown(r, where, {"RRTConnect"});
     // A scene's training, once: the rows of its first query.
     const auto firstQueryOf = [&](const char* method) -> RowFilter {
       return [&, method](const PlanRow& row) {

@@ -45,9 +45,11 @@ Table PlanRows::table() const {
       rows.empty() ? std::vector<std::string>{} : namesOf(rows.front().figures);
   table.columns = queryColumns;
   for (const char* column :
-       {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
-        "total_s", "path_length", "waypoints", "stretches", "relearned", "relearn_s", "fallback",
-        "exact_ends", "collides_fcl", "exact_share", "planned_on"}) {
+       {"planner",      "method",         "solved",      "status",    "plan_s",
+        "simplify_s",   "verify_s",       "repair_s",    "total_s",   "path_length",
+        "waypoints",    "stretches",      "relearned",   "relearn_s", "fallback",
+        "exact_ends",   "collides_fcl",   "exact_share", "attempts",  "failed_plan_s",
+        "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
   }
   table.columns.insert(table.columns.end(), figureColumns.begin(), figureColumns.end());
@@ -79,6 +81,10 @@ Table PlanRows::table() const {
         flag(o.substituteEnds),
         o.collidesUnderAudit ? cell(*o.collidesUnderAudit ? 1.0 : 0.0) : cell(std::nan("")),
         cell(o.exactShare),
+        std::to_string(o.attempts),
+        cell(o.failedPlanSeconds),
+        std::to_string(o.exactChecks),
+        std::to_string(o.relaxedChecks),
         o.plannedOn};
     cells.insert(cells.end(), plan.begin(), plan.end());
     for (const auto& [name, value] : row.figures) cells.push_back(cell(value));

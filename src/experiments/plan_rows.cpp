@@ -29,6 +29,12 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   o.wholeMotionReplanned = plan.wholePathReplanned;
   o.substituteEnds = plan.substituteEnds;
   o.exactShare = method.exactShare;
+  o.attempts = plan.attempts.size();
+  for (const PlanAttempt& attempt : plan.attempts) {
+    if (attempt.status != PlanStatus::Solved) o.failedPlanSeconds += inSeconds(attempt.time);
+  }
+  o.exactChecks = plan.exactChecks;
+  o.relaxedChecks = plan.relaxedChecks;
   o.plannedOn = plan.plannedOn;
   if (o.solved) {
     o.pathLength = pathLength(plan.path);
@@ -201,6 +207,37 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
          << " | " << repairedShare << " | "
          << meanStd(summaryOf(all, [](const PlanOutcome& o) { return o.exactShare; }), 3) << " | "
          << colliding << " of " << ok.size() << " |\n";
+    }
+  }
+  return md.str();
+}
+
+std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
+                          const std::vector<std::string>& planners) {
+  std::ostringstream md;
+  md << "| Planner | Method | Plan | of which attempts that failed | of which simplify | Verify | "
+        "Repair | Plans before verification | Exact checks | Oracle checks |\n"
+        "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const std::string& planner : planners) {
+    for (const std::string& method : methodsOf(r, where)) {
+      const auto ok = select(r, where, [&](const PlanRow& row) {
+        return row.planner == planner && row.method == method && row.outcome.solved;
+      });
+      if (ok.empty()) continue;
+      const auto median = [&](auto value) { return summaryOf(ok, value).median; };
+      char counts[160];
+      std::snprintf(
+          counts, sizeof counts, "%.1f | %.0f | %.0f",
+          median([](const PlanOutcome& o) { return static_cast<double>(o.attempts); }),
+          median([](const PlanOutcome& o) { return static_cast<double>(o.exactChecks); }),
+          median([](const PlanOutcome& o) { return static_cast<double>(o.relaxedChecks); }));
+      md << "| " << planner << " | " << method << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.planSeconds; })) << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.failedPlanSeconds; })) << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.simplifySeconds; })) << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.verifySeconds; })) << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.repairSeconds; })) << " | "
+         << counts << " |\n";
     }
   }
   return md.str();

@@ -106,6 +106,13 @@ std::vector<std::string> methodsOf(const PlanRows& r, const RowFilter& where = {
 std::string planTable(const PlanRows& r, const RowFilter& where,
                       const std::vector<std::string>& planners);
 
+/// "Where the time goes": per (planner, method), medians over solved plans of the plan's time,
+/// of its attempts that found no path (a model closing the way) and of simplification, of verify
+/// and repair, of the plans made before verification, and of the checks the exact checker and a
+/// relaxed oracle answered.
+std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
+                          const std::vector<std::string>& planners);
+
 /// Per planner, FCL's total time over each other method's, from means and from medians over
 /// solved plans.
 std::string speedups(const PlanRows& r, const RowFilter& where,

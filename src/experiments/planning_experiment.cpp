@@ -94,7 +94,9 @@ std::string planningReport(const PlanRows& r, const PlanningOptions& o) {
     md << "\n## " << name << "\n\nModel (per trial, against FCL on fresh uniform configurations): "
        << "|S| " << meanStd(summarize(support), 0) << ", accuracy "
        << meanStd(summarize(accuracy), 3) << ", TPR " << meanStd(summarize(tpr), 3) << ".\n\n"
-       << planTable(r, inCase, planners) << speedups(r, inCase, planners);
+       << planTable(r, inCase, planners) << speedups(r, inCase, planners)
+       << "\nWhere the time goes (medians over solved plans):\n\n"
+       << timeBreakdown(r, inCase, planners);
   }
   return md.str();
 }

@@ -267,6 +267,10 @@ struct ApproximatePlan {
   bool substituteEnds = false;
 };
 
+PlanAttempt attemptOf(std::string source, const PlanResult& plan, bool substituteEnds = false) {
+  return {std::move(source), plan.status, plan.time, plan.simplifyTime, substituteEnds};
+}
+
 ApproximatePlan planApproximately(const CollisionSource& approximate,
                                   const std::shared_ptr<const CollisionChecker>& exact,
                                   const JointLimits& limits, const Eigen::VectorXd& start,
@@ -310,14 +314,17 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
                            const std::shared_ptr<const CollisionChecker>& relaxed = nullptr) {
   std::chrono::nanoseconds planTime{0};
   bool substituteEnds = false;
+  std::vector<PlanAttempt> attempts;
   for (const CollisionSource& source : chain) {
     const ApproximatePlan attempt =
         planApproximately(source, exact, limits, start, goal, chainOptions);
     planTime += attempt.plan.time;
     substituteEnds = substituteEnds || attempt.substituteEnds;
+    attempts.push_back(attemptOf(sourceName(source), attempt.plan, attempt.substituteEnds));
     if (attempt.plan.solved()) {
       VerifiedPlan result =
           repairChecked(attempt.plan.path, std::nullopt, exact, limits, options, relaxed);
+      result.attempts = std::move(attempts);
       result.planTime = planTime;
       result.simplifyTime = attempt.plan.simplifyTime;
       result.substituteEnds = attempt.substituteEnds;
@@ -330,6 +337,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
   const auto began = Clock::now();
   const PlanResult exactPlan = planMotion(exact, limits, start, goal, options);
   const auto repairTime = Clock::now() - began;
+  attempts.push_back(attemptOf(exact->name(), exactPlan));
   VerifiedPlan result;
   if (exactPlan.solved()) {
     result = verifyAndRepair(exactPlan.path, exact, limits, options);  // the final check
@@ -338,6 +346,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
     result.status = exactPlan.status;
     result.failure = std::string(toString(exactPlan.status)) + " under " + exact->name();
   }
+  result.attempts = std::move(attempts);
   result.planTime = planTime;
   result.repairTime += repairTime;
   result.wholePathReplanned = true;
@@ -357,6 +366,7 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
   VerifiedPlan result =
       planAndRepair({approximate}, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
+  result.exactChecks = recorder->callCount();
   return result;
 }
 
@@ -367,13 +377,16 @@ VerifiedPlan planVerified(const CalibratedModel& model,
   checkExact(exact, limits);
   if (!model.model) throw InvalidArgument("planVerified: the model is a null pointer");
   const auto recorder = std::make_shared<RecordingChecker>(exact);
-  std::vector<CollisionSource> chain{model.model};
+  std::vector<CollisionSource> chain;
+  chain.reserve(2);
+  chain.emplace_back(model.model);
   if (model.calibration.colliding + model.calibration.free > 0) {
     chain.emplace_back(
         std::make_shared<HybridChecker>(model.model, recorder, model.calibration.band));
   }
   VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
+  result.exactChecks = recorder->callCount();
   return result;
 }
 
@@ -388,6 +401,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   std::chrono::nanoseconds planTime{0}, simplifyTime{0}, verifyTime{0}, learnTime{0};
   std::size_t relearned = 0;
   bool substituteEnds = false;
+  std::vector<PlanAttempt> attempts;  // on the model, before those of `result`
   VerifiedPlan result;
   JointPath lastPath;  // the last path on the model that verification found colliding
   PathCheck lastCheck;
@@ -396,8 +410,11 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   // With options.oracleRelaxesExact the proxy's oracle answers where verification catches a
   // wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
   // recorded: its answers are not the exact checker's).
-  const std::shared_ptr<const CollisionChecker> relaxed =
-      options.oracleRelaxesExact && proxy.oracle() != exact ? proxy.oracle() : nullptr;
+  // Wrapped to count its answers for this plan alone (its record is not used).
+  const std::shared_ptr<const RecordingChecker> relaxed =
+      options.oracleRelaxesExact && proxy.oracle() != exact
+          ? std::make_shared<const RecordingChecker>(proxy.oracle())
+          : nullptr;
   // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
     VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options, relaxed);
@@ -411,6 +428,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     planTime += attempt.plan.time;
     simplifyTime += attempt.plan.simplifyTime;
     substituteEnds = substituteEnds || attempt.substituteEnds;
+    attempts.push_back(attemptOf(sourceName(model), attempt.plan, attempt.substituteEnds));
     if (!attempt.plan.solved() && round > 0) {
       // What the model learned closed its way: repair the last path instead, as planVerified
       // would have.
@@ -474,8 +492,11 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   result.verifyTime += verifyTime;
   result.relearned = relearned;
   result.substituteEnds = result.substituteEnds || substituteEnds;
+  result.attempts.insert(result.attempts.begin(), attempts.begin(), attempts.end());
   append(answers, recorder->take());
   result.exactAnswers = std::move(answers);
+  result.exactChecks = recorder->callCount();
+  result.relaxedChecks = relaxed ? relaxed->callCount() : 0;
   return result;
 }
 
@@ -483,8 +504,12 @@ VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
                          const JointLimits& limits, const Eigen::VectorXd& start,
                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
   checkExact(exact, limits);
-  const PlanResult plan = planMotion(exact, limits, start, goal, options);
+  // Through a fresh wrapper, whose own count is this plan's checks.
+  const auto counted = std::make_shared<const RecordingChecker>(exact);
+  const PlanResult plan = planMotion(counted, limits, start, goal, options);
   VerifiedPlan result;
+  result.attempts.push_back(attemptOf(exact->name(), plan));
+  result.exactChecks = counted->callCount();
   result.status = plan.status;
   result.path = plan.path;
   result.planTime = plan.time;

@@ -96,6 +96,14 @@ def check_plans(rows, methods, every_method_solves=True, paper="Fastron"):
                 fail(f"plan + verify + repair != total: {row}")
             if row["method"] == "FCL" and (value(row, "verify_s") != 0 or value(row, "repair_s") != 0):
                 fail(f"FCL plans need no verify or repair: {row}")
+            # Where the time went: at least the plan that was verified; failed attempts within
+            # the plan's time; an exact check at least for verification (or the plan itself).
+            if value(row, "attempts") < 1 or not 0 <= value(row, "failed_plan_s") <= times[0] + 1e-9:
+                fail(f"attempts or failed_plan_s out of place: {row}")
+            if value(row, "exact_checks") < 1:
+                fail(f"a solved plan with no exact check: {row}")
+            if row["method"] in ("FCL", "GJK", paper) and value(row, "relaxed_checks") != 0:
+                fail(f"only the default method asks a relaxed oracle: {row}")
         elif row["status"] == "solved":
             fail(f"status 'solved' on an unsolved row: {row}")
     # The source whose path was verified: the exact checker's after a whole-motion fallback, and

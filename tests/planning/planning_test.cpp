@@ -430,6 +430,9 @@ TEST_F(Planning, VerifiedPlansReturnEveryExactAnswer) {
     ASSERT_TRUE(plan.solved()) << plan.failure;
     repaired += plan.invalidStretches;
     EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
+    EXPECT_EQ(plan.exactChecks, exact->callCount());
+    ASSERT_FALSE(plan.attempts.empty());
+    EXPECT_EQ(plan.attempts.front().source, "half wall");
     ASSERT_EQ(static_cast<std::size_t>(plan.exactAnswers.points.rows()), plan.exactAnswers.size());
     for (std::size_t i = 0; i < plan.exactAnswers.size(); ++i) {
       const double* q = plan.exactAnswers.points.row(static_cast<Eigen::Index>(i)).data();
@@ -643,6 +646,9 @@ void expectOracleAskedOnlyWhenRelaxed(const VerifiedPlan& plan, const FunctionCh
     EXPECT_EQ(oracle.callCount(), 0u);
   }
   EXPECT_EQ(plan.exactAnswers.size(), exact.callCount());
+  // The plan's own counts: every call either checker got for it.
+  EXPECT_EQ(plan.exactChecks, exact.callCount());
+  EXPECT_EQ(plan.relaxedChecks, oracle.callCount());
 }
 
 // With oracleRelaxesExact the hybrid asks the proxy's oracle, not the exact checker: here an oracle
@@ -668,6 +674,13 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
     const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
     ASSERT_TRUE(plan.solved()) << plan.failure;
     EXPECT_EQ(plan.plannedOn, asksOracle ? "Fastron+oracle" : "Fastron+wall");
+    // Where the time went: the model closed the gap, then its hybrid found the path.
+    ASSERT_EQ(plan.attempts.size(), 2u);
+    EXPECT_EQ(plan.attempts[0].source, "Fastron");
+    EXPECT_NE(plan.attempts[0].status, PlanStatus::Solved);
+    EXPECT_EQ(plan.attempts[1].source, plan.plannedOn);
+    EXPECT_EQ(plan.attempts[1].status, PlanStatus::Solved);
+    EXPECT_EQ(plan.attempts[0].time + plan.attempts[1].time, plan.planTime - plan.learnTime);
     EXPECT_TRUE(
         pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
     expectOracleAskedOnlyWhenRelaxed(plan, *oracle, *exact, asksOracle);
@@ -950,9 +963,17 @@ TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
   const PlannerOptions options{.resolution = 0.01, .timeLimit = 5};
+  const std::uint64_t callsBefore = wall->callCount();
   const VerifiedPlan plan = planExactly(wall, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_GT(plan.planTime.count(), 0);
+  ASSERT_EQ(plan.attempts.size(), 1u);
+  EXPECT_EQ(plan.attempts[0].source, wall->name());
+  EXPECT_EQ(plan.attempts[0].time, plan.planTime);
+  EXPECT_EQ(plan.attempts[0].simplifyTime, plan.simplifyTime);
+  EXPECT_EQ(plan.exactChecks, wall->callCount() - callsBefore);
+  EXPECT_GT(plan.exactChecks, 0u);
+  EXPECT_EQ(plan.relaxedChecks, 0u);
   EXPECT_EQ(plan.verifyTime.count(), 0);
   EXPECT_EQ(plan.repairTime.count(), 0);
   EXPECT_TRUE(checkPath(*wall, plan.path, 0.01).valid());

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,7 +36,10 @@ struct PlanOutcome {
   bool substituteEnds = false;        ///< planned between substitutes of start and goal
   /// The final path re-checked by an FCL checker the planner never used; empty unless solved.
   std::optional<bool> collidesUnderAudit;
-  double exactShare = 0;  ///< of the plan's own collision queries, the share FCL answered
+  double exactShare = 0;         ///< of the plan's own collision queries, the share FCL answered
+  std::size_t attempts = 0;      ///< plans before verification (VerifiedPlan::attempts)
+  double failedPlanSeconds = 0;  ///< of planSeconds: the attempts that found no path
+  std::uint64_t exactChecks = 0, relaxedChecks = 0;  ///< as in VerifiedPlan
   std::string plannedOn;  ///< the source whose path was verified (VerifiedPlan::plannedOn)
 };
 
@@ -73,7 +77,8 @@ struct PlanRows {
 
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
-  /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, planned_on), then the
+  /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, attempts,
+  /// failed_plan_s, exact_checks, relaxed_checks, planned_on), then the
   /// figures; then a row per skipped query (status "skipped: " and the error, no method, NaN
   /// figures). Throws InvalidArgument when the rows do not share their query and figure columns.
   Table table() const;

@@ -4,8 +4,10 @@
 // that collides is cut out and replanned on the exact checker.
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fastron/core/dataset.h"
 #include "fastron/core/export.h"
@@ -13,6 +15,17 @@
 #include "fastron/proxy/proxy_collision_detector.h"
 
 namespace FASTRON_API fastron {
+
+/// One plan made before verification: on a model, on its hybrid, or on the exact checker for the
+/// whole motion (repairs' bridges are not attempts: they are in repairTime).
+struct PlanAttempt {
+  std::string source;  ///< sourceName: "Fastron", "Fastron+FCL", "FCL", ...
+  PlanStatus status = PlanStatus::Timeout;
+  std::chrono::nanoseconds time{0};          ///< simplification included
+  std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
+  /// It planned between substitute ends (VerifiedPlan::substituteEnds).
+  bool substituteEnds = false;
+};
 
 /// A plan made with an approximate checker, after verify and repair.
 struct VerifiedPlan {
@@ -44,6 +57,15 @@ struct VerifiedPlan {
   /// per call, label +1 in collision / -1 free: labelled configurations where the planner needed
   /// them, for the model's next update (ProxyCollisionDetector::addObservations).
   Dataset exactAnswers;
+  /// Where the planning time went: every plan before verification, in order (planTime is their
+  /// sum, with learnTime).
+  std::vector<PlanAttempt> attempts;
+  /// Configurations the exact checker answered for this plan: planning on it or on a hybrid,
+  /// verification, repair, the ends.
+  std::uint64_t exactChecks = 0;
+  /// planVerifiedLearning with options.oracleRelaxesExact: configurations its proxy's oracle
+  /// answered in place of the exact checker (the optimistic hybrid's, the first repair round's).
+  std::uint64_t relaxedChecks = 0;
   bool solved() const { return status == PlanStatus::Solved; }
   std::chrono::nanoseconds totalTime() const { return planTime + verifyTime + repairTime; }
 };
