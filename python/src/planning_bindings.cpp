@@ -127,7 +127,8 @@ struct PythonVerifiedPlan {
 py::list attemptsOf(const VerifiedPlan& plan) {
   py::list attempts;
   for (const PlanAttempt& a : plan.attempts) {
-    attempts.append(py::make_tuple(a.source, std::string(toString(a.status)), inSeconds(a.time)));
+    attempts.append(
+        py::make_tuple(a.source, std::string(toString(a.status)), inSeconds(a.time), a.checks));
   }
   return attempts;
 }
@@ -186,7 +187,7 @@ void bindPlanning(py::module_& m) {
                     "learned from before planning again (learning_rounds).")
       .def_readonly("whole_path_replanned", &PythonVerifiedPlan::wholePathReplanned)
       .def_readonly("attempts", &PythonVerifiedPlan::attempts,
-                    "Where the planning time went: (source, status, seconds) of every plan "
+                    "Where the planning time went: (source, status, seconds, checks) of every plan "
                     "before verification, in order (the model, its hybrid, the exact checker).")
       .def_readonly("exact_checks", &PythonVerifiedPlan::exactChecks,
                     "Configurations the exact checker answered for this plan.")

@@ -44,14 +44,15 @@ Table PlanRows::table() const {
   const std::vector<std::string> figureColumns =
       rows.empty() ? std::vector<std::string>{} : namesOf(rows.front().figures);
   table.columns = queryColumns;
+  // clang-format off
   for (const char* column :
-       {"planner",      "method",         "solved",      "status",    "plan_s",
-        "simplify_s",   "verify_s",       "repair_s",    "total_s",   "path_length",
-        "waypoints",    "stretches",      "relearned",   "relearn_s", "fallback",
-        "exact_ends",   "collides_fcl",   "exact_share", "attempts",  "failed_plan_s",
+       {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
+        "total_s", "path_length", "waypoints", "stretches", "relearned", "relearn_s", "fallback",
+        "exact_ends", "collides_fcl", "exact_share", "attempts", "failed_plan_s", "plan_checks",
         "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
   }
+  // clang-format on
   table.columns.insert(table.columns.end(), figureColumns.begin(), figureColumns.end());
   const auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
   for (const PlanRow& row : rows) {
@@ -83,6 +84,7 @@ Table PlanRows::table() const {
         cell(o.exactShare),
         std::to_string(o.attempts),
         cell(o.failedPlanSeconds),
+        std::to_string(o.planChecks),
         std::to_string(o.exactChecks),
         std::to_string(o.relaxedChecks),
         o.plannedOn};

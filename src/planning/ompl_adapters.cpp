@@ -61,20 +61,47 @@ std::size_t sourceDof(const CollisionSource& source) {
       source);
 }
 
+namespace {
+
+AnsweredCount orNew(AnsweredCount answered) {
+  return answered ? std::move(answered) : std::make_shared<std::atomic<std::uint64_t>>(0);
+}
+
+/// firstCollision, adding the rows the source answered (up to the first collision) to `answered`.
+std::size_t firstCollisionCounted(const CollisionSource& source, const double* states,
+                                  std::size_t n, std::size_t dim,
+                                  std::atomic<std::uint64_t>& answered) {
+  const std::size_t first = firstCollision(source, states, n, dim);
+  answered.fetch_add(first < n ? first + 1 : n, std::memory_order_relaxed);
+  return first;
+}
+
+}  // namespace
+
 CollisionValidityChecker::CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                                   CollisionSource source)
-    : ompl::base::StateValidityChecker(si), source_(std::move(source)) {}
+                                                   CollisionSource source, AnsweredCount answered)
+    : ompl::base::StateValidityChecker(si),
+      source_(std::move(source)),
+      answered_(orNew(std::move(answered))) {}
 
 bool CollisionValidityChecker::isValid(const ompl::base::State* state) const {
-  return firstCollision(source_, valuesOf(state), 1, si_->getStateDimension()) == 1;
+  return firstCollisionCounted(source_, valuesOf(state), 1, si_->getStateDimension(), *answered_) ==
+         1;
 }
 
 ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si,
-                                                     CollisionSource source, double resolution)
+                                                     CollisionSource source, double resolution,
+                                                     AnsweredCount answered)
     : ompl::base::MotionValidator(si),
       source_(std::move(source)),
       resolution_(resolution),
+      answered_(orNew(std::move(answered))),
       ends_(si->getStateDimension()) {}
+
+std::size_t ResolutionMotionValidator::ask(const double* states, std::size_t n,
+                                           std::size_t dim) const {
+  return firstCollisionCounted(source_, states, n, dim, *answered_);
+}
 
 bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
                                             const ompl::base::State* s2) const {
@@ -87,10 +114,9 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
   bool valid = false;
   if (const std::optional<bool> endCollides = ends_.find(b)) {
     // Known: only the interior states (rows 1..n-1) are asked about.
-    valid = !*endCollides &&
-            (n == 1 || firstCollision(source_, states.data() + dim, n - 1, dim) == n - 1);
+    valid = !*endCollides && (n == 1 || ask(states.data() + dim, n - 1, dim) == n - 1);
   } else {
-    const std::size_t first = firstCollision(source_, states.data(), n, dim);
+    const std::size_t first = ask(states.data(), n, dim);
     ends_.remember(b, first == 0);
     valid = first == n;
   }
@@ -116,7 +142,7 @@ bool ResolutionMotionValidator::checkMotion(
     if (i == n && endCollides) {
       collides = *endCollides;
     } else {
-      collides = firstCollision(source_, state.data(), 1, dim) == 0;
+      collides = ask(state.data(), 1, dim) == 0;
       if (i == n) ends_.remember(b, collides);
     }
     if (collides) {
@@ -150,10 +176,18 @@ ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& sour
   }
   space->setBounds(bounds);
   auto si = std::make_shared<ompl::base::SpaceInformation>(space);
-  si->setStateValidityChecker(std::make_shared<CollisionValidityChecker>(si, source));
-  si->setMotionValidator(std::make_shared<ResolutionMotionValidator>(si, source, resolution));
+  const auto answered = std::make_shared<std::atomic<std::uint64_t>>(0);
+  si->setStateValidityChecker(std::make_shared<CollisionValidityChecker>(si, source, answered));
+  si->setMotionValidator(
+      std::make_shared<ResolutionMotionValidator>(si, source, resolution, answered));
   si->setup();
   return si;
+}
+
+std::uint64_t answeredBySource(const ompl::base::SpaceInformationPtr& si) {
+  const auto* checker =
+      dynamic_cast<const CollisionValidityChecker*>(si->getStateValidityChecker().get());
+  return checker != nullptr ? checker->answered()->load(std::memory_order_relaxed) : 0;
 }
 
 }  // namespace fastron

@@ -250,14 +250,18 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   const auto began = std::chrono::steady_clock::now();
   const auto si = makeSpaceInformation(source, limits, edgeResolution(source, options));
   PlanResult result;
+  std::uint64_t endsAsked = 0;
   const auto finish = [&](PlanStatus status) {
     result.status = status;
     result.time = std::chrono::steady_clock::now() - began;
+    result.checks = endsAsked + answeredBySource(si);
     return result;
   };
+  ++endsAsked;
   if (firstCollision(source, start.data(), 1, limits.dim()) == 0) {
     return finish(PlanStatus::InvalidStart);
   }
+  ++endsAsked;
   if (firstCollision(source, goal.data(), 1, limits.dim()) == 0) {
     return finish(PlanStatus::InvalidGoal);
   }

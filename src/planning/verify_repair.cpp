@@ -268,7 +268,8 @@ struct ApproximatePlan {
 };
 
 PlanAttempt attemptOf(std::string source, const PlanResult& plan, bool substituteEnds = false) {
-  return {std::move(source), plan.status, plan.time, plan.simplifyTime, substituteEnds};
+  return {std::move(source), plan.status, plan.time,
+          plan.simplifyTime, plan.checks, substituteEnds};
 }
 
 ApproximatePlan planApproximately(const CollisionSource& approximate,
@@ -288,10 +289,12 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
     const auto goalNear = substituteFor(goal, approximate, exact, limits, options.resolution);
     if (startNear && goalNear) {
       const auto spent = plan.time;
+      const auto asked = plan.checks;
       approximateOptions.timeLimit =
           std::min(approximateOptions.timeLimit, options.timeLimit * options.substituteShare);
       plan = planMotion(approximate, limits, *startNear, *goalNear, approximateOptions);
       plan.time += spent;
+      plan.checks += asked;
       if (plan.solved()) {
         if (!startNear->isApprox(start)) plan.path.insert(plan.path.begin(), start);
         if (!goalNear->isApprox(goal)) plan.path.push_back(goal);

@@ -100,8 +100,10 @@ def check_plans(rows, methods, every_method_solves=True, paper="Fastron"):
             # the plan's time; an exact check at least for verification (or the plan itself).
             if value(row, "attempts") < 1 or not 0 <= value(row, "failed_plan_s") <= times[0] + 1e-9:
                 fail(f"attempts or failed_plan_s out of place: {row}")
-            if value(row, "exact_checks") < 1:
-                fail(f"a solved plan with no exact check: {row}")
+            if value(row, "exact_checks") < 1 or value(row, "plan_checks") < 1:
+                fail(f"a solved plan with no exact check or none on its own source: {row}")
+            if row["method"] == "FCL" and value(row, "plan_checks") != value(row, "exact_checks"):
+                fail(f"FCL's plan is all its exact checks: {row}")
             if row["method"] in ("FCL", "GJK", paper) and value(row, "relaxed_checks") != 0:
                 fail(f"only the default method asks a relaxed oracle: {row}")
         elif row["status"] == "solved":

@@ -972,6 +972,7 @@ TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   EXPECT_EQ(plan.attempts[0].time, plan.planTime);
   EXPECT_EQ(plan.attempts[0].simplifyTime, plan.simplifyTime);
   EXPECT_EQ(plan.exactChecks, wall->callCount() - callsBefore);
+  EXPECT_EQ(plan.attempts[0].checks, plan.exactChecks);
   EXPECT_GT(plan.exactChecks, 0u);
   EXPECT_EQ(plan.relaxedChecks, 0u);
   EXPECT_EQ(plan.verifyTime.count(), 0);
@@ -981,6 +982,25 @@ TEST_F(Planning, PlansMadeExactlyHaveNothingToVerify) {
   EXPECT_EQ(blocked.status, PlanStatus::InvalidStart);
   EXPECT_EQ(blocked.failure, "start in collision");
   EXPECT_THROW(planExactly(nullptr, limits, kStart, kGoal, options), InvalidArgument);
+}
+
+// A plan counts every configuration its source answered: the ends, the planner's states and
+// edges (up to each edge's first collision), and simplification; for an exact checker that is
+// every call it got, and a plan on a model counts alike without calling anything.
+TEST_F(Planning, CountsTheConfigurationsItsSourceAnswered) {
+  const auto wall = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  const JointLimits limits = JointLimits::unitBox(2);
+  for (const double simplifyTime : {0.0, 0.1}) {
+    const PlannerOptions options{.resolution = 0.01, .timeLimit = 5, .simplifyTime = simplifyTime};
+    wall->resetCallCount();
+    const PlanResult plan = planMotion(wall, limits, kStart, kGoal, options);
+    ASSERT_TRUE(plan.solved());
+    EXPECT_EQ(plan.checks, wall->callCount());
+    EXPECT_GT(plan.checks, 100u);  // around the wall at 0.01: hundreds of states
+  }
+  wall->resetCallCount();
+  EXPECT_EQ(planMotion(wall, limits, vec({0, 0}), kGoal, {}).checks, 1u);  // the start alone
+  EXPECT_EQ(wall->callCount(), 1u);
 }
 
 TEST_F(Planning, ReportsCollidingEndsAndTimeouts) {

@@ -2,6 +2,8 @@
 // OMPL adapters: a StateValidityChecker and a MotionValidator over an exact CollisionChecker or a
 // Fastron model snapshot, on a joint-space RealVectorStateSpace bounded by the joint limits.
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <variant>
 
@@ -35,14 +37,22 @@ std::size_t sourceDof(const CollisionSource& source);
 std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
                            std::size_t dim);
 
+/// How many configurations a collision source answered for the adapters that share this count:
+/// a batch counts its rows up to and including the first collision (those the source was asked).
+using AnsweredCount = std::shared_ptr<std::atomic<std::uint64_t>>;
+
 /// A state is valid when the source says it is collision-free.
 class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
  public:
-  CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si, CollisionSource source);
+  /// `answered` (made when null) counts the states asked, e.g. shared with a motion validator.
+  CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si, CollisionSource source,
+                           AnsweredCount answered = nullptr);
   bool isValid(const ompl::base::State* state) const override;
+  const AnsweredCount& answered() const { return answered_; }
 
  private:
   CollisionSource source_;
+  AnsweredCount answered_;
 };
 
 /// Checks a straight-line motion at a fixed resolution (see motionStates): with a model, all the
@@ -53,8 +63,9 @@ class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
 /// about a configuration does not change.
 class ResolutionMotionValidator final : public ompl::base::MotionValidator {
  public:
+  /// `answered` as for CollisionValidityChecker.
   ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si, CollisionSource source,
-                            double resolution);
+                            double resolution, AnsweredCount answered = nullptr);
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   /// Also reports the last valid state before the first collision along the motion (in order
   /// from s1) and its fraction of the way.
@@ -62,8 +73,12 @@ class ResolutionMotionValidator final : public ompl::base::MotionValidator {
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
  private:
+  /// firstCollision on the source, counted.
+  std::size_t ask(const double* states, std::size_t n, std::size_t dim) const;
+
   CollisionSource source_;
   double resolution_;
+  AnsweredCount answered_;
   mutable StateAnswers ends_;
 };
 
@@ -76,5 +91,9 @@ class ResolutionMotionValidator final : public ompl::base::MotionValidator {
 /// InvalidArgument when the source's dof differs from the limits' dimension.
 ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& source,
                                                      const JointLimits& limits, double resolution);
+
+/// The configurations the source of `si` (from makeSpaceInformation) has answered through its
+/// validity checker and motion validator so far; 0 for another SpaceInformation.
+std::uint64_t answeredBySource(const ompl::base::SpaceInformationPtr& si);
 
 }  // namespace fastron

@@ -165,6 +165,9 @@ struct PlanResult {
   JointPath path;                            ///< start to goal when solved, empty otherwise
   std::chrono::nanoseconds time{0};          ///< everything, simplification included
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
+  /// Configurations the source answered (ends, planning, simplification; a batch along an edge
+  /// up to its first collision).
+  std::uint64_t checks = 0;
   bool solved() const { return status == PlanStatus::Solved; }
 };
 

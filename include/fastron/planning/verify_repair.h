@@ -23,6 +23,7 @@ struct PlanAttempt {
   PlanStatus status = PlanStatus::Timeout;
   std::chrono::nanoseconds time{0};          ///< simplification included
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
+  std::uint64_t checks = 0;                  ///< PlanResult::checks
   /// It planned between substitute ends (VerifiedPlan::substituteEnds).
   bool substituteEnds = false;
 };
