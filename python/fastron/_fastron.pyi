@@ -244,6 +244,9 @@ class VerifiedPlan:
     invalid_stretches: int
     relearned: int
     whole_path_replanned: bool
+    attempts: list[tuple[str, str, float, int]]
+    exact_checks: int
+    relaxed_checks: int
     exact_answers: tuple[npt.NDArray[np.float64], npt.NDArray[np.int8]]
 
 Source = Union[Model, CollisionChecker]

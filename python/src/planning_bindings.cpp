@@ -120,7 +120,7 @@ struct PythonVerifiedPlan {
   bool wholePathReplanned = false;
   py::array_t<double> exactX;
   py::array_t<std::int8_t> exactY;
-  py::list attempts;  // (source, status, seconds) per plan before verification
+  py::list attempts;  // (source, status, seconds, checks) per plan before verification
   std::uint64_t exactChecks = 0, relaxedChecks = 0;
 };
 
