@@ -18,6 +18,7 @@
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/held_out_model.h"
 #include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
@@ -144,48 +145,6 @@ void printRounds(const HeldOutTraining& trained, const std::vector<double>& marg
   }
 }
 
-/// --margins (each at least 0, checked by its option) without its zeros; throws InvalidArgument
-/// unless they increase.
-std::vector<double> grownMargins(const std::vector<double>& margins) {
-  std::vector<double> used;
-  for (const double margin : margins) {
-    if (margin == 0) continue;
-    if (!used.empty() && margin <= used.back()) {
-      std::ostringstream message;
-      message << "--margins must increase, got " << used.back() << " then " << margin;
-      throw InvalidArgument(message.str());
-    }
-    used.push_back(margin);
-  }
-  return used;
-}
-
-/// The other candidates of the held-out rounds, when `features` are the automatic task-space ones
-/// of a scene without self-collision labels (where they were measured): one more automatic
-/// control point than `features` and beta kMorePointsBeta (or --beta, when given), by the spread
-/// rule (when it has a point more to give) and by the cover rule (ControlPointRule::Cover, which
-/// the robots of other makers needed: docs/algorithms.md); none otherwise.
-std::vector<ModelCandidate> otherCandidates(const TrainOptions& o, const Robot& robot,
-                                            const FeatureMap& features, const TrainParams& params) {
-  if (!o.secondCandidate || o.selfCollision || features.kind() != FeatureKind::Kinematic ||
-      !o.features.controlLinks.empty() || o.features.automatic.maxPoints == 0) {
-    return {};
-  }
-  TrainParams candidateParams = params;
-  candidateParams.beta = o.beta.value_or(kMorePointsBeta);  // a user's --beta holds for every model
-  std::vector<ModelCandidate> candidates;
-  for (const ControlPointRule rule : {ControlPointRule::Spread, ControlPointRule::Cover}) {
-    ControlPointOptions more = o.features.automatic;
-    ++more.maxPoints;
-    more.rule = rule;
-    std::vector<ControlPoint> points = defaultControlPoints(robot, more);
-    if (rule == o.features.automatic.rule && points.size() * 3 <= features.featureDim()) continue;
-    candidates.push_back(
-        {robotFeatures(robot, FeatureKind::Kinematic, std::move(points)), candidateParams});
-  }
-  return candidates;
-}
-
 /// fastron train --robot R --scene S: FCL-labelled uniform samples and Algorithm 1, then either
 /// rounds on fresh held-out configurations until the targets are met, or K rounds of active
 /// learning (Algorithm 2).
@@ -197,8 +156,6 @@ int trainOnScene(const TrainOptions& o) {
   const Robot robot = loadRobotFromOptions(o.robot);
   const bool selfAlone = selfCollisionsAlone(o);
   const Scene scene = selfAlone ? Scene{} : loadScene(o.scene);
-  const auto fcl =
-      std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
   // Self-collisions depend on the joint values alone, and a kernel over them modelled them better
   // than one over control points (docs/planning.md, "A self-collision model learned once").
   FeatureOptions featureOptions = o.features;
@@ -217,37 +174,34 @@ int trainOnScene(const TrainOptions& o) {
   printParams(params.train, features);
   std::shared_ptr<const Model> model;
   if (o.heldOut.samplesPerRound > 0) {
-    const auto start = std::chrono::steady_clock::now();
-    // Oracles whose labels leave the robot more room, for rounds that miss the TPR alone.
-    // (A scene without obstacles has nothing to grow.)
-    const std::vector<double> margins = selfAlone ? std::vector<double>{} : grownMargins(o.margins);
-    std::vector<std::unique_ptr<const FclChecker>> grown;
-    std::vector<const CollisionChecker*> grownOracles;
-    for (const double margin : margins) {
-      grown.push_back(std::make_unique<const FclChecker>(robot, scene.grown(margin),
-                                                         CheckerOptions{o.selfCollision}));
-      grownOracles.push_back(grown.back().get());
-    }
-    const std::vector<ModelCandidate> alternatives =
-        otherCandidates(o, robot, features, params.train);
-    Rng rng(o.seed);
-    const HeldOutTraining trained = trainToHeldOutTargets(
-        *fcl, features, params.train, o.samples, o.heldOut, rng, 0, grownOracles, alternatives);
+    pipeline::HeldOutModelOptions options{.samples = o.samples,
+                                          .targets = o.heldOut,
+                                          .margins = o.margins,
+                                          .selfCollision = o.selfCollision,
+                                          .candidateBeta = o.beta,
+                                          .seed = o.seed};
+    // The other candidates were measured with automatic task-space control points.
+    if (o.secondCandidate && o.features.controlLinks.empty())
+      options.automatic = o.features.automatic;
+    const pipeline::HeldOutModel made =
+        pipeline::trainHeldOutModel(robot, scene, features, params.train, options);
+    const HeldOutTraining& trained = made.training;
     std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
               << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
               << ", TPR " << o.heldOut.truePositiveRate << ")\n";
-    printRounds(trained, margins, alternatives);
+    printRounds(trained, made.margins, made.candidates);
     if (trained.rounds[trained.chosenRound].candidate > 0) {
-      const ModelCandidate& kept = alternatives[trained.rounds[trained.chosenRound].candidate - 1];
+      const ModelCandidate& kept =
+          made.candidates[trained.rounds[trained.chosenRound].candidate - 1];
       std::cout << "kept          the second candidate:\n";
       printParams(kept.params, kept.features);
     }
     printReport(trained.update);
-    std::cout << "time          "
-              << durationText(inSeconds(std::chrono::steady_clock::now() - start))
-              << " for labelling and training\n";
+    std::cout << "time          " << durationText(made.seconds) << " for labelling and training\n";
     model = trained.model;
   } else {
+    const auto fcl =
+        std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
     ProxyCollisionDetector proxy(fcl, features, params);
     StepReport step = proxy.initialize(o.samples);
     std::cout << "samples       " << o.samples << " labelled by FCL in "

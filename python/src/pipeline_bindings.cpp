@@ -6,6 +6,7 @@
 #include "bindings.h"
 #include "detector_holder.h"
 #include "fastron/geometry/control_points.h"
+#include "fastron/pipeline/held_out_model.h"
 #include "fastron/pipeline/scene_model.h"
 
 namespace fastron::python {
@@ -38,6 +39,60 @@ void bindPipeline(py::module_& m) {
       "`samples` FCL labels and `updates` active-learning updates, no band. Plan with it as "
       "`fastron plan` does: plan_verified(detector, exact, start, goal, static_scene=True, "
       "oracle_relaxes_exact=True).");
+
+  const pipeline::HeldOutModelOptions heldOut;
+  m.def(
+      "train_held_out_model",
+      [](const Robot& robot, const Scene& scene, const std::string& features, std::size_t samples,
+         std::size_t heldOutSamples, double targetAccuracy, double targetTpr,
+         std::size_t maxSamples, const std::vector<double>& margins, bool selfCollision,
+         std::optional<double> gamma, std::optional<double> beta, bool otherCandidates,
+         std::uint64_t seed) {
+        const FeatureMap map = robotFeatures(robot, parseFeatureKind(features));
+        TrainParams params = sceneTrainParams(map.kind(), selfCollision);
+        if (gamma) params.kernel.gamma = *gamma;
+        if (beta) params.beta = *beta;
+        pipeline::HeldOutModelOptions options{
+            .samples = samples,
+            .targets = {targetAccuracy, targetTpr, heldOutSamples, maxSamples},
+            .margins = margins,
+            .selfCollision = selfCollision,
+            .candidateBeta = beta,
+            .seed = seed};
+        if (otherCandidates) options.automatic = ControlPointOptions{};
+        validate(options.targets);
+        pipeline::HeldOutModel made;
+        {
+          py::gil_scoped_release released;
+          made = pipeline::trainHeldOutModel(robot, scene, map, params, options);
+        }
+        py::list rounds;
+        for (const HeldOutRound& r : made.training.rounds) {
+          rounds.append(py::dict(
+              py::arg("training_samples") = r.trainingSamples,
+              py::arg("support_count") = r.supportCount, py::arg("accuracy") = r.heldOut.accuracy(),
+              py::arg("tpr") = r.heldOut.tpr(),
+              py::arg("grown_margin") = r.grownLevel == 0 ? 0.0 : made.margins[r.grownLevel - 1],
+              py::arg("candidate") = r.candidate));
+        }
+        return py::make_tuple(std::make_shared<Model>(*made.training.model), rounds,
+                              made.training.chosenRound);
+      },
+      py::arg("robot"), py::arg("scene"), py::kw_only(), py::arg("features") = "fk",
+      py::arg("samples") = heldOut.samples, py::arg("held_out") = heldOut.targets.samplesPerRound,
+      py::arg("target_accuracy") = heldOut.targets.accuracy,
+      py::arg("target_tpr") = heldOut.targets.truePositiveRate,
+      py::arg("max_samples") = heldOut.targets.maxTrainingSamples,
+      py::arg("margins") = heldOut.margins, py::arg("self_collision") = false,
+      py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
+      py::arg("other_candidates") = true, py::arg("seed") = 1,
+      "The most accurate model of a scene that stands still, by the function `fastron train "
+      "--robot R --scene S` calls (the same seed gives the command's model): `samples` FCL "
+      "labels, then rounds of `held_out` fresh configurations until accuracy and TPR reach the "
+      "targets (obstacles grown by `margins` when only the TPR is missed; with 'fk' features "
+      "and other_candidates, one more control point by each rule tried too). Returns (model, "
+      "rounds, kept): each round's training samples, |S|, held-out accuracy and TPR, grown "
+      "margin and candidate (0: the first features), and the index of the round kept.");
 }
 
 }  // namespace fastron::python

@@ -496,6 +496,32 @@ def test_the_default_method_is_the_commands(baxter, fastron_command):
             fastron.load_robot("ur3")))
 
 
+def test_the_held_out_recipe_is_the_commands(baxter, fastron_command, tmp_path):
+    """train_held_out_model is the function `fastron train --robot --scene` calls: the same seed
+    gives the same model (rounds, candidates and all)."""
+    import subprocess
+    scene_file = fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml"
+    out = tmp_path / "held-out.fastron"
+    subprocess.run([str(fastron_command), "train", "--robot", "baxter", "--scene", str(scene_file),
+                    "--samples", "1000", "--held-out", "1000", "--target-accuracy", "1",
+                    "--max-samples", "2000", "--seed", "3", "-o", str(out)],
+                   capture_output=True, check=True)
+    cli = fastron.load_model(out, baxter)
+    model, rounds, kept = fastron.train_held_out_model(
+        baxter, fastron.load_scene(scene_file), samples=1000, held_out=1000, target_accuracy=1,
+        max_samples=2000, seed=3)
+    assert model.checksum == cli.checksum
+    assert rounds[kept]["support_count"] == model.support_count
+    assert {r["candidate"] for r in rounds} == {0, 1, 2}  # the rounds missed: candidates tried
+    assert all(0 <= r["accuracy"] <= 1 and r["training_samples"] in (1000, 2000) for r in rounds)
+    with pytest.raises(fastron.InvalidArgument, match="margins must increase"):
+        fastron.train_held_out_model(baxter, fastron.load_scene(scene_file), samples=100,
+                                     margins=[0.02, 0.01])
+    with pytest.raises(fastron.InvalidArgument, match="target accuracy"):
+        fastron.train_held_out_model(baxter, fastron.load_scene(scene_file), samples=100,
+                                     target_accuracy=1.5)
+
+
 def test_help_shows_the_api():
     assert "f(q)" in fastron.Model.__doc__
     assert "numpy" in fastron.__doc__ or "array" in fastron.__doc__

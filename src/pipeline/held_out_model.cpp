@@ -1,0 +1,71 @@
+#include "fastron/pipeline/held_out_model.h"
+
+#include <chrono>
+#include <memory>
+#include <sstream>
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/fcl_checker.h"
+
+namespace fastron::pipeline {
+
+std::vector<double> increasingMargins(const std::vector<double>& margins) {
+  std::vector<double> used;
+  for (const double margin : margins) {
+    if (margin == 0) continue;
+    if (!used.empty() && margin <= used.back()) {
+      std::ostringstream message;
+      message << "obstacle margins must increase, got " << used.back() << " then " << margin;
+      throw InvalidArgument(message.str());
+    }
+    used.push_back(margin);
+  }
+  return used;
+}
+
+std::vector<ModelCandidate> moreControlPointCandidates(const Robot& robot,
+                                                       const FeatureMap& features,
+                                                       const ControlPointOptions& automatic,
+                                                       TrainParams params, double beta) {
+  if (features.kind() != FeatureKind::Kinematic || automatic.maxPoints == 0) return {};
+  params.beta = beta;
+  std::vector<ModelCandidate> candidates;
+  for (const ControlPointRule rule : {ControlPointRule::Spread, ControlPointRule::Cover}) {
+    ControlPointOptions more = automatic;
+    ++more.maxPoints;
+    more.rule = rule;
+    std::vector<ControlPoint> points = defaultControlPoints(robot, more);
+    // The same rule with no point more to give would train the first model again.
+    if (rule == automatic.rule && points.size() * 3 <= features.featureDim()) continue;
+    candidates.push_back({robotFeatures(robot, FeatureKind::Kinematic, std::move(points)), params});
+  }
+  return candidates;
+}
+
+HeldOutModel trainHeldOutModel(const Robot& robot, const Scene& scene, const FeatureMap& features,
+                               const TrainParams& params, const HeldOutModelOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const CheckerOptions checking{options.selfCollision, options.padding};
+  const FclChecker oracle(robot, scene, checking);
+  HeldOutModel result;
+  // A scene without obstacles has nothing to grow.
+  if (scene.size() > 0) result.margins = increasingMargins(options.margins);
+  std::vector<std::unique_ptr<const FclChecker>> grown;
+  std::vector<const CollisionChecker*> grownOracles;
+  for (const double margin : result.margins) {
+    grown.push_back(std::make_unique<const FclChecker>(robot, scene.grown(margin), checking));
+    grownOracles.push_back(grown.back().get());
+  }
+  if (options.automatic && !options.selfCollision) {
+    result.candidates = moreControlPointCandidates(robot, features, *options.automatic, params,
+                                                   options.candidateBeta.value_or(kMorePointsBeta));
+  }
+  Rng rng(options.seed);
+  result.training =
+      trainToHeldOutTargets(oracle, features, params, options.samples, options.targets, rng,
+                            options.threads, grownOracles, result.candidates);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace fastron::pipeline
