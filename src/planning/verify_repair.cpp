@@ -364,10 +364,18 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  return planVerified(std::vector<CollisionSource>{approximate}, exact, limits, start, goal,
+                      options);
+}
+
+VerifiedPlan planVerified(const std::vector<CollisionSource>& chain,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
   checkExact(exact, limits);
+  if (chain.empty()) throw InvalidArgument("planVerified: no approximate source given");
   const auto recorder = std::make_shared<RecordingChecker>(exact);
-  VerifiedPlan result =
-      planAndRepair({approximate}, recorder, limits, start, goal, options, options);
+  VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
   result.exactChecks = recorder->callCount();
   return result;

@@ -70,5 +70,39 @@ TEST(AnyOfChecker, RefusesBadCheckers) {
   EXPECT_THROW(AnyOfChecker({a, three}), InvalidArgument);
 }
 
+// All of two models: in collision only where both say so, a run's first collision is the first
+// state both call colliding, and the later checker is asked only about what the first calls
+// colliding (the optimistic hybrid's economy).
+TEST(AllOfChecker, CollidesWhereAllCollideAndAsksTheLaterOnlyAboutCollisions) {
+  const auto a = std::make_shared<ModelChecker>(ballModel(1), "a");
+  const auto model = ballModel(7);
+  const auto b = std::make_shared<FunctionChecker>(
+      "b", 2, [model](const double* q) { return model->inCollision(q); });
+  const AllOfChecker all({a, b});
+  EXPECT_EQ(all.name(), "a&b");
+  EXPECT_TRUE(all.answersFromAModel());
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    const Configurations q = test::uniformPoints(1 + seed % 25, 2, 50 + seed);
+    const auto n = static_cast<std::size_t>(q.rows());
+    std::size_t expected = n, firstCalledColliding = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* row = q.row(static_cast<Eigen::Index>(i)).data();
+      const bool aHit = a->inCollision({row, 2});
+      const bool hit = aHit && b->inCollision({row, 2});
+      EXPECT_EQ(all.inCollision({row, 2}), hit);
+      if (expected == n && aHit) ++firstCalledColliding;
+      if (hit && expected == n) expected = i;
+    }
+    b->resetCallCount();
+    EXPECT_EQ(all.firstInCollision(q.data(), n), expected) << "seed " << seed;
+    EXPECT_EQ(b->callCount(), firstCalledColliding) << "seed " << seed;
+  }
+  const auto three =
+      std::make_shared<FunctionChecker>("three", 3, [](const double*) { return false; });
+  EXPECT_THROW(AllOfChecker({}), InvalidArgument);
+  EXPECT_THROW(AllOfChecker({a, nullptr}), InvalidArgument);
+  EXPECT_THROW(AllOfChecker({a, three}), InvalidArgument);
+}
+
 }  // namespace
 }  // namespace fastron

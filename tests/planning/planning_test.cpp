@@ -1003,6 +1003,29 @@ TEST_F(Planning, CountsTheConfigurationsItsSourceAnswered) {
   EXPECT_EQ(wall->callCount(), 1u);
 }
 
+// A chain of sources: one that closes the wall's gap finds nothing in its share of the time, and
+// the optimistic hybrid after it (its "collides" confirmed by the exact checker) finds the path,
+// which verification finds free. An empty chain is refused.
+TEST_F(Planning, AChainPlansOnEachSourceInTurn) {
+  const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
+  const auto closed = std::make_shared<FunctionChecker>(
+      "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
+  const auto confirmed = std::make_shared<const AllOfChecker>(
+      std::vector<std::shared_ptr<const CollisionChecker>>{closed, exact});
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 2, .approximateShare = 0.1};
+  const VerifiedPlan plan =
+      planVerified({closed, confirmed}, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  EXPECT_EQ(plan.plannedOn, "closed&wall");
+  ASSERT_EQ(plan.attempts.size(), 2u);
+  EXPECT_EQ(plan.attempts[0].status, PlanStatus::Timeout);
+  EXPECT_EQ(plan.attempts[1].source, "closed&wall");
+  EXPECT_TRUE(checkPath(*exact, plan.path, 0.01).valid());
+  EXPECT_THROW(planVerified(std::vector<CollisionSource>{}, exact, limits, kStart, kGoal, options),
+               InvalidArgument);
+}
+
 TEST_F(Planning, ReportsCollidingEndsAndTimeouts) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);

@@ -35,24 +35,56 @@ class ModelChecker final : public CollisionChecker {
   std::string name_;
 };
 
-/// In collision when any of its checkers says so. A run of configurations goes to each checker in
-/// turn, the later ones only up to the first collision found so far.
-class AnyOfChecker final : public CollisionChecker {
+/// Several checkers of one robot answering as one: the common part of AnyOfChecker and
+/// AllOfChecker (validation, name, dof, whether a model answers).
+class CombinedChecker : public CollisionChecker {
  public:
-  /// Throws InvalidArgument on no checkers, a null one, or checkers of different dof.
-  explicit AnyOfChecker(std::vector<std::shared_ptr<const CollisionChecker>> checkers);
-  /// The names joined by "+".
+  /// Its checkers' names joined by its separator ("+" for any of them, "&" for all).
   std::string name() const override;
   std::size_t dof() const override { return checkers_.front()->dof(); }
   /// True when one of its checkers answers from a model.
   bool answersFromAModel() const override;
 
  protected:
-  bool check(const double* q) const override;
-  std::size_t checkFirst(const double* q, std::size_t n) const override;
+  /// Throws InvalidArgument, naming `kind`, on no checkers, a null one, or checkers of
+  /// different dof.
+  CombinedChecker(std::vector<std::shared_ptr<const CollisionChecker>> checkers, const char* kind,
+                  char separator);
+  const std::vector<std::shared_ptr<const CollisionChecker>>& checkers() const { return checkers_; }
 
  private:
   std::vector<std::shared_ptr<const CollisionChecker>> checkers_;
+  char separator_;
+};
+
+/// In collision when any of its checkers says so. A run of configurations goes to each checker in
+/// turn, the later ones only up to the first collision found so far. Named "a+b".
+class AnyOfChecker final : public CombinedChecker {
+ public:
+  /// Throws InvalidArgument on no checkers, a null one, or checkers of different dof.
+  explicit AnyOfChecker(std::vector<std::shared_ptr<const CollisionChecker>> checkers)
+      : CombinedChecker(std::move(checkers), "AnyOfChecker", '+') {}
+
+ protected:
+  bool check(const double* q) const override;
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
+};
+
+/// In collision when every one of its checkers says so, asked in turn: a later checker only about
+/// what every earlier one calls colliding. With a model first and an exact checker last, an
+/// optimistic hybrid: the model's "free" is trusted and its "collides" confirmed, which reopens
+/// what a conservative model closes. Named "a&b".
+class AllOfChecker final : public CombinedChecker {
+ public:
+  /// Throws InvalidArgument on no checkers, a null one, or checkers of different dof.
+  explicit AllOfChecker(std::vector<std::shared_ptr<const CollisionChecker>> checkers)
+      : CombinedChecker(std::move(checkers), "AllOfChecker", '&') {}
+
+ protected:
+  bool check(const double* q) const override;
+  /// A run goes to the first checker; each collision it finds is confirmed by the others, and
+  /// the run goes on after one they call free.
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
 };
 
 }  // namespace fastron

@@ -96,6 +96,15 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options);
 
+/// The same with several approximate sources planned on in turn (each for at most
+/// options.approximateShare of the time limit) until one finds a path, e.g. models, then an
+/// AllOfChecker of them and `exact` that reopens what they close; throws InvalidArgument on an
+/// empty chain.
+VerifiedPlan planVerified(const std::vector<CollisionSource>& chain,
+                          const std::shared_ptr<const CollisionChecker>& exact,
+                          const JointLimits& limits, const Eigen::VectorXd& start,
+                          const Eigen::VectorXd& goal, const PlannerOptions& options);
+
 /// No hopeless waits on a model that closes a passage: plans on the model for
 /// options.approximateShare of the time limit; when that finds no path, on a HybridChecker of the
 /// model and `exact` inside the calibrated band (which reopens what the model closed with little
