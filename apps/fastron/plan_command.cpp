@@ -139,15 +139,8 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
   }
   const auto obstacles = !o.model.empty() ? readModel(o.model, robot, "model    ")
                                           : trainObstacleModel(o, robot, scene).detector->model();
-  const auto both =
-      std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
-          std::make_shared<const ModelChecker>(obstacles),
-          std::make_shared<const ModelChecker>(self, "Fastron self")});
-  // As the default method: when the models close the way (a conservative self model near an
-  // end), a hybrid that trusts their "free" and asks FCL about their "collides", then FCL.
-  const auto confirmed = std::make_shared<const AllOfChecker>(
-      std::vector<std::shared_ptr<const CollisionChecker>>{both, fcl});
-  return planVerified({both, confirmed}, fcl, robot.limits(), start, goal, options);
+  return pipeline::planOnSplitModel(pipeline::splitModel(obstacles, self), fcl, robot.limits(),
+                                    start, goal, options);
 }
 
 int runPlan(const PlanOptions& o) {

@@ -174,7 +174,7 @@ std::string endToEndSpeedups(const PlanRows& r, const RowFilter& where, std::siz
 struct RobotModels {
   std::optional<std::uint64_t> checksum;  ///< none before the first problem's robot
   FeatureMap features;
-  std::shared_ptr<const CollisionChecker> selfModel;  ///< with MotionBenchOptions::selfModel
+  std::shared_ptr<const Model> selfModel;  ///< with MotionBenchOptions::selfModel
   double selfTrainSeconds = 0;
 };
 
@@ -193,7 +193,7 @@ void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const 
              std::string(self.fromCache ? "read from " : "trained and kept in ") +
              self.file.string());
   models.selfTrainSeconds = self.trainSeconds;
-  models.selfModel = std::make_shared<ModelChecker>(self.model, "Fastron self");
+  models.selfModel = self.model;
 }
 
 /// `rows` as results.csv so far, written whole to a new file then moved over `path`: an
@@ -224,7 +224,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   const JointLimits limits = robot.limits();
   const FeatureMap& features = models.features;
   const CheckerOptions checking{.selfCollision = o.selfCollision};
-  const std::shared_ptr<const CollisionChecker>& selfModel = models.selfModel;
+  const std::shared_ptr<const Model>& selfModel = models.selfModel;
   const double selfTrainSeconds = models.selfTrainSeconds;
   const std::size_t samples = trainingSamples(o);
   const std::size_t updates = trainingUpdates(o);
@@ -266,8 +266,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   std::shared_ptr<const CollisionChecker> split;
   const auto obstaclesSupport = static_cast<double>(obstacles.model()->supportCount());
   if (selfModel) {
-    split = std::make_shared<AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
-        std::make_shared<ModelChecker>(obstacles.model()), selfModel});
+    split = pipeline::splitModel(obstacles.model(), selfModel);
     const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
     splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
   }
@@ -333,8 +332,9 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
     }
     if (split) {
       seedPlanners(o.seed, turn);
-      addRow({"Fastron split", planVerified(split, fcl, limits, from, to, options), 0},
-             obstaclesSupport, splitQuality, obstaclesTrain, 0);
+      addRow(
+          {"Fastron split", pipeline::planOnSplitModel(split, fcl, limits, from, to, options), 0},
+          obstaclesSupport, splitQuality, obstaclesTrain, 0);
     }
     {  // planned last (it learns, and keeps what it learns for the scene's next queries), listed
        // first. Scored as it plans this query: on its oracle's labels.
@@ -428,9 +428,11 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
      << ". Fastron (paper) and Hybrid (paper): the paper's recipe, a model of everything FCL "
         "checks with a calibrated band (Hybrid asks FCL inside it), verified and repaired with "
         "FCL."
-     << (o.selfModel ? " Fastron split: the default method's obstacle model beside a "
-                       "self-collision model learned once for the robot, verified and repaired."
-                     : "")
+     << (o.selfModel
+             ? " Fastron split: the default method's obstacle model beside a "
+               "self-collision model learned once for the robot, then the hybrid asking FCL about "
+               "their \"collides\", verified and repaired."
+             : "")
      << "\n";
 
   std::vector<std::string> groups;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "fastron/core/model_checker.h"
 #include "fastron/pipeline/presets.h"
 
 namespace fastron::pipeline {
@@ -28,6 +29,25 @@ VerifiedPlan planOnSceneModel(SceneModel& model,
                               const Eigen::VectorXd& goal, PlannerOptions options) {
   options.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `exact`
   return planVerifiedLearning(*model.detector, exact, limits, start, goal, options);
+}
+
+std::shared_ptr<const CollisionChecker> splitModel(std::shared_ptr<const Model> obstacles,
+                                                   std::shared_ptr<const Model> self) {
+  return std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
+      std::make_shared<const ModelChecker>(std::move(obstacles)),
+      std::make_shared<const ModelChecker>(std::move(self), "Fastron self")});
+}
+
+VerifiedPlan planOnSplitModel(const std::shared_ptr<const CollisionChecker>& split,
+                              const std::shared_ptr<const CollisionChecker>& exact,
+                              const JointLimits& limits, const Eigen::VectorXd& start,
+                              const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  // A conservative self model near an end (a grasp, a folded arm) closes the way as an obstacle
+  // model near a wall does; planned on alone, the whole motion then went to `exact`
+  // (docs/planning.md, "The optimistic hybrid for --self-model").
+  const auto confirmed = std::make_shared<const AllOfChecker>(
+      std::vector<std::shared_ptr<const CollisionChecker>>{split, exact});
+  return planVerified({split, confirmed}, exact, limits, start, goal, options);
 }
 
 }  // namespace fastron::pipeline

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "fastron/core/active_learning.h"
+#include "fastron/core/error.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
@@ -64,6 +65,38 @@ TEST(SceneModel, ItsPlansAreFreeUnderTheExactChecker) {
   ASSERT_TRUE(plan.solved()) << plan.failure;
   const FclChecker audit(baxter, scene);
   EXPECT_TRUE(checkPath(audit, plan.path, 0.03).valid());
+}
+
+// The split plan: a "self model" that calls the start colliding (as the Panda's did on a cage
+// request) leaves the models' plan nowhere to go; the hybrid after it asks FCL about what they
+// call colliding, and the path it finds is free under FCL.
+TEST(SceneModel, ASplitModelThatEnclosesAnEndStillPlans) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = oneBox();
+  SceneModel model =
+      trainSceneModel(baxter, scene, {}, robotFeatures(baxter, FeatureKind::Kinematic),
+                      {.samples = 1500, .updates = 1, .seed = 1, .gamma = {}, .beta = {}});
+  Eigen::VectorXd start(7), goal(7);
+  start << -1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  goal << 1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  // One support point at the start with a large weight: "colliding" within a kernel width of it.
+  const auto self = std::make_shared<const Model>(
+      FeatureMap::jointScaling(baxter.limits()), Kernel{KernelType::RationalQuadratic, 5},
+      Configurations(start.transpose()), Eigen::VectorXd::Constant(1, 10.0));
+  ASSERT_TRUE(self->inCollision(start.data()));
+  const auto split = splitModel(model.detector->model(), self);
+  EXPECT_EQ(split->name(), "Fastron+Fastron self");
+  const auto exact = std::make_shared<const FclChecker>(baxter, scene);
+  seedPlanners(1, 0);
+  const VerifiedPlan plan = planOnSplitModel(split, exact, baxter.limits(), start, goal,
+                                             {.resolution = 0.03, .timeLimit = 10});
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  ASSERT_GE(plan.attempts.size(), 2u);
+  EXPECT_EQ(plan.attempts[0].status, PlanStatus::InvalidStart);
+  EXPECT_EQ(plan.attempts[1].source, "Fastron+Fastron self&FCL");
+  const FclChecker audit(baxter, scene);
+  EXPECT_TRUE(checkPath(audit, plan.path, 0.03).valid());
+  EXPECT_THROW(splitModel(model.detector->model(), nullptr), InvalidArgument);
 }
 
 }  // namespace
