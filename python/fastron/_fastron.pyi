@@ -109,6 +109,9 @@ class ModelChecker(CollisionChecker):
 class AnyOfChecker(CollisionChecker):
     def __init__(self, checkers: Sequence[CollisionChecker]) -> None: ...
 
+class AllOfChecker(CollisionChecker):
+    def __init__(self, checkers: Sequence[CollisionChecker]) -> None: ...
+
 class Robot:
     name: str
     dof: int

@@ -344,6 +344,18 @@ void bindCore(py::module_& m) {
                                                                       checkers.end()));
            }),
            py::arg("checkers"));
+
+  py::class_<AllOfChecker, CollisionChecker, std::shared_ptr<AllOfChecker>>(
+      m, "AllOfChecker",
+      "In collision only when all of its checkers say so, a later one asked only about what the "
+      "earlier ones call colliding: with a model first and an exact checker last, an optimistic "
+      "hybrid (the model's 'free' trusted, its 'collides' confirmed).")
+      .def(py::init([](const std::vector<std::shared_ptr<CollisionChecker>>& checkers) {
+             return std::make_shared<AllOfChecker>(
+                 std::vector<std::shared_ptr<const CollisionChecker>>(checkers.begin(),
+                                                                      checkers.end()));
+           }),
+           py::arg("checkers"));
 }
 
 }  // namespace fastron::python

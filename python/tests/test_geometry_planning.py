@@ -427,6 +427,15 @@ def test_plans_on_two_models_at_once(baxter):
         fastron.AnyOfChecker([])
     with pytest.raises(fastron.InvalidArgument, match="has 2 dof"):
         fastron.AnyOfChecker([both, fastron.FunctionChecker(lambda q: False, 2)])
+    # All of the models and FCL: their "collides" confirmed by FCL, an optimistic hybrid.
+    confirmed = fastron.AllOfChecker([both, fcl])
+    assert confirmed.name == "Fastron+other boxes&FCL"
+    assert np.array_equal(confirmed.in_collision(x), both.in_collision(x) & fcl.in_collision(x))
+    plan = fastron.plan_verified(confirmed, fcl, free[0], free[1], limits=baxter.limits,
+                                 resolution=0.05, time_limit=5)
+    assert plan.solved and fastron.check_path(fcl, plan.path, 0.05), plan
+    with pytest.raises(fastron.InvalidArgument, match="AllOfChecker: no checkers"):
+        fastron.AllOfChecker([])
 
 
 def test_moveit_files():
