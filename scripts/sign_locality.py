@@ -45,10 +45,9 @@ def terms(model, x):
 
 def oracle_share(values):
     """Fewest values (largest |value| first) after which the rest cannot change the sign."""
-    order = np.sort(np.abs(values))[::-1]
-    signed = values[np.argsort(-np.abs(values), kind="stable")]
-    partial = np.cumsum(signed)
-    tail = np.abs(values).sum() - np.cumsum(order)
+    largest_first = values[np.argsort(-np.abs(values), kind="stable")]
+    partial = np.cumsum(largest_first)
+    tail = np.abs(values).sum() - np.cumsum(np.abs(largest_first))
     decided = np.nonzero(np.abs(partial) > tail)[0]
     used = decided[0] + 1 if len(decided) else len(values)
     return used / len(values)

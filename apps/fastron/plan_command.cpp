@@ -202,8 +202,6 @@ int runPlan(const PlanOptions& o) {
     }
   }
 
-  // Every FCL check of the plan (a hybrid may hold `fcl` itself, beside verification's).
-  const std::uint64_t fclCallsBefore = fcl->callCount();
   VerifiedPlan plan;
   if (o.checker == "fcl") {
     plan = planExactly(fcl, limits, start, goal, options);
@@ -239,7 +237,7 @@ int runPlan(const PlanOptions& o) {
             << durationText(inSeconds(plan.repairTime)) << ", total "
             << durationText(inSeconds(plan.totalTime())) << '\n';
   std::cout << "plans    " << attemptsText(plan.attempts) << '\n'
-            << "checks   " << fcl->name() << " " << fcl->callCount() - fclCallsBefore;
+            << "checks   " << fcl->name() << " " << plan.exactChecks;
   if (plan.relaxedChecks > 0) {
     std::cout << "; the model's oracle (" << fcl->name() << ", obstacles only) "
               << plan.relaxedChecks;

@@ -174,15 +174,16 @@ int trainOnScene(const TrainOptions& o) {
   printParams(params.train, features);
   std::shared_ptr<const Model> model;
   if (o.heldOut.samplesPerRound > 0) {
-    pipeline::HeldOutModelOptions options{.samples = o.samples,
-                                          .targets = o.heldOut,
-                                          .margins = o.margins,
-                                          .selfCollision = o.selfCollision,
-                                          .candidateBeta = o.beta,
-                                          .seed = o.seed};
+    pipeline::HeldOutModelOptions options;
+    options.samples = o.samples;
+    options.targets = o.heldOut;
+    options.margins = o.margins;
+    options.selfCollision = o.selfCollision;
     // The other candidates were measured with automatic task-space control points.
     if (o.secondCandidate && o.features.controlLinks.empty())
       options.automatic = o.features.automatic;
+    options.candidateBeta = o.beta;
+    options.seed = o.seed;
     const pipeline::HeldOutModel made =
         pipeline::trainHeldOutModel(robot, scene, features, params.train, options);
     const HeldOutTraining& trained = made.training;

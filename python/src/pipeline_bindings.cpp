@@ -52,15 +52,14 @@ void bindPipeline(py::module_& m) {
         TrainParams params = sceneTrainParams(map.kind(), selfCollision);
         if (gamma) params.kernel.gamma = *gamma;
         if (beta) params.beta = *beta;
-        pipeline::HeldOutModelOptions options{
-            .samples = samples,
-            .targets = {targetAccuracy, targetTpr, heldOutSamples, maxSamples},
-            .margins = margins,
-            .selfCollision = selfCollision,
-            .candidateBeta = beta,
-            .seed = seed};
+        pipeline::HeldOutModelOptions options;
+        options.samples = samples;
+        options.targets = {targetAccuracy, targetTpr, heldOutSamples, maxSamples};
+        options.margins = margins;
+        options.selfCollision = selfCollision;
         if (otherCandidates) options.automatic = ControlPointOptions{};
-        validate(options.targets);
+        options.candidateBeta = beta;
+        options.seed = seed;
         pipeline::HeldOutModel made;
         {
           py::gil_scoped_release released;

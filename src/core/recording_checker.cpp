@@ -1,6 +1,7 @@
 #include "fastron/core/recording_checker.h"
 
 #include <algorithm>
+#include <span>
 
 #include "fastron/core/error.h"
 
@@ -49,6 +50,23 @@ Dataset RecordingChecker::take() {
 std::size_t RecordingChecker::recorded() const {
   const std::lock_guard lock(mutex_);
   return labels_.size();
+}
+
+CountedChecker::CountedChecker(std::shared_ptr<const CollisionChecker> inner)
+    : inner_(std::move(inner)) {
+  if (!inner_) throw InvalidArgument("CountedChecker: the checker is a null pointer");
+}
+
+bool CountedChecker::check(const double* q) const {
+  return inner_->inCollision(std::span<const double>(q, dof()));
+}
+
+std::size_t CountedChecker::checkFirst(const double* q, std::size_t n) const {
+  return inner_->firstInCollision(q, n);
+}
+
+void CountedChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
+  inner_->inCollisionEach(q, n, out);
 }
 
 }  // namespace fastron

@@ -45,11 +45,12 @@ std::vector<ModelCandidate> moreControlPointCandidates(const Robot& robot,
 HeldOutModel trainHeldOutModel(const Robot& robot, const Scene& scene, const FeatureMap& features,
                                const TrainParams& params, const HeldOutModelOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const CheckerOptions checking{options.selfCollision, options.padding};
-  const FclChecker oracle(robot, scene, checking);
+  validate(options.targets);  // before any checker is built
   HeldOutModel result;
   // A scene without obstacles has nothing to grow.
   if (scene.size() > 0) result.margins = increasingMargins(options.margins);
+  const CheckerOptions checking{options.selfCollision, options.padding};
+  const FclChecker oracle(robot, scene, checking);
   std::vector<std::unique_ptr<const FclChecker>> grown;
   std::vector<const CollisionChecker*> grownOracles;
   for (const double margin : result.margins) {

@@ -45,9 +45,7 @@ VerifiedPlan planOnSplitModel(const std::shared_ptr<const CollisionChecker>& spl
   // A conservative self model near an end (a grasp, a folded arm) closes the way as an obstacle
   // model near a wall does; planned on alone, the whole motion then went to `exact`
   // (docs/planning.md, "The optimistic hybrid for --self-model").
-  const auto confirmed = std::make_shared<const AllOfChecker>(
-      std::vector<std::shared_ptr<const CollisionChecker>>{split, exact});
-  return planVerified({split, confirmed}, exact, limits, start, goal, options);
+  return planVerifiedOptimistically(split, exact, limits, start, goal, options);
 }
 
 }  // namespace fastron::pipeline

@@ -9,6 +9,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/hybrid_checker.h"
+#include "fastron/core/model_checker.h"
 #include "fastron/core/recording_checker.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/parallel_check.h"
@@ -364,17 +365,29 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options) {
-  return planVerified(std::vector<CollisionSource>{approximate}, exact, limits, start, goal,
-                      options);
+  checkExact(exact, limits);
+  const auto recorder = std::make_shared<RecordingChecker>(exact);
+  VerifiedPlan result =
+      planAndRepair({approximate}, recorder, limits, start, goal, options, options);
+  result.exactAnswers = recorder->take();
+  result.exactChecks = recorder->callCount();
+  return result;
 }
 
-VerifiedPlan planVerified(const std::vector<CollisionSource>& chain,
-                          const std::shared_ptr<const CollisionChecker>& exact,
-                          const JointLimits& limits, const Eigen::VectorXd& start,
-                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
+VerifiedPlan planVerifiedOptimistically(const std::shared_ptr<const CollisionChecker>& approximate,
+                                        const std::shared_ptr<const CollisionChecker>& exact,
+                                        const JointLimits& limits, const Eigen::VectorXd& start,
+                                        const Eigen::VectorXd& goal,
+                                        const PlannerOptions& options) {
   checkExact(exact, limits);
-  if (chain.empty()) throw InvalidArgument("planVerified: no approximate source given");
+  if (!approximate) throw InvalidArgument("planVerifiedOptimistically: no approximate checker");
   const auto recorder = std::make_shared<RecordingChecker>(exact);
+  const auto confirmed = std::make_shared<const AllOfChecker>(
+      std::vector<std::shared_ptr<const CollisionChecker>>{approximate, recorder});
+  std::vector<CollisionSource> chain;
+  chain.reserve(2);  // (filled one by one: GCC 12 warns falsely on a list of variants)
+  chain.emplace_back(approximate);
+  chain.emplace_back(confirmed);
   VerifiedPlan result = planAndRepair(chain, recorder, limits, start, goal, options, options);
   result.exactAnswers = recorder->take();
   result.exactChecks = recorder->callCount();
@@ -389,7 +402,7 @@ VerifiedPlan planVerified(const CalibratedModel& model,
   if (!model.model) throw InvalidArgument("planVerified: the model is a null pointer");
   const auto recorder = std::make_shared<RecordingChecker>(exact);
   std::vector<CollisionSource> chain;
-  chain.reserve(2);
+  chain.reserve(2);  // (filled one by one: GCC 12 warns falsely on a list of variants)
   chain.emplace_back(model.model);
   if (model.calibration.colliding + model.calibration.free > 0) {
     chain.emplace_back(
@@ -421,10 +434,10 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   // With options.oracleRelaxesExact the proxy's oracle answers where verification catches a
   // wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
   // recorded: its answers are not the exact checker's).
-  // Wrapped to count its answers for this plan alone (its record is not used).
-  const std::shared_ptr<const RecordingChecker> relaxed =
+  // Wrapped to count its answers for this plan alone.
+  const std::shared_ptr<const CollisionChecker> relaxed =
       options.oracleRelaxesExact && proxy.oracle() != exact
-          ? std::make_shared<const RecordingChecker>(proxy.oracle())
+          ? std::make_shared<const CountedChecker>(proxy.oracle())
           : nullptr;
   // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
@@ -515,12 +528,10 @@ VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
                          const JointLimits& limits, const Eigen::VectorXd& start,
                          const Eigen::VectorXd& goal, const PlannerOptions& options) {
   checkExact(exact, limits);
-  // Through a fresh wrapper, whose own count is this plan's checks.
-  const auto counted = std::make_shared<const RecordingChecker>(exact);
-  const PlanResult plan = planMotion(counted, limits, start, goal, options);
+  const PlanResult plan = planMotion(exact, limits, start, goal, options);
   VerifiedPlan result;
   result.attempts.push_back(attemptOf(exact->name(), plan));
-  result.exactChecks = counted->callCount();
+  result.exactChecks = plan.checks;  // the planner asked `exact` alone
   result.status = plan.status;
   result.path = plan.path;
   result.planTime = plan.time;

@@ -1,5 +1,5 @@
 // RecordingChecker keeps exactly the answers its inner checker gave, also for runs of
-// configurations (the batch path verification uses).
+// configurations (the batch path verification uses); CountedChecker counts them.
 
 #include "fastron/core/recording_checker.h"
 
@@ -56,6 +56,30 @@ TEST(RecordingChecker, RecordsEveryRowOfARunAnsweredEach) {
   ASSERT_EQ(answers.size(), 3u);
   EXPECT_EQ(answers.labels, (Labels{-1, 1, -1}));
   EXPECT_EQ(answers.points(2, 1), 3.0);
+}
+
+// CountedChecker answers as its inner checker on every path and counts only what was asked
+// through it, as the inner checker counts it; another user of the inner checker is not counted.
+TEST(CountedChecker, CountsWhatWasAskedThroughIt) {
+  const auto inner =
+      std::make_shared<FunctionChecker>("half", 2, [](const double* q) { return q[0] > 0.5; });
+  const CountedChecker counted(inner);
+  EXPECT_EQ(counted.name(), "half");
+  EXPECT_EQ(counted.dof(), 2u);
+  EXPECT_FALSE(counted.answersFromAModel());
+  EXPECT_TRUE(counted.inCollision(std::vector<double>{0.9, 0.0}));
+  const std::vector<double> run{0.1, 1.0, 0.7, 2.0, 0.2, 3.0};
+  EXPECT_EQ(counted.firstInCollision(run.data(), 3), 1u);  // rows 0 and 1 asked
+  std::uint8_t hits[3] = {9, 9, 9};
+  counted.inCollisionEach(run.data(), 3, hits);
+  EXPECT_EQ(hits[0], 0);
+  EXPECT_EQ(hits[1], 1);
+  EXPECT_EQ(hits[2], 0);
+  EXPECT_EQ(counted.callCount(), 6u);
+  EXPECT_EQ(inner->callCount(), 6u);
+  EXPECT_FALSE(inner->inCollision(std::vector<double>{0.1, 0.0}));  // not through it
+  EXPECT_EQ(counted.callCount(), 6u);
+  EXPECT_THROW(CountedChecker(nullptr), InvalidArgument);
 }
 
 }  // namespace

@@ -50,10 +50,11 @@ TEST(HeldOutModel, KeepsTheRoundClosestToTheTargets) {
   const Robot baxter = loadRobot("baxter");
   const Scene scene = loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml");
   const FeatureMap features = robotFeatures(baxter, FeatureKind::Kinematic);
-  HeldOutModelOptions options{.samples = 1000,
-                              .targets = {1.0, 0.96, 1000, 2000},
-                              .automatic = ControlPointOptions{},
-                              .seed = 3};
+  HeldOutModelOptions options;
+  options.samples = 1000;
+  options.targets = {1.0, 0.96, 1000, 2000};
+  options.automatic = ControlPointOptions{};
+  options.seed = 3;
   const HeldOutModel made =
       trainHeldOutModel(baxter, scene, features, sceneTrainParams(FeatureKind::Kinematic), options);
   const HeldOutTraining& t = made.training;
@@ -73,6 +74,11 @@ TEST(HeldOutModel, KeepsTheRoundClosestToTheTargets) {
   const HeldOutModel again =
       trainHeldOutModel(baxter, scene, features, sceneTrainParams(FeatureKind::Kinematic), options);
   EXPECT_EQ(again.training.model->checksum(), t.model->checksum());
+  HeldOutModelOptions badTargets = options;
+  badTargets.targets.accuracy = 1.5;
+  EXPECT_THROW(trainHeldOutModel(baxter, scene, features, sceneTrainParams(FeatureKind::Kinematic),
+                                 badTargets),
+               InvalidArgument);
   options.margins = {0.01, 0.005};
   EXPECT_THROW(
       trainHeldOutModel(baxter, scene, features, sceneTrainParams(FeatureKind::Kinematic), options),

@@ -21,6 +21,19 @@ Scene oneBox() {
   return scene;
 }
 
+/// Baxter's model of oneBox(), as the plan tests train it.
+SceneModel baxterModelOfOneBox(const Robot& baxter) {
+  return trainSceneModel(baxter, oneBox(), {}, robotFeatures(baxter, FeatureKind::Kinematic),
+                         {.samples = 1500, .updates = 1, .seed = 1, .gamma = {}, .beta = {}});
+}
+
+/// The plan tests' start (shoulder -1.2) and goal (1.2), on either side of the box.
+Eigen::VectorXd baxterEnd(double shoulder) {
+  Eigen::VectorXd q(7);
+  q << shoulder, 0.3, 0, 1.2, 0, 0.5, 0;
+  return q;
+}
+
 // The same seed gives the same model (the command and the experiments call this one recipe);
 // with self-collision checked, the model learns the obstacles alone: its oracle checks none.
 TEST(SceneModel, TheSameSeedGivesTheSameModelOfTheObstaclesAlone) {
@@ -52,13 +65,9 @@ TEST(SceneModel, TheSameSeedGivesTheSameModelOfTheObstaclesAlone) {
 TEST(SceneModel, ItsPlansAreFreeUnderTheExactChecker) {
   const Robot baxter = loadRobot("baxter");
   const Scene scene = oneBox();
-  SceneModel model =
-      trainSceneModel(baxter, scene, {}, robotFeatures(baxter, FeatureKind::Kinematic),
-                      {.samples = 1500, .updates = 1, .seed = 1, .gamma = {}, .beta = {}});
+  SceneModel model = baxterModelOfOneBox(baxter);
   const auto exact = std::make_shared<const FclChecker>(baxter, scene);
-  Eigen::VectorXd start(7), goal(7);
-  start << -1.2, 0.3, 0, 1.2, 0, 0.5, 0;
-  goal << 1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  const Eigen::VectorXd start = baxterEnd(-1.2), goal = baxterEnd(1.2);
   seedPlanners(1, 0);
   const VerifiedPlan plan = planOnSceneModel(model, exact, baxter.limits(), start, goal,
                                              {.resolution = 0.03, .timeLimit = 10});
@@ -73,12 +82,8 @@ TEST(SceneModel, ItsPlansAreFreeUnderTheExactChecker) {
 TEST(SceneModel, ASplitModelThatEnclosesAnEndStillPlans) {
   const Robot baxter = loadRobot("baxter");
   const Scene scene = oneBox();
-  SceneModel model =
-      trainSceneModel(baxter, scene, {}, robotFeatures(baxter, FeatureKind::Kinematic),
-                      {.samples = 1500, .updates = 1, .seed = 1, .gamma = {}, .beta = {}});
-  Eigen::VectorXd start(7), goal(7);
-  start << -1.2, 0.3, 0, 1.2, 0, 0.5, 0;
-  goal << 1.2, 0.3, 0, 1.2, 0, 0.5, 0;
+  SceneModel model = baxterModelOfOneBox(baxter);
+  const Eigen::VectorXd start = baxterEnd(-1.2), goal = baxterEnd(1.2);
   // One support point at the start with a large weight: "colliding" within a kernel width of it.
   const auto self = std::make_shared<const Model>(
       FeatureMap::jointScaling(baxter.limits()), Kernel{KernelType::RationalQuadratic, 5},

@@ -1003,26 +1003,28 @@ TEST_F(Planning, CountsTheConfigurationsItsSourceAnswered) {
   EXPECT_EQ(wall->callCount(), 1u);
 }
 
-// A chain of sources: one that closes the wall's gap finds nothing in its share of the time, and
-// the optimistic hybrid after it (its "collides" confirmed by the exact checker) finds the path,
-// which verification finds free. An empty chain is refused.
-TEST_F(Planning, AChainPlansOnEachSourceInTurn) {
+// A source that closes the wall's gap finds nothing in its share of the time; the optimistic
+// hybrid after it (its "collides" confirmed by the exact checker) finds the path, which
+// verification finds free. Every question the hybrid asked of the exact checker is counted and
+// recorded with verification's.
+TEST_F(Planning, AnOptimisticHybridReopensWhatItsSourceCloses) {
   const auto exact = std::make_shared<FunctionChecker>("wall", 2, inWall);
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
-  const auto confirmed = std::make_shared<const AllOfChecker>(
-      std::vector<std::shared_ptr<const CollisionChecker>>{closed, exact});
   const JointLimits limits = JointLimits::unitBox(2);
   const PlannerOptions options{.resolution = 0.01, .timeLimit = 2, .approximateShare = 0.1};
+  exact->resetCallCount();
   const VerifiedPlan plan =
-      planVerified({closed, confirmed}, exact, limits, kStart, kGoal, options);
+      planVerifiedOptimistically(closed, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_EQ(plan.plannedOn, "closed&wall");
   ASSERT_EQ(plan.attempts.size(), 2u);
   EXPECT_EQ(plan.attempts[0].status, PlanStatus::Timeout);
   EXPECT_EQ(plan.attempts[1].source, "closed&wall");
+  EXPECT_EQ(plan.exactChecks, exact->callCount());
+  EXPECT_EQ(plan.exactAnswers.size(), exact->callCount());
   EXPECT_TRUE(checkPath(*exact, plan.path, 0.01).valid());
-  EXPECT_THROW(planVerified(std::vector<CollisionSource>{}, exact, limits, kStart, kGoal, options),
+  EXPECT_THROW(planVerifiedOptimistically(nullptr, exact, limits, kStart, kGoal, options),
                InvalidArgument);
 }
 

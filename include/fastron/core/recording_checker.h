@@ -1,6 +1,7 @@
 #pragma once
-// A collision checker that keeps every answer of another: exact answers computed for one purpose
-// (verifying and repairing a plan) become labelled configurations for the model's next update.
+// Collision checkers that watch another's answers for one purpose: RecordingChecker keeps them
+// (exact answers of verifying and repairing a plan become labelled configurations for the model's
+// next update), CountedChecker counts them (the checks one plan asked of a shared checker).
 
 #include <memory>
 #include <mutex>
@@ -43,6 +44,26 @@ class RecordingChecker final : public CollisionChecker {
   mutable std::mutex mutex_;
   mutable std::vector<double> values_;  // dof() per answer
   mutable Labels labels_;
+};
+
+/// Answers with `inner` (its batch paths included) and counts, in its own callCount(), the
+/// configurations asked through it: how many checks one use of a checker shared by others cost,
+/// without keeping the answers. Safe to call from many threads.
+class CountedChecker final : public CollisionChecker {
+ public:
+  /// Throws InvalidArgument on a null `inner`.
+  explicit CountedChecker(std::shared_ptr<const CollisionChecker> inner);
+  std::string name() const override { return inner_->name(); }
+  std::size_t dof() const override { return inner_->dof(); }
+  bool answersFromAModel() const override { return inner_->answersFromAModel(); }
+
+ protected:
+  bool check(const double* q) const override;
+  std::size_t checkFirst(const double* q, std::size_t n) const override;
+  void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
+
+ private:
+  std::shared_ptr<const CollisionChecker> inner_;
 };
 
 }  // namespace fastron

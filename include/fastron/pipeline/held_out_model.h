@@ -64,7 +64,8 @@ std::vector<ModelCandidate> moreControlPointCandidates(const Robot& robot,
 /// FCL on the scene grown by each margin for rounds that miss the TPR alone, and the other
 /// candidates when options.automatic is set and the labels leave self-collision out. An empty
 /// scene with options.selfCollision learns the robot's self-collisions alone (no margins).
-/// Throws InvalidArgument on margins that do not increase.
+/// Throws InvalidArgument on targets out of range or margins that do not increase, before any
+/// label is computed.
 HeldOutModel trainHeldOutModel(const Robot& robot, const Scene& scene, const FeatureMap& features,
                                const TrainParams& params, const HeldOutModelOptions& options);
 

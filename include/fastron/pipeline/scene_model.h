@@ -63,7 +63,7 @@ std::shared_ptr<const CollisionChecker> splitModel(std::shared_ptr<const Model> 
 /// The plan of `fastron plan --self-model` and motion-bench's "Fastron split": on `split`
 /// (splitModel), then, as the default method does when its model closes the way, on a hybrid
 /// that trusts its "free" and asks `exact` about its "collides" (AllOfChecker), then on `exact`;
-/// the path verified and repaired with `exact` (planVerified over that chain).
+/// the path verified and repaired with `exact` (planVerifiedOptimistically).
 VerifiedPlan planOnSplitModel(const std::shared_ptr<const CollisionChecker>& split,
                               const std::shared_ptr<const CollisionChecker>& exact,
                               const JointLimits& limits, const Eigen::VectorXd& start,

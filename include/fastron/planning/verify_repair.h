@@ -96,14 +96,15 @@ VerifiedPlan planVerified(const CollisionSource& approximate,
                           const JointLimits& limits, const Eigen::VectorXd& start,
                           const Eigen::VectorXd& goal, const PlannerOptions& options);
 
-/// The same with several approximate sources planned on in turn (each for at most
-/// options.approximateShare of the time limit) until one finds a path, e.g. models, then an
-/// AllOfChecker of them and `exact` that reopens what they close; throws InvalidArgument on an
-/// empty chain.
-VerifiedPlan planVerified(const std::vector<CollisionSource>& chain,
-                          const std::shared_ptr<const CollisionChecker>& exact,
-                          const JointLimits& limits, const Eigen::VectorXd& start,
-                          const Eigen::VectorXd& goal, const PlannerOptions& options);
+/// As planVerified above, but when `approximate` finds no path (a conservative model closes the
+/// way near an end or a wall), an optimistic hybrid plans before `exact` does: an AllOfChecker of
+/// `approximate` and `exact` (its "free" trusted, its "collides" confirmed), for another
+/// approximateShare. The hybrid's questions go through the same record as verification's, so
+/// `exactAnswers` and `exactChecks` hold them too. Throws InvalidArgument on a null `approximate`.
+VerifiedPlan planVerifiedOptimistically(const std::shared_ptr<const CollisionChecker>& approximate,
+                                        const std::shared_ptr<const CollisionChecker>& exact,
+                                        const JointLimits& limits, const Eigen::VectorXd& start,
+                                        const Eigen::VectorXd& goal, const PlannerOptions& options);
 
 /// No hopeless waits on a model that closes a passage: plans on the model for
 /// options.approximateShare of the time limit; when that finds no path, on a HybridChecker of the
