@@ -6,8 +6,11 @@
 #include <benchmark/benchmark.h>
 #include <ompl/util/Console.h>
 
+#include <map>
+
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
+#include "fastron/experiments/problem_families.h"
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
@@ -132,6 +135,95 @@ void BM_CheckPath(benchmark::State& state) {
   state.counters["invalid"] = static_cast<double>(invalid);
 }
 BENCHMARK(BM_CheckPath)->Arg(0)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMicrosecond);
+
+/// Paths to verify on a robot's generated cage problems, with both exact checkers: each problem's
+/// path planned on FCL as found and simplified (free), and its straight line from start to goal
+/// (mostly colliding).
+struct VerificationPaths {
+  std::shared_ptr<const FclChecker> dense, certified;
+  std::vector<JointPath> paths;
+  std::size_t states = 0, invalid = 0;
+  bool sameVerdicts = true;  ///< the two checkers agree on every path
+};
+
+const VerificationPaths& verificationPaths(const std::string& robotName) {
+  static std::map<std::string, VerificationPaths> cache;
+  if (const auto kept = cache.find(robotName); kept != cache.end()) return kept->second;
+  ompl::msg::noOutputHandler();
+  const Robot robot = loadRobot(robotName);
+  const auto problems = experiments::generateProblems(robot, {.count = 4});
+  VerificationPaths v;
+  for (const auto& problem : problems) {
+    // One scene per problem: the checkers of the last one are kept; earlier paths are checked on
+    // their own scene below, before the next replaces it.
+    auto dense = std::make_shared<FclChecker>(
+        robot, problem.scene, CheckerOptions{.selfCollision = true, .proveMotionsFree = false});
+    auto certified =
+        std::make_shared<FclChecker>(robot, problem.scene, CheckerOptions{.selfCollision = true});
+    const Eigen::VectorXd start = Eigen::Map<const Eigen::VectorXd>(
+        problem.start.data(), static_cast<Eigen::Index>(problem.start.size()));
+    const Eigen::VectorXd goal = Eigen::Map<const Eigen::VectorXd>(
+        problem.goal.data(), static_cast<Eigen::Index>(problem.goal.size()));
+    PlannerOptions options = kOptions;
+    options.simplifyTime = 0;
+    const JointPath found = planMotion(dense, robot.limits(), start, goal, options).path;
+    options.simplifyTime = 0.1;
+    const JointPath simplified = planMotion(dense, robot.limits(), start, goal, options).path;
+    for (const JointPath& path : {found, simplified, JointPath{start, goal}}) {
+      if (path.empty()) continue;
+      const PathCheck a = checkPathParallel(*dense, path, kOptions.resolution, 1);
+      const PathCheck b = checkPathParallel(*certified, path, kOptions.resolution, 1);
+      v.sameVerdicts = v.sameVerdicts && a.invalidWaypoints == b.invalidWaypoints &&
+                       a.invalidEdges == b.invalidEdges;
+    }
+    v.dense = dense;
+    v.certified = certified;
+  }
+  // Timed on the last problem's scene: its paths only.
+  const auto& last = problems.back();
+  const Eigen::VectorXd start = Eigen::Map<const Eigen::VectorXd>(
+      last.start.data(), static_cast<Eigen::Index>(last.start.size()));
+  const Eigen::VectorXd goal = Eigen::Map<const Eigen::VectorXd>(
+      last.goal.data(), static_cast<Eigen::Index>(last.goal.size()));
+  PlannerOptions options = kOptions;
+  for (const double simplify : {0.0, 0.1}) {
+    options.simplifyTime = simplify;
+    for (int run = 0; run < 3; ++run) {
+      v.paths.push_back(planMotion(v.dense, robot.limits(), start, goal, options).path);
+    }
+  }
+  v.paths.push_back({start, goal});
+  for (const JointPath& path : v.paths) {
+    v.states += statesAlongPath(path, kOptions.resolution).rows();
+    v.invalid += checkPath(*v.dense, path, kOptions.resolution).valid() ? 0 : 1;
+  }
+  return cache.emplace(robotName, std::move(v)).first->second;
+}
+
+const std::vector<std::string> kVerifiedRobots{"panda-mesh", "gripper-arm", "mobile-arm", "panda"};
+
+// Verification of paths on generated cage problems (verify_repair's check, one thread): every
+// state checked (certified 0), or the states clearance bounds do not prove free (certified 1).
+// `same_verdicts` is 1 when both checks agree on every path of four problems.
+void BM_VerifyPath(benchmark::State& state) {
+  const VerificationPaths& v =
+      verificationPaths(kVerifiedRobots[static_cast<std::size_t>(state.range(0))]);
+  const FclChecker& checker = state.range(1) == 0 ? *v.dense : *v.certified;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(checkPathParallel(checker, v.paths[i], kOptions.resolution, 1));
+    i = (i + 1) % v.paths.size();
+  }
+  state.SetLabel(kVerifiedRobots[static_cast<std::size_t>(state.range(0))]);
+  state.counters["states_per_path"] =
+      static_cast<double>(v.states) / static_cast<double>(v.paths.size());
+  state.counters["invalid_paths"] = static_cast<double>(v.invalid);
+  state.counters["same_verdicts"] = v.sameVerdicts ? 1 : 0;
+}
+BENCHMARK(BM_VerifyPath)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->ArgNames({"robot", "certified"})
+    ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_PlanOnFastron)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_PlanOnFcl)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);

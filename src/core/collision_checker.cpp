@@ -6,6 +6,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/joint_limits.h"
+#include "fastron/core/motion_states.h"
 
 namespace fastron {
 
@@ -69,6 +70,31 @@ std::size_t CollisionChecker::checkFirst(const double* q, std::size_t n) const {
     if (check(q + i * dim)) return i;
   }
   return n;
+}
+
+CollisionChecker::MotionCheck CollisionChecker::motionCollision(const double* from,
+                                                                const double* to,
+                                                                std::size_t segments) const {
+  checkFinite(from, 1);
+  checkFinite(to, 1);
+  if (segments == 0) return {};
+  const MotionCheck answer = checkMotion(from, to, segments);
+  calls_.fetch_add(answer.looked, std::memory_order_relaxed);
+  return answer;
+}
+
+CollisionChecker::MotionCheck CollisionChecker::checkMotion(const double* from, const double* to,
+                                                            std::size_t segments) const {
+  return checkMotionStateByState(from, to, segments);
+}
+
+CollisionChecker::MotionCheck CollisionChecker::checkMotionStateByState(
+    const double* from, const double* to, std::size_t segments) const {
+  std::vector<double> states;
+  motionStates(from, to, dof(), segments, states);
+  const std::size_t first = checkFirst(states.data(), segments);
+  if (first == segments) return {0, segments};
+  return {bisectionOrder(segments)[first], first + 1};
 }
 
 FunctionChecker::FunctionChecker(std::string name, std::size_t dof,

@@ -4,6 +4,7 @@
 #include <span>
 
 #include "fastron/core/error.h"
+#include "fastron/core/motion_states.h"
 
 namespace fastron {
 
@@ -34,6 +35,17 @@ std::size_t RecordingChecker::checkFirst(const double* q, std::size_t n) const {
 void RecordingChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
   inner_->inCollisionEach(q, n, out);
   record(q, n, [&](std::size_t i) { return out[i] != 0; });
+}
+
+CollisionChecker::MotionCheck RecordingChecker::checkMotion(const double* from, const double* to,
+                                                            std::size_t segments) const {
+  const MotionCheck answer = inner_->motionCollision(from, to, segments);
+  if (answer.collidingState != 0) {
+    std::vector<double> state(dof());
+    motionState(from, to, dof(), answer.collidingState, segments, state.data());
+    record(state.data(), 1, [](std::size_t) { return true; });
+  }
+  return answer;
 }
 
 Dataset RecordingChecker::take() {
@@ -67,6 +79,11 @@ std::size_t CountedChecker::checkFirst(const double* q, std::size_t n) const {
 
 void CountedChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
   inner_->inCollisionEach(q, n, out);
+}
+
+CollisionChecker::MotionCheck CountedChecker::checkMotion(const double* from, const double* to,
+                                                          std::size_t segments) const {
+  return inner_->motionCollision(from, to, segments);
 }
 
 }  // namespace fastron

@@ -121,9 +121,13 @@ bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b)
 }  // namespace
 
 struct FclChecker::Geometry {
-  std::vector<FclGeometries> shapes;  // one per robot shape, padded
-  std::vector<std::uint8_t> moves;    // shapesMovedByConfiguration
-  std::vector<std::size_t> moving;    // the shapes that move, in shape order
+  std::vector<FclGeometries> shapes;    // one per robot shape, padded
+  std::vector<std::uint8_t> moves;      // shapesMovedByConfiguration
+  std::vector<std::size_t> moving;      // the shapes that move, in shape order
+  std::vector<BallCover> balls;         // covering each padded shape, for clearance bounds
+  std::vector<Eigen::VectorXd> levers;  // of each shape, relative to the robot's root
+  // Coordinates of prismatic joints with their limits: the levers hold within them.
+  std::vector<std::tuple<std::size_t, double, double>> prismatic;
 };
 
 struct FclChecker::Scratch {
@@ -157,6 +161,7 @@ struct FclChecker::Obstacles {
   std::map<const TriangleMesh*, std::pair<std::shared_ptr<const TriangleMesh>, FclGeometries>>
       meshes;
   std::vector<FclGeometry> distanceShapes;  // of each obstacle, for distance()
+  ClearanceModel clearance;                 // for checkMotion
 };
 
 FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -172,8 +177,17 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   auto geometry = std::make_shared<Geometry>();
   geometry->moves = shapesMovedByConfiguration(robot_);
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
-    geometry->shapes.push_back(geometriesOf(paddedShape(robot_, s, options_)));
+    const Shape padded = paddedShape(robot_, s, options_);
+    geometry->shapes.push_back(geometriesOf(padded));
     if (geometry->moves[s] != 0) geometry->moving.push_back(s);
+    geometry->balls.push_back(coveringBallTree(padded));
+    geometry->levers.push_back(
+        shapeLevers(robot_, s, geometry->balls.back().balls, robot_.rootLink()));
+  }
+  for (std::size_t k = 0; k < robot_.dof(); ++k) {
+    const Joint& joint = robot_.joints()[static_cast<std::size_t>(robot_.actuatedJoints()[k])];
+    if (joint.type == JointType::Prismatic)
+      geometry->prismatic.emplace_back(k, joint.lower, joint.upper);
   }
   geometry_ = std::move(geometry);
   setScene(scene);
@@ -222,7 +236,29 @@ void FclChecker::setScene(const Scene& scene) {
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
   placeFixedShapes(*next);
+  buildClearance(*next, scene);
   obstacles_.set(std::move(next));
+}
+
+void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
+  const Geometry& geometry = *geometry_;
+  ClearanceModel& model = world.clearance;
+  model.balls = geometry.balls;
+  for (const Obstacle& o : scene.obstacles()) model.obstacles.emplace_back(o.shape, o.pose);
+  const std::size_t obstacles = world.objects.size();
+  for (const std::size_t s : geometry.moving) {
+    for (std::size_t o = 0; o < obstacles; ++o) {
+      if (!world.allowed.empty() && world.allowed[s * obstacles + o] != 0) continue;
+      model.pairs.push_back({s, o, false, geometry.levers[s]});
+    }
+  }
+  // Two links move apart only by the joints between them and the link they both hang from.
+  for (const auto& [a, b] : world.movingSelfPairs) {
+    const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
+    model.pairs.push_back({a, b, true,
+                           shapeLevers(robot_, a, geometry.balls[a].balls, from) +
+                               shapeLevers(robot_, b, geometry.balls[b].balls, from)});
+  }
 }
 
 void FclChecker::placeFixedShapes(Obstacles& world) const {
@@ -326,6 +362,40 @@ void FclChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) co
   for (std::size_t i = 0; i < n; ++i) {
     out[i] = collide(*world, *scratch, q + i * robot_.dof(), false).has_value();
   }
+}
+
+bool FclChecker::leversHold(const double* from, const double* to) const {
+  return std::ranges::all_of(geometry_->prismatic, [&](const auto& joint) {
+    const auto& [k, lower, upper] = joint;
+    return from[k] >= lower && from[k] <= upper && to[k] >= lower && to[k] <= upper;
+  });
+}
+
+CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const double* to,
+                                                      std::size_t segments) const {
+  if (!options_.proveMotionsFree || !leversHold(from, to))
+    return checkMotionStateByState(from, to, segments);
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  if (world->fixedContact) return {segments, 1};  // every state collides; `to` is looked at first
+  auto scratch = scratch_.lease();
+  ExactPairCheck exact;
+  exact.place = [&](const double* q, std::vector<Eigen::Isometry3d>& poses) {
+    placeRobot(*scratch, world->robotBase, q);
+    poses.resize(robot_.shapes().size());
+    for (std::size_t s = 0; s < poses.size(); ++s)
+      poses[s] = shapePose(robot_, scratch->kinematics, s);
+  };
+  // As the broad phase decides a pair: boxes first, then FCL's narrow phase.
+  exact.touches = [&](const ClearancePair& pair) {
+    if (pair.selfPair) {
+      return shapesTouch(world->robotObject(*scratch, pair.shape),
+                         world->robotObject(*scratch, pair.other));
+    }
+    return shapesTouch(*scratch->robotObjects[pair.shape], *world->objects[pair.other]);
+  };
+  const CertifiedMotion answer =
+      certifiedMotionCheck(world->clearance, exact, from, to, robot_.dof(), segments);
+  return {answer.collidingState, answer.statesPlaced};
 }
 
 std::optional<Contact> FclChecker::firstContact(std::span<const double> q) const {

@@ -12,43 +12,12 @@
 
 namespace fastron {
 
-std::size_t segmentCount(const double* a, const double* b, std::size_t dim, double resolution) {
-  if (!(resolution > 0) || !std::isfinite(resolution)) {
-    throw InvalidArgument("motion resolution must be positive, got " + std::to_string(resolution));
-  }
-  double squared = 0;
-  for (std::size_t j = 0; j < dim; ++j) squared += (b[j] - a[j]) * (b[j] - a[j]);
-  const double segments = std::ceil(std::sqrt(squared) / resolution);
-  return segments < 1 ? 1 : static_cast<std::size_t>(segments);
-}
-
 std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution) {
   if (a.size() != b.size()) {
     throw InvalidArgument("motion between configurations of " + std::to_string(a.size()) + " and " +
                           std::to_string(b.size()) + " values");
   }
   return segmentCount(a.data(), b.data(), static_cast<std::size_t>(a.size()), resolution);
-}
-
-void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
-                  std::vector<double>& out) {
-  out.resize(n * dim);
-  std::size_t row = 0;
-  auto put = [&](std::size_t i) {
-    const double t = static_cast<double>(i) / static_cast<double>(n);
-    for (std::size_t j = 0; j < dim; ++j) out[row * dim + j] = a[j] + t * (b[j] - a[j]);
-    ++row;
-  };
-  // The end state first, b itself (a + (b - a) * 1 may round off it): a motion into an obstacle
-  // is found with one check.
-  std::copy_n(b, dim, out.begin());
-  row = 1;
-  // Bisection order over i = 1..n-1: odd multiples of the largest power of two first.
-  std::size_t step = 1;
-  while (step * 2 < n) step *= 2;
-  for (; step >= 1; step /= 2) {
-    for (std::size_t i = step; i < n; i += 2 * step) put(i);
-  }
 }
 
 double pathLength(const JointPath& path) {

@@ -28,6 +28,51 @@ constexpr std::chrono::microseconds kParallelWork{250};
 // enough that a checker's batch path (one world read, one scratch lease) pays.
 constexpr std::size_t kChunk = 8;
 
+/// checkPathParallel for a checker that proves motions free (provesMotionsFree): the waypoints
+/// in one batch, then each edge as one motion (its states between the waypoints), edges handed
+/// out one at a time. An edge whose end waypoint collides has its interior states checked one by
+/// one, as motionCollision would stop at that end.
+PathCheck checkByMotions(const CollisionChecker& checker, const JointPath& path, double resolution,
+                         unsigned threads) {
+  const std::size_t dim = checker.dof();
+  const std::size_t edges = path.size() - 1;
+  std::vector<double> waypoints;
+  for (const Eigen::VectorXd& q : path) waypoints.insert(waypoints.end(), q.data(), q.data() + dim);
+  std::vector<std::uint8_t> waypointHit(path.size());
+  checker.inCollisionEach(waypoints.data(), path.size(), waypointHit.data());
+  std::vector<std::uint8_t> edgeHit(edges);
+  const auto checkEdge = [&](std::size_t e) {
+    const std::size_t n = segmentCount(path[e], path[e + 1], resolution);
+    if (waypointHit[e + 1] == 0) {
+      edgeHit[e] =
+          checker.motionCollision(path[e].data(), path[e + 1].data(), n).collidingState != 0;
+      return;
+    }
+    std::vector<double> states;  // rows 1..n-1: the interior
+    motionStates(path[e].data(), path[e + 1].data(), dim, n, states);
+    edgeHit[e] = checker.firstInCollision(states.data() + dim, n - 1) < n - 1;
+  };
+  std::size_t first = 0;  // the edges checked before the hand-out
+  if (threads == 0 && edges > 0) {
+    const auto began = std::chrono::steady_clock::now();
+    checkEdge(0);
+    first = 1;
+    const auto rest = (std::chrono::steady_clock::now() - began) * static_cast<double>(edges - 1);
+    threads = rest >= kParallelWork ? 0 : 1;
+  }
+  forEachChunk(edges - first, 1, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t e = first + begin; e < first + end; ++e) checkEdge(e);
+  });
+  PathCheck check;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (waypointHit[i] != 0) check.invalidWaypoints.push_back(i);
+  }
+  for (std::size_t e = 0; e < edges; ++e) {
+    if (edgeHit[e] != 0) check.invalidEdges.push_back(e);
+  }
+  return check;
+}
+
 }  // namespace
 
 PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
@@ -39,6 +84,7 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
   }
   const std::size_t dim = checker.dof();
   checkWaypointSizes(path, dim);
+  if (checker.provesMotionsFree()) return checkByMotions(checker, path, resolution, threads);
   const std::size_t edges = path.size() - 1;
   // Interior states of each edge in bisection order (motionStates' rows 1..n-1: row 0 is the
   // edge's end, a waypoint checked as such).

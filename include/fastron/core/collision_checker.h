@@ -41,6 +41,22 @@ class CollisionChecker {
   /// The same for every row of q; throws InvalidArgument when q does not have dof() columns.
   std::size_t firstInCollision(const Configurations& q) const;
 
+  /// What a check of a motion found.
+  struct MotionCheck {
+    /// A state in collision, i in 1..segments (not necessarily the smallest), or 0 when none is.
+    std::size_t collidingState = 0;
+    std::size_t looked = 0;  ///< configurations looked at (the calls counted)
+  };
+  /// Looks at the straight motion from `from` to `to` (dof() values each) as a check at
+  /// `segments` equal steps does: the states motionState(from, to, i, segments) for
+  /// i = 1..segments (`to` itself last; `from` is not looked at). A checker that can prove states
+  /// free without checking each (provesMotionsFree) looks at fewer; the answer is the same.
+  /// Counts one call per configuration looked at. Throws InvalidArgument on a non-finite value.
+  MotionCheck motionCollision(const double* from, const double* to, std::size_t segments) const;
+  /// True when motionCollision skips states it proves free (FclChecker's clearance bounds), so
+  /// that a caller should hand it whole motions rather than their states one by one.
+  virtual bool provesMotionsFree() const { return false; }
+
   /// True when the answers come, at least in part, from a learned model (ModelChecker,
   /// HybridChecker, an AnyOfChecker holding one). Planners check such a source's edges at
   /// PlannerOptions::modelResolution, and an exact checker verifies its paths.
@@ -60,6 +76,14 @@ class CollisionChecker {
   /// that once per run: paid per row, two labelling threads contended for it and labelled no
   /// faster than one (docs/performance.md).
   virtual void checkEach(const double* q, std::size_t n, std::uint8_t* out) const;
+
+  /// motionCollision for finite ends and segments >= 1; by default checkFirst on its states in
+  /// bisection order (motionStates).
+  virtual MotionCheck checkMotion(const double* from, const double* to, std::size_t segments) const;
+  /// The default checkMotion, for an override that declines a motion (its proof does not hold
+  /// there).
+  MotionCheck checkMotionStateByState(const double* from, const double* to,
+                                      std::size_t segments) const;
 
  private:
   /// Throws InvalidArgument when q does not have dof() columns.

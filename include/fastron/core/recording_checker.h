@@ -23,6 +23,7 @@ class RecordingChecker final : public CollisionChecker {
 
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
+  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
 
   /// Every answer recorded so far; the record is emptied.
   Dataset take();
@@ -35,6 +36,10 @@ class RecordingChecker final : public CollisionChecker {
   std::size_t checkFirst(const double* q, std::size_t n) const override;
   /// One call of inner's inCollisionEach and one record of every row.
   void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
+  /// One call of inner's motionCollision; records the state in collision it found, if any, but
+  /// not the states it looked at free (a checker that proves states free does not say which).
+  MotionCheck checkMotion(const double* from, const double* to,
+                          std::size_t segments) const override;
 
  private:
   /// Records the first n rows of q with their answers (1 in collision).
@@ -56,11 +61,14 @@ class CountedChecker final : public CollisionChecker {
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
   bool answersFromAModel() const override { return inner_->answersFromAModel(); }
+  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
 
  protected:
   bool check(const double* q) const override;
   std::size_t checkFirst(const double* q, std::size_t n) const override;
   void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
+  MotionCheck checkMotion(const double* from, const double* to,
+                          std::size_t segments) const override;
 
  private:
   std::shared_ptr<const CollisionChecker> inner_;

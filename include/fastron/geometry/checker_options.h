@@ -16,6 +16,9 @@ namespace FASTRON_API fastron {
 struct CheckerOptions {
   bool selfCollision = false;  ///< also check link pairs not allowed to touch
   double padding = 0;          ///< grow every robot shape by this much (not meshes)
+  /// Check whole motions with clearance bounds, skipping the states they prove free
+  /// (certified_motion.h; FclChecker): the same answers as a check of every state.
+  bool proveMotionsFree = true;
 };
 
 /// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it

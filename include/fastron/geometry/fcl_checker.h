@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fastron/core/export.h"
+#include "fastron/geometry/certified_motion.h"
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
@@ -37,6 +38,9 @@ class FclChecker final : public CollisionChecker {
   std::string name() const override { return "FCL"; }
   std::size_t dof() const override { return robot_.dof(); }
   const Robot& robot() const { return robot_; }
+  /// options.proveMotionsFree: a motion's check skips the states that clearance bounds prove
+  /// free (certified_motion.h) and asks FCL only about the pairs of shapes no bound keeps apart.
+  bool provesMotionsFree() const override { return options_.proveMotionsFree; }
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
@@ -61,6 +65,8 @@ class FclChecker final : public CollisionChecker {
   bool check(const double* q) const override;
   std::size_t checkFirst(const double* q, std::size_t n) const override;
   void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
+  MotionCheck checkMotion(const double* from, const double* to,
+                          std::size_t segments) const override;
 
  private:
   struct Geometry;
@@ -69,6 +75,10 @@ class FclChecker final : public CollisionChecker {
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
   /// The shapes no configuration moves, placed in `world`, and their contacts (Obstacles).
   void placeFixedShapes(Obstacles& world) const;
+  /// The pairs that must not touch in `world`, with the bounds that prove them apart.
+  void buildClearance(Obstacles& world, const Scene& scene) const;
+  /// True when the levers hold along the motion: every prismatic coordinate within its limits.
+  bool leversHold(const double* from, const double* to) const;
   const std::string& linkName(std::size_t shape) const;
   /// Places the robot at q in `scratch`, then the first contact with `world` or itself.
   std::optional<Contact> collide(const Obstacles& world, Scratch& scratch, const double* q,

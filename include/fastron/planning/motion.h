@@ -11,6 +11,7 @@
 
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/export.h"
+#include "fastron/core/motion_states.h"
 #include "fastron/core/types.h"
 
 namespace FASTRON_API fastron {
@@ -18,20 +19,9 @@ namespace FASTRON_API fastron {
 /// A path of joint-space waypoints, joined by straight lines.
 using JointPath = std::vector<Eigen::VectorXd>;
 
-/// Number of equal segments a motion from a to b is checked in: ceil(|b - a| / resolution), at
-/// least 1, so no two consecutive checked states are more than `resolution` apart (Euclidean
-/// distance in joint units, as OMPL's RealVectorStateSpace measures it). Throws InvalidArgument
-/// when resolution is not positive.
+/// segmentCount (core/motion_states.h) of two configurations; throws InvalidArgument when their
+/// sizes differ.
 std::size_t segmentCount(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double resolution);
-/// The same for two configurations of `dim` values.
-std::size_t segmentCount(const double* a, const double* b, std::size_t dim, double resolution);
-
-/// The states a + (b - a) i / n for i = 1..n (b included, a not: a motion starts at a state
-/// already known to be valid), in bisection order: the midpoint first, then the quarter points,
-/// and so on, because a collision is found soonest that way. Written row by row into `out`
-/// (n * dim values, resized).
-void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
-                  std::vector<double>& out);
 
 /// Sum of the Euclidean lengths of the path's edges.
 double pathLength(const JointPath& path);

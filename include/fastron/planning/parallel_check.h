@@ -14,7 +14,9 @@ namespace FASTRON_API fastron {
 /// global bisection order: the waypoints first, then every edge's midpoint, then its quarter
 /// points, and so on across the whole path, so that a colliding stretch is found after a few
 /// checks wherever it lies. An edge stops being checked at its first collision. `checker` must be
-/// safe to call from many threads (every CollisionChecker of Fastron is). Throws InvalidArgument on
+/// safe to call from many threads (every CollisionChecker of Fastron is). A checker that proves
+/// motions free (CollisionChecker::provesMotionsFree) gets the waypoints in one batch and then
+/// whole edges (motionCollision), one edge at a time per thread. Throws InvalidArgument on
 /// waypoints of the wrong dimension, and rethrows the first exception a check throws.
 PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
                             double resolution, unsigned threads = 0);

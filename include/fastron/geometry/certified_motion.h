@@ -1,0 +1,71 @@
+#pragma once
+// The exact check of a straight joint motion that skips what clearance proves (Schwarzer, Saha
+// and Latombe, "Adaptive dynamic collision checking for single and multiple articulated robots in
+// complex environments", T-RO 2005), on the states a dense check would look at: for every pair of
+// a robot shape and an obstacle (or of two robot shapes) that must not touch, a lower bound on
+// their distance at two checked states, d_a and d_b, proves the pair apart at every state between
+// when d_a + d_b exceeds the most that motion can bring them closer (clearance_bounds.h's levers).
+// Where no bound proves a pair apart, the exact checker decides it. The answer is the dense
+// check's, exactly: only states proven free are skipped.
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "fastron/core/export.h"
+#include "fastron/geometry/clearance_bounds.h"
+
+namespace FASTRON_API fastron {
+
+/// A pair that must not touch: a robot shape and an obstacle, or two robot shapes.
+struct ClearancePair {
+  std::size_t shape = 0;  ///< a robot shape
+  std::size_t other = 0;  ///< an obstacle (selfPair false) or a robot shape
+  bool selfPair = false;
+  /// How fast their distance can shrink, per unit of each configuration coordinate.
+  Eigen::VectorXd levers;
+};
+
+/// A robot against one scene, as the certificate sees it.
+struct ClearanceModel {
+  std::vector<BallCover> balls;            ///< per robot shape, in the shape's frame
+  std::vector<EnclosingVolume> obstacles;  ///< per obstacle
+  std::vector<ClearancePair> pairs;
+};
+
+/// What the certificate asks of an exact checker, about the configuration it last placed.
+struct ExactPairCheck {
+  /// Places the robot at a configuration; writes each robot shape's world pose.
+  std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses)> place;
+  /// True when the pair touches at the configuration last placed, as the exact checker decides.
+  std::function<bool(const ClearancePair& pair)> touches;
+};
+
+/// The answer of certifiedMotionCheck.
+struct CertifiedMotion {
+  /// A state in collision, i in 1..segments (not necessarily the first), or 0 when none is.
+  std::size_t collidingState = 0;
+  /// Configurations placed (forward kinematics and the bounds; `from` counts).
+  std::size_t statesPlaced = 0;
+  /// Pair checks the exact checker made.
+  std::size_t exactPairChecks = 0;
+};
+
+/// A lower bound on the distance between the pair's members, with every robot shape at
+/// `shapePoses` (balls of shape s placed by shapePoses[s]); at most 0 when they may touch. Two
+/// balls that overlap (or a ball that meets the obstacle's volume) are looked at through their
+/// children when they have any.
+double clearanceLowerBound(const ClearanceModel& model, const ClearancePair& pair,
+                           const std::vector<Eigen::Isometry3d>& shapePoses);
+
+/// Checks the states from + (i / segments) (to - from), i = 1..segments (`to` itself for
+/// i = segments), as a dense check would, and answers as it: looks at `to` first, then bisects,
+/// proving stretches free pair by pair and asking `exact` only about pairs at states no bound
+/// proves apart. `from` is placed for its bounds, never checked. Every configuration between the
+/// two must be one that the levers hold for (prismatic joints within their limits).
+CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
+                                     const double* from, const double* to, std::size_t dim,
+                                     std::size_t segments);
+
+}  // namespace fastron

@@ -1,0 +1,74 @@
+#pragma once
+// Cheap, conservative geometry for proving configurations free without an exact check: balls that
+// cover each robot shape, volumes that enclose each obstacle (a lower bound on any distance), and
+// per-joint levers (an upper bound on how far any point of a shape moves per unit of joint
+// motion). Together they give the certificate of Schwarzer, Saha and Latombe's adaptive collision
+// checking: a pair of shapes `d` apart at one configuration cannot touch within joint motions
+// that move them less than `d` (certified_motion.h).
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <vector>
+
+#include "fastron/core/export.h"
+#include "fastron/geometry/robot.h"
+#include "fastron/geometry/shapes.h"
+
+namespace FASTRON_API fastron {
+
+/// A solid ball.
+struct Ball {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0;
+};
+
+/// At most `maxBalls` (>= 1) balls, in the shape's frame, whose union contains every point of
+/// `shape` (a mesh: every point of its triangles). Long shapes are cut along their length and
+/// meshes (their long triangles cut first) split by their triangles' centroids, so that each ball
+/// hugs its part.
+std::vector<Ball> coveringBalls(const Shape& shape, std::size_t maxBalls = 12);
+
+/// Balls covering a shape at two levels: `balls` as coveringBalls gives them, and children[i]
+/// covering the part of the shape that balls[i] was made for, finer (meshes only; empty for other
+/// shapes). A bound that finds two balls overlapping looks at their children.
+struct BallCover {
+  std::vector<Ball> balls;
+  std::vector<std::vector<Ball>> children;  ///< empty, or one list per ball
+};
+
+/// coveringBalls, and for a mesh up to `maxChildren` children per ball (none when it is below 2).
+BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls = 12,
+                           std::size_t maxChildren = 8);
+
+/// A primitive that contains an obstacle, placed in the world, and the distance from a point to
+/// it: the obstacle itself for a box, sphere, cylinder or capsule, the box around its vertices for
+/// a mesh.
+class EnclosingVolume {
+ public:
+  EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& pose);
+  /// A lower bound on the distance from `point` (world) to the obstacle; 0 inside it.
+  double distanceFrom(const Eigen::Vector3d& point) const;
+
+ private:
+  enum class Kind { Box, Sphere, Cylinder, Capsule };
+  Kind kind_ = Kind::Box;
+  Eigen::Isometry3d toLocal_ = Eigen::Isometry3d::Identity();  ///< world to the volume's frame
+  Eigen::Vector3d halfExtents_ = Eigen::Vector3d::Zero();      ///< a box's
+  double radius_ = 0, halfLength_ = 0;  ///< a sphere's, cylinder's or capsule's
+};
+
+/// Levers of robot shape `shape` (covered by `balls`, in the shape's frame): for each
+/// configuration coordinate k, an upper bound on how far any point of the shape moves, relative to
+/// link `relativeTo` (an ancestor of the shape's link, or the root link), per unit of coordinate k,
+/// over every configuration. Revolute and continuous joints contribute the largest distance of the
+/// shape from their axis (bounded through the chain's lengths and prismatic ranges), prismatic
+/// joints 1, mimic joints their multiplier's size times that, joints that do not follow the
+/// configuration nothing. A straight joint motion by delta moves every point of the shape by at
+/// most sum_k levers[k] * |delta[k]|. Throws InvalidArgument when `relativeTo` is not an ancestor.
+Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
+                            int relativeTo);
+
+/// The nearest link that is an ancestor of (or equal to) both links.
+int commonAncestor(const Robot& robot, int linkA, int linkB);
+
+}  // namespace fastron

@@ -1,0 +1,213 @@
+#include "fastron/geometry/certified_motion.h"
+
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <span>
+
+#include "fastron/core/motion_states.h"
+
+namespace fastron {
+namespace {
+
+/// Taken off every lower bound, so that rounding (of the states, of the poses) and the exact
+/// checker's own tolerance cannot turn a touch into a proof: 10 micrometres.
+constexpr double kMargin = 1e-5;
+
+/// The balls of every robot shape placed in the world for the configuration last placed, each
+/// shape's (and each ball's children) computed on first use.
+class PlacedBalls {
+ public:
+  explicit PlacedBalls(const ClearanceModel& model) : model_(model), shapes_(model.balls.size()) {
+    for (std::size_t s = 0; s < shapes_.size(); ++s) {
+      shapes_[s].children.resize(model.balls[s].children.size());
+      shapes_[s].childStamp.assign(model.balls[s].children.size(), 0);
+    }
+  }
+
+  /// A new configuration was placed at these poses.
+  void placed(const std::vector<Eigen::Isometry3d>& poses) {
+    poses_ = &poses;
+    ++now_;
+  }
+
+  double lowerBound(const ClearancePair& pair) {
+    const BallCover& cover = model_.balls[pair.shape];
+    const auto& at = centres(pair.shape);
+    double best = std::numeric_limits<double>::infinity();
+    if (!pair.selfPair) {
+      const EnclosingVolume& obstacle = model_.obstacles[pair.other];
+      for (std::size_t b = 0; b < at.size(); ++b) {
+        double bound = obstacle.distanceFrom(at[b]) - cover.balls[b].radius;
+        if (bound <= 0 && !cover.children.empty()) {
+          bound = std::numeric_limits<double>::infinity();
+          const auto& children = cover.children[b];
+          const auto& childAt = childCentres(pair.shape, b);
+          for (std::size_t c = 0; c < children.size(); ++c)
+            bound = std::min(bound, obstacle.distanceFrom(childAt[c]) - children[c].radius);
+        }
+        best = std::min(best, bound);
+      }
+      return best;
+    }
+    const BallCover& other = model_.balls[pair.other];
+    const auto& otherAt = centres(pair.other);
+    for (std::size_t b = 0; b < at.size(); ++b) {
+      for (std::size_t c = 0; c < otherAt.size(); ++c) {
+        double bound = (at[b] - otherAt[c]).norm() - cover.balls[b].radius - other.balls[c].radius;
+        if (bound <= 0) bound = childBound(pair.shape, b, pair.other, c);
+        best = std::min(best, bound);
+      }
+    }
+    return best;
+  }
+
+ private:
+  struct Shape {
+    std::size_t stamp = 0;
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<std::size_t> childStamp;
+    std::vector<std::vector<Eigen::Vector3d>> children;
+  };
+
+  static void place(const Eigen::Isometry3d& pose, const std::vector<Ball>& balls,
+                    std::vector<Eigen::Vector3d>& out) {
+    out.resize(balls.size());
+    for (std::size_t b = 0; b < balls.size(); ++b) out[b] = pose * balls[b].centre;
+  }
+
+  const std::vector<Eigen::Vector3d>& centres(std::size_t shape) {
+    Shape& s = shapes_[shape];
+    if (s.stamp != now_) {
+      place((*poses_)[shape], model_.balls[shape].balls, s.centres);
+      s.stamp = now_;
+    }
+    return s.centres;
+  }
+
+  const std::vector<Eigen::Vector3d>& childCentres(std::size_t shape, std::size_t ball) {
+    Shape& s = shapes_[shape];
+    if (s.childStamp[ball] != now_) {
+      place((*poses_)[shape], model_.balls[shape].children[ball], s.children[ball]);
+      s.childStamp[ball] = now_;
+    }
+    return s.children[ball];
+  }
+
+  /// The bound between two overlapping balls from their children (the balls themselves for a
+  /// shape without children).
+  double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB) {
+    const BallCover& a = model_.balls[shapeA];
+    const BallCover& b = model_.balls[shapeB];
+    const auto finer = [&](const BallCover& cover, std::size_t shape, std::size_t ball) {
+      return cover.children.empty()
+                 ? std::make_pair(std::span<const Ball>(&cover.balls[ball], 1),
+                                  std::span<const Eigen::Vector3d>(&centres(shape)[ball], 1))
+                 : std::make_pair(std::span<const Ball>(cover.children[ball]),
+                                  std::span<const Eigen::Vector3d>(childCentres(shape, ball)));
+    };
+    const auto [ballsA, atA] = finer(a, shapeA, ballA);
+    const auto [ballsB, atB] = finer(b, shapeB, ballB);
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < ballsA.size(); ++i) {
+      for (std::size_t j = 0; j < ballsB.size(); ++j)
+        best = std::min(best, (atA[i] - atB[j]).norm() - ballsA[i].radius - ballsB[j].radius);
+    }
+    return best;
+  }
+
+  const ClearanceModel& model_;
+  const std::vector<Eigen::Isometry3d>* poses_ = nullptr;
+  std::vector<Shape> shapes_;
+  std::size_t now_ = 0;
+};
+
+using Bounds = std::shared_ptr<const std::vector<double>>;  // per pair, at one checked state
+
+/// States lo < i < hi, between two checked ones, that the pairs in `active` are not yet proven
+/// apart over.
+struct Stretch {
+  std::size_t lo, hi;
+  Bounds atLo, atHi;
+  std::vector<std::uint32_t> active;
+};
+
+}  // namespace
+
+double clearanceLowerBound(const ClearanceModel& model, const ClearancePair& pair,
+                           const std::vector<Eigen::Isometry3d>& shapePoses) {
+  PlacedBalls balls(model);
+  balls.placed(shapePoses);
+  return balls.lowerBound(pair);
+}
+
+CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
+                                     const double* from, const double* to, std::size_t dim,
+                                     std::size_t segments) {
+  CertifiedMotion answer;
+  if (segments == 0) return answer;
+  const std::size_t pairs = model.pairs.size();
+  PlacedBalls balls(model);
+  std::vector<Eigen::Isometry3d> poses;
+  std::vector<double> q(dim);
+  // Places state i; writes each active pair's bound (0 where none proves it apart); with
+  // `decide`, asks the exact checker about those pairs and returns true at a contact.
+  const auto look = [&](std::size_t i, const std::vector<std::uint32_t>& active,
+                        std::vector<double>& bounds, bool decide) {
+    motionState(from, to, dim, i, segments, q.data());
+    exact.place(q.data(), poses);
+    balls.placed(poses);
+    ++answer.statesPlaced;
+    for (const std::uint32_t p : active) {
+      const double bound = balls.lowerBound(model.pairs[p]) - kMargin;
+      bounds[p] = bound > 0 ? bound : 0;
+      if (bound > 0 || !decide) continue;
+      ++answer.exactPairChecks;
+      if (exact.touches(model.pairs[p])) return true;
+    }
+    return false;
+  };
+
+  std::vector<std::uint32_t> every(pairs);
+  std::iota(every.begin(), every.end(), 0U);
+  auto atTo = std::make_shared<std::vector<double>>(pairs, 0.0);
+  if (look(segments, every, *atTo, true)) {  // a motion into an obstacle: found at once
+    answer.collidingState = segments;
+    return answer;
+  }
+  if (segments == 1) return answer;
+  auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
+  look(0, every, *atFrom, false);
+  // How much one step of the motion can bring each pair closer.
+  std::vector<double> perStep(pairs);
+  Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
+  for (std::size_t j = 0; j < dim; ++j)
+    stride[static_cast<Eigen::Index>(j)] =
+        std::abs(to[j] - from[j]) / static_cast<double>(segments);
+  for (std::size_t p = 0; p < pairs; ++p) perStep[p] = model.pairs[p].levers.dot(stride);
+
+  std::vector<Stretch> stack;
+  stack.push_back({0, segments, atFrom, atTo, std::move(every)});
+  while (!stack.empty()) {
+    Stretch s = std::move(stack.back());
+    stack.pop_back();
+    if (s.hi - s.lo < 2) continue;
+    std::vector<std::uint32_t> open;
+    const double steps = static_cast<double>(s.hi - s.lo);
+    for (const std::uint32_t p : s.active) {
+      if (!((*s.atLo)[p] + (*s.atHi)[p] > steps * perStep[p])) open.push_back(p);
+    }
+    if (open.empty()) continue;
+    const std::size_t mid = s.lo + (s.hi - s.lo) / 2;
+    auto atMid = std::make_shared<std::vector<double>>(pairs, 0.0);
+    if (look(mid, open, *atMid, true)) {
+      answer.collidingState = mid;
+      return answer;
+    }
+    stack.push_back({mid, s.hi, atMid, s.atHi, open});
+    stack.push_back({s.lo, mid, s.atLo, atMid, std::move(open)});
+  }
+  return answer;
+}
+
+}  // namespace fastron

@@ -1,0 +1,321 @@
+#include "fastron/geometry/clearance_bounds.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "fastron/core/error.h"
+#include "overloaded.h"
+
+namespace fastron {
+namespace {
+
+/// A box of `size` centred at the origin cut into at most `maxBalls` equal cells, each covered by
+/// the ball through its corners. The longest cell side is halved (the count along it doubled, or
+/// grown by one) while the count allows.
+std::vector<Ball> gridBalls(const Eigen::Vector3d& size, std::size_t maxBalls) {
+  std::array<std::size_t, 3> cells{1, 1, 1};
+  for (;;) {
+    int longest = 0;
+    for (int a = 1; a < 3; ++a) {
+      if (size[a] / static_cast<double>(cells[a]) >
+          size[longest] / static_cast<double>(cells[longest]))
+        longest = a;
+    }
+    const std::size_t others = cells[0] * cells[1] * cells[2] / cells[longest];
+    if ((cells[longest] + 1) * others > maxBalls) break;
+    ++cells[longest];
+  }
+  const Eigen::Vector3d cell(size.x() / static_cast<double>(cells[0]),
+                             size.y() / static_cast<double>(cells[1]),
+                             size.z() / static_cast<double>(cells[2]));
+  std::vector<Ball> balls;
+  for (std::size_t i = 0; i < cells[0]; ++i) {
+    for (std::size_t j = 0; j < cells[1]; ++j) {
+      for (std::size_t k = 0; k < cells[2]; ++k) {
+        const Eigen::Vector3d index(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5,
+                                    static_cast<double>(k) + 0.5);
+        balls.push_back({(index.cwiseProduct(cell) - size / 2), cell.norm() / 2});
+      }
+    }
+  }
+  return balls;
+}
+
+/// Slices along z of a solid of `radius` about the z axis and `length` (a cylinder or a
+/// capsule's cylinder part), as many as keep a slice no longer than half the radius.
+std::size_t sliceCount(double radius, double length, std::size_t maxBalls) {
+  const double slices = std::ceil(2 * length / radius);
+  return std::clamp<std::size_t>(static_cast<std::size_t>(slices), 1, maxBalls);
+}
+
+using Triangle = std::array<Eigen::Vector3d, 3>;
+
+/// The mesh's triangles, each cut into four at its edges' midpoints until no edge is longer than
+/// `longest`: long thin triangles (a coarse collision mesh's) would otherwise make any group of
+/// triangles that holds one as long as it.
+std::vector<Triangle> pieces(const TriangleMesh& mesh, double longest) {
+  std::vector<Triangle> out, todo;
+  for (const auto& t : mesh.triangles) {
+    todo.push_back({mesh.vertices[static_cast<std::size_t>(t[0])],
+                    mesh.vertices[static_cast<std::size_t>(t[1])],
+                    mesh.vertices[static_cast<std::size_t>(t[2])]});
+  }
+  while (!todo.empty()) {
+    const Triangle t = todo.back();
+    todo.pop_back();
+    const double edge =
+        std::max({(t[0] - t[1]).norm(), (t[1] - t[2]).norm(), (t[2] - t[0]).norm()});
+    if (edge <= longest) {
+      out.push_back(t);
+      continue;
+    }
+    const Eigen::Vector3d a = (t[0] + t[1]) / 2, b = (t[1] + t[2]) / 2, c = (t[2] + t[0]) / 2;
+    todo.push_back({t[0], a, c});
+    todo.push_back({a, t[1], b});
+    todo.push_back({c, b, t[2]});
+    todo.push_back({a, b, c});
+  }
+  return out;
+}
+
+/// The ball about the middle of the box around these triangles' corners.
+Ball ballAround(const std::vector<Triangle>& triangles, const std::vector<int>& group) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const int t : group) {
+    for (const Eigen::Vector3d& v : triangles[static_cast<std::size_t>(t)]) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  }
+  Ball ball{(lo + hi) / 2, 0};
+  for (const int t : group) {
+    for (const Eigen::Vector3d& v : triangles[static_cast<std::size_t>(t)])
+      ball.radius = std::max(ball.radius, (v - ball.centre).norm());
+  }
+  return ball;
+}
+
+/// A ball contains a triangle when it contains its corners (both are convex), so groups of
+/// triangles, the widest group split in two at the median centroid along its longest side until
+/// there are maxBalls (or every group is one triangle). Each group's triangles are returned in
+/// `groups`.
+std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles, std::vector<int> all,
+                             std::size_t maxBalls, std::vector<std::vector<int>>& groups) {
+  std::vector<Eigen::Vector3d> centroids;
+  for (const Triangle& t : triangles) centroids.push_back((t[0] + t[1] + t[2]) / 3);
+  groups.assign(1, std::move(all));
+  std::vector<Ball> balls{ballAround(triangles, groups[0])};
+  while (balls.size() < maxBalls) {
+    std::size_t widest = balls.size();
+    for (std::size_t g = 0; g < balls.size(); ++g) {
+      if (groups[g].size() > 1 &&
+          (widest == balls.size() || balls[g].radius > balls[widest].radius))
+        widest = g;
+    }
+    if (widest == balls.size()) break;  // every group is one triangle
+    std::vector<int>& group = groups[widest];
+    Eigen::Vector3d from = centroids[static_cast<std::size_t>(group[0])], to = from;
+    for (const int t : group) {
+      from = from.cwiseMin(centroids[static_cast<std::size_t>(t)]);
+      to = to.cwiseMax(centroids[static_cast<std::size_t>(t)]);
+    }
+    Eigen::Index axis = 0;
+    (to - from).maxCoeff(&axis);
+    const auto middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
+    std::nth_element(group.begin(), middle, group.end(), [&](int a, int b) {
+      return centroids[static_cast<std::size_t>(a)][axis] <
+             centroids[static_cast<std::size_t>(b)][axis];
+    });
+    std::vector<int> upper(middle, group.end());
+    group.erase(middle, group.end());
+    balls[widest] = ballAround(triangles, group);
+    balls.push_back(ballAround(triangles, upper));
+    groups.push_back(std::move(upper));
+  }
+  return balls;
+}
+
+/// The mesh's cover: its triangles cut to at most a thirtieth of its size, grouped into maxBalls
+/// balls, and each group into up to maxChildren finer ones.
+BallCover meshCover(const TriangleMesh& mesh, std::size_t maxBalls, std::size_t maxChildren) {
+  Eigen::Vector3d lo = mesh.vertices.front(), hi = lo;
+  for (const auto& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const std::vector<Triangle> triangles = pieces(mesh, (hi - lo).norm() / 30);
+  std::vector<int> all(triangles.size());
+  std::iota(all.begin(), all.end(), 0);
+  BallCover cover;
+  std::vector<std::vector<int>> groups, subgroups;
+  cover.balls = groupBalls(triangles, std::move(all), maxBalls, groups);
+  if (maxChildren > 1) {
+    for (std::vector<int>& group : groups)
+      cover.children.push_back(groupBalls(triangles, std::move(group), maxChildren, subgroups));
+  }
+  return cover;
+}
+
+}  // namespace
+
+BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls, std::size_t maxChildren) {
+  if (maxBalls == 0) throw InvalidArgument("coveringBalls: at least one ball is needed");
+  if (const auto* mesh = std::get_if<Mesh>(&shape))
+    return meshCover(*mesh->mesh, maxBalls, maxChildren);
+  return {coveringBalls(shape, maxBalls), {}};
+}
+
+std::vector<Ball> coveringBalls(const Shape& shape, std::size_t maxBalls) {
+  if (maxBalls == 0) throw InvalidArgument("coveringBalls: at least one ball is needed");
+  return std::visit(
+      Overloaded{
+          [&](const Box& b) { return gridBalls(b.size, maxBalls); },
+          [](const Sphere& s) {
+            return std::vector<Ball>{{Eigen::Vector3d::Zero(), s.radius}};
+          },
+          [&](const Cylinder& c) {
+            const std::size_t n = sliceCount(c.radius, c.length, maxBalls);
+            const double slice = c.length / static_cast<double>(n);
+            std::vector<Ball> balls;
+            for (std::size_t i = 0; i < n; ++i) {
+              const double z = -c.length / 2 + (static_cast<double>(i) + 0.5) * slice;
+              balls.push_back({Eigen::Vector3d(0, 0, z), std::hypot(c.radius, slice / 2)});
+            }
+            return balls;
+          },
+          // Every point lies within radius of the axis segment, whose every point lies within
+          // half a slice of a centre.
+          [&](const Capsule& c) {
+            const std::size_t n = c.length > 0 ? sliceCount(c.radius, c.length, maxBalls) : 1;
+            const double slice = c.length / static_cast<double>(n);
+            std::vector<Ball> balls;
+            for (std::size_t i = 0; i < n; ++i) {
+              const double z = -c.length / 2 + (static_cast<double>(i) + 0.5) * slice;
+              balls.push_back({Eigen::Vector3d(0, 0, z), c.radius + slice / 2});
+            }
+            return balls;
+          },
+          [&](const Mesh& m) { return meshCover(*m.mesh, maxBalls, 0).balls; },
+      },
+      shape);
+}
+
+EnclosingVolume::EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& pose)
+    : toLocal_(pose.inverse()) {
+  std::visit(Overloaded{
+                 [&](const Box& b) { halfExtents_ = b.size / 2; },
+                 [&](const Sphere& s) {
+                   kind_ = Kind::Sphere;
+                   radius_ = s.radius;
+                 },
+                 [&](const Cylinder& c) {
+                   kind_ = Kind::Cylinder;
+                   radius_ = c.radius;
+                   halfLength_ = c.length / 2;
+                 },
+                 [&](const Capsule& c) {
+                   kind_ = Kind::Capsule;
+                   radius_ = c.radius;
+                   halfLength_ = c.length / 2;
+                 },
+                 [&](const Mesh& m) {
+                   Eigen::Vector3d lo = m.mesh->vertices.front(), hi = lo;
+                   for (const auto& v : m.mesh->vertices) {
+                     lo = lo.cwiseMin(v);
+                     hi = hi.cwiseMax(v);
+                   }
+                   halfExtents_ = (hi - lo) / 2;
+                   toLocal_ = Eigen::Translation3d(-(lo + hi) / 2) * toLocal_;
+                 },
+             },
+             shape);
+}
+
+double EnclosingVolume::distanceFrom(const Eigen::Vector3d& point) const {
+  const Eigen::Vector3d p = toLocal_ * point;
+  switch (kind_) {
+    case Kind::Box:
+      return (p.cwiseAbs() - halfExtents_).cwiseMax(0.0).norm();
+    case Kind::Sphere:
+      return std::max(p.norm() - radius_, 0.0);
+    case Kind::Cylinder:
+      return std::hypot(std::max(std::hypot(p.x(), p.y()) - radius_, 0.0),
+                        std::max(std::abs(p.z()) - halfLength_, 0.0));
+    case Kind::Capsule:
+      return std::max(
+          (p - Eigen::Vector3d(0, 0, std::clamp(p.z(), -halfLength_, halfLength_))).norm() -
+              radius_,
+          0.0);
+  }
+  return 0;
+}
+
+int commonAncestor(const Robot& robot, int linkA, int linkB) {
+  const auto parentLink = [&](int link) {
+    const int joint = robot.links()[static_cast<std::size_t>(link)].parentJoint;
+    return joint < 0 ? -1 : robot.joints()[static_cast<std::size_t>(joint)].parent;
+  };
+  std::vector<int> ancestorsOfA;
+  for (int link = linkA; link >= 0; link = parentLink(link)) ancestorsOfA.push_back(link);
+  for (int link = linkB; link >= 0; link = parentLink(link)) {
+    if (std::find(ancestorsOfA.begin(), ancestorsOfA.end(), link) != ancestorsOfA.end())
+      return link;
+  }
+  return robot.rootLink();  // one tree: not reached
+}
+
+Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
+                            int relativeTo) {
+  const LinkShape& s = robot.shapes().at(shape);
+  const auto& joints = robot.joints();
+  // The coordinate that drives each joint, with the multiplier it is driven by.
+  std::vector<std::pair<int, double>> driver(joints.size(), {-1, 0.0});
+  for (std::size_t k = 0; k < robot.actuatedJoints().size(); ++k)
+    driver[static_cast<std::size_t>(robot.actuatedJoints()[k])] = {static_cast<int>(k), 1.0};
+  for (const MimicJoint& m : robot.mimicJoints()) {
+    const auto& source = driver[static_cast<std::size_t>(m.source)];
+    if (source.first >= 0) driver[static_cast<std::size_t>(m.joint)] = {source.first, m.multiplier};
+  }
+  // The largest distance of a point of the shape from the origin of the current link's frame,
+  // carried up the chain: a revolute joint's axis passes through its child link's origin.
+  double reach = 0;
+  for (const Ball& b : balls) reach = std::max(reach, (s.origin * b.centre).norm() + b.radius);
+  Eigen::VectorXd levers = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(robot.dof()));
+  for (int link = s.link; link != relativeTo;) {
+    const int j = robot.links()[static_cast<std::size_t>(link)].parentJoint;
+    if (j < 0) {
+      throw InvalidArgument("shapeLevers: link '" +
+                            robot.links()[static_cast<std::size_t>(relativeTo)].name +
+                            "' is not an ancestor of link '" +
+                            robot.links()[static_cast<std::size_t>(s.link)].name + "'");
+    }
+    const Joint& joint = joints[static_cast<std::size_t>(j)];
+    const auto [coordinate, multiplier] = driver[static_cast<std::size_t>(j)];
+    if (coordinate >= 0 && joint.movable()) {
+      levers[coordinate] +=
+          std::abs(multiplier) * (joint.type == JointType::Prismatic ? 1.0 : reach);
+    }
+    reach += joint.origin.translation().norm();
+    if (joint.type == JointType::Prismatic) {
+      double travel = std::max(std::abs(joint.lower), std::abs(joint.upper));
+      if (joint.mimic) {  // the followed joint's range, not the mimic's own limits
+        for (const MimicJoint& m : robot.mimicJoints()) {
+          if (m.joint != j) continue;
+          const Joint& source = joints[static_cast<std::size_t>(m.source)];
+          travel =
+              std::abs(m.multiplier) * std::max(std::abs(source.lower), std::abs(source.upper)) +
+              std::abs(m.offset);
+        }
+      }
+      reach += travel;
+    }
+    link = joint.parent;
+  }
+  return levers;
+}
+
+}  // namespace fastron
