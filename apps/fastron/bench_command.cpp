@@ -128,6 +128,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped); "
                 "the default method 'Fastron' then models each scene's obstacles alone and "
                 "leaves self-collisions to verification");
+  cmd->add_flag("--dense-checks", o->settings.denseChecks,
+                "motion-bench: FCL checks every state of a motion instead of skipping what "
+                "clearance bounds prove free (the same answers, slower; for comparison)");
   cmd->add_option("--range", o->settings.range,
                   "motion-bench: longest tree edge of every method's planner, joint units "
                   "(default: OMPL's, a fifth of the diagonal of the joint limits)")

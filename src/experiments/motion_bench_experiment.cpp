@@ -223,7 +223,8 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   }
   const JointLimits limits = robot.limits();
   const FeatureMap& features = models.features;
-  const CheckerOptions checking{.selfCollision = o.selfCollision};
+  const CheckerOptions checking{.selfCollision = o.selfCollision,
+                                .proveMotionsFree = !o.denseChecks};
   const std::shared_ptr<const Model>& selfModel = models.selfModel;
   const double selfTrainSeconds = models.selfTrainSeconds;
   const std::size_t samples = trainingSamples(o);

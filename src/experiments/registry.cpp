@@ -165,7 +165,7 @@ std::vector<Experiment> makeRegistry() {
                  }});
   all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
                  planningAnd({"problems", "robot", "package-path", "srdf", "range",
-                              "self-collision", "self-model", "queries-per-scene",
+                              "self-collision", "dense-checks", "self-model", "queries-per-scene",
                               "learn-from-verification", "samples", "updates", "gamma", "beta"}),
                  [](const ExperimentSettings& s, const Progress& progress) {
                    if (s.problems.empty()) {
@@ -182,6 +182,7 @@ std::vector<Experiment> makeRegistry() {
                    o.resultsFile = s.resultsFile;
                    o.range = s.range;
                    o.selfCollision = s.selfCollision;
+                   o.denseChecks = s.denseChecks;
                    o.queriesPerScene = s.queriesPerScene;
                    o.selfModel = s.selfModel;
                    o.learnFromVerification = s.learnFromVerification;

@@ -25,6 +25,9 @@ struct MotionBenchOptions {
   std::filesystem::path srdf;  ///< an SRDF whose disabled collisions apply (empty: none)
   /// FCL (the oracle, the planner's and the audit) also checks the robot against itself.
   bool selfCollision = false;
+  /// FCL checks every state of a motion (CheckerOptions::proveMotionsFree off): the same answers,
+  /// for comparing what the clearance proof saves.
+  bool denseChecks = false;
   /// Planning queries per scene: the request, then K - 1 start/goal pairs drawn uniformly and
   /// free under FCL, all on the one model trained for the scene (a robot that stays in a scene
   /// amortises the training).

@@ -41,6 +41,7 @@ struct ExperimentSettings {
   std::vector<std::filesystem::path> packagePaths;
   std::filesystem::path srdf;
   bool selfCollision = false;
+  bool denseChecks = false;
   std::size_t queriesPerScene = 1;
   bool selfModel = false;
   bool learnFromVerification = false;
