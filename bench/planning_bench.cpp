@@ -16,6 +16,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/planning/parallel_check.h"
+#include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -150,6 +151,7 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
   static std::map<std::string, VerificationPaths> cache;
   if (const auto kept = cache.find(robotName); kept != cache.end()) return kept->second;
   ompl::msg::noOutputHandler();
+  seedPlanners(1, 0);  // the same paths in every run
   const Robot robot = loadRobot(robotName);
   const auto problems = experiments::generateProblems(robot, {.count = 4});
   VerificationPaths v;

@@ -316,7 +316,28 @@ void bindCore(py::module_& m) {
           },
           py::arg("q"),
           "The exact answer for one configuration (d,) -> bool, or each row of (n, d) -> (n,) "
-          "bool (on the calling thread, GIL released).");
+          "bool (on the calling thread, GIL released).")
+      .def_property_readonly("proves_motions_free", &CollisionChecker::provesMotionsFree,
+                             "True when motion_collision skips the states it proves free.")
+      .def(
+          "motion_collision",
+          [](const CollisionChecker& checker, py::handle from, py::handle to,
+             std::size_t segments) {
+            const Eigen::VectorXd a = vector(from, checker.dof(), "start");
+            const Eigen::VectorXd b = vector(to, checker.dof(), "end");
+            if (segments == 0) throw InvalidArgument("segments must be at least 1, got 0");
+            CollisionChecker::MotionCheck answer;
+            {
+              py::gil_scoped_release released;
+              answer = checker.motionCollision(a.data(), b.data(), segments);
+            }
+            return py::make_tuple(answer.collidingState == 0 ? py::object(py::none())
+                                                             : py::int_(answer.collidingState),
+                                  answer.looked);
+          },
+          py::arg("start"), py::arg("end"), py::arg("segments"),
+          "The straight motion looked at in `segments` equal steps (states i = 1..segments, `end` "
+          "last): (i of a state in collision, or None, configurations looked at).");
 
   py::class_<PythonChecker, CollisionChecker, std::shared_ptr<PythonChecker>>(
       m, "FunctionChecker",

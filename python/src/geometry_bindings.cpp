@@ -61,9 +61,11 @@ void addObstacle(Scene& scene, const std::string& name, Shape shape, py::handle 
 
 template <class Checker>
 std::shared_ptr<Checker> makeChecker(const Robot& robot, const Scene& scene, bool selfCollision,
-                                     double padding) {
-  return std::make_shared<Checker>(
-      robot, scene, CheckerOptions{.selfCollision = selfCollision, .padding = padding});
+                                     double padding, bool proveMotionsFree) {
+  return std::make_shared<Checker>(robot, scene,
+                                   CheckerOptions{.selfCollision = selfCollision,
+                                                  .padding = padding,
+                                                  .proveMotionsFree = proveMotionsFree});
 }
 
 py::object contactObject(const std::optional<Contact>& contact) {
@@ -258,7 +260,8 @@ void bindGeometry(py::module_& m) {
   py::class_<FclChecker, CollisionChecker, std::shared_ptr<FclChecker>>(
       m, "FclChecker", "The exact checker: forward kinematics, then FCL against the scene.")
       .def(py::init(&makeChecker<FclChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
-           py::arg("self_collision") = false, py::arg("padding") = 0.0)
+           py::arg("self_collision") = false, py::arg("padding") = 0.0,
+           py::arg("prove_motions_free") = true)
       .def_property_readonly("robot", &FclChecker::robot)
       .def("set_scene", &FclChecker::setScene, py::arg("scene"),
            "Takes the obstacles' new poses; safe while other threads check.")
@@ -279,8 +282,11 @@ void bindGeometry(py::module_& m) {
 
   py::class_<GjkChecker, CollisionChecker, std::shared_ptr<GjkChecker>>(
       m, "GjkChecker", "Forward kinematics, then libccd's GJK on convex shapes.")
-      .def(py::init(&makeChecker<GjkChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
-           py::arg("self_collision") = false, py::arg("padding") = 0.0)
+      .def(py::init([](const Robot& robot, const Scene& scene, bool selfCollision, double padding) {
+             return makeChecker<GjkChecker>(robot, scene, selfCollision, padding, false);
+           }),
+           py::arg("robot"), py::arg("scene"), py::kw_only(), py::arg("self_collision") = false,
+           py::arg("padding") = 0.0)
       .def_property_readonly("robot", &GjkChecker::robot)
       .def("set_scene", &GjkChecker::setScene, py::arg("scene"));
 }

@@ -88,6 +88,33 @@ def test_contacts_distance_and_moving_scenes(baxter):
     assert np.allclose(scene.position("wall"), [5, 0, 0])
 
 
+def test_motions_checked_whole_answer_as_every_state(baxter, three_boxes):
+    certified = fastron.FclChecker(baxter, three_boxes, self_collision=True)
+    dense = fastron.FclChecker(baxter, three_boxes, self_collision=True, prove_motions_free=False)
+    assert certified.proves_motions_free and not dense.proves_motions_free
+    starts = uniform(baxter.limits, 400, seed=4)
+    starts = starts[~dense.in_collision(starts)][:100]
+    steps = np.random.default_rng(5).normal(size=starts.shape)
+    ends = np.clip(starts + 0.8 * steps / np.linalg.norm(steps, axis=1)[:, None],
+                   baxter.limits.lower, baxter.limits.upper)
+    looked_certified = looked_dense = colliding = 0
+    for start, end in zip(starts, ends):
+        state, looked = certified.motion_collision(start, end, 60)
+        dense_state, dense_looked = dense.motion_collision(start, end, 60)
+        assert (state is None) == (dense_state is None)
+        if state is not None:  # the state named collides
+            assert dense.in_collision(start + (end - start) * state / 60)
+            colliding += 1
+        looked_certified += looked
+        looked_dense += dense_looked
+    assert 0 < colliding < len(starts)
+    assert looked_certified < looked_dense
+    with pytest.raises(fastron.InvalidArgument, match="start"):
+        certified.motion_collision(starts[0][:3], ends[0], 10)
+    with pytest.raises(fastron.InvalidArgument, match="segments"):
+        certified.motion_collision(starts[0], ends[0], 0)
+
+
 def test_python_oracle_and_gil(tmp_path):
     calls = []
     threads = set()

@@ -14,6 +14,12 @@ namespace {
 /// Taken off every lower bound, so that rounding (of the states, of the poses) and the exact
 /// checker's own tolerance cannot turn a touch into a proof: 10 micrometres.
 constexpr double kMargin = 1e-5;
+/// An exact distance is asked for where the stretch a state bounds is at least this many steps
+/// long: it costs several collision checks, and pays only where it proves many states free.
+constexpr double kDistanceSteps = 4;
+/// An exact distance below this leaves the verdict to the collision check (FCL's distance and
+/// collision tolerances differ at contact).
+constexpr double kDistanceFloor = 1e-4;
 
 /// The balls of every robot shape placed in the world for the configuration last placed, each
 /// shape's (and each ball's children) computed on first use.
@@ -32,39 +38,78 @@ class PlacedBalls {
     ++now_;
   }
 
-  double lowerBound(const ClearancePair& pair) {
+  /// A lower bound on the pair's distance: from the shapes' enclosing balls when that already
+  /// exceeds `wanted`, else from their balls (and the children of balls that overlap), the
+  /// larger of the valid bounds.
+  double lowerBound(const ClearancePair& pair, double wanted) {
+    const BallCover& cover = model_.balls[pair.shape];
+    const Eigen::Vector3d& whole = wholeCentre(pair.shape);
+    const double coarse =
+        pair.selfPair ? (whole - wholeCentre(pair.other)).norm() - cover.whole.radius -
+                            model_.balls[pair.other].whole.radius
+                      : model_.obstacles[pair.other].distanceFrom(whole) - cover.whole.radius;
+    if (coarse > wanted) return coarse;
+    // The finer bound matters only above the coarse one (and above 0): its search stops once
+    // it is no higher.
+    const double floor = std::max(coarse, 0.0);
+    return std::max(coarse, pair.selfPair ? selfBound(pair, floor) : obstacleBound(pair, floor));
+  }
+
+ private:
+  /// The smallest bound over the shape's balls (their children where they meet the volume), or
+  /// the first at most `floor`.
+  double obstacleBound(const ClearancePair& pair, double floor) {
     const BallCover& cover = model_.balls[pair.shape];
     const auto& at = centres(pair.shape);
+    const EnclosingVolume& obstacle = model_.obstacles[pair.other];
     double best = std::numeric_limits<double>::infinity();
-    if (!pair.selfPair) {
-      const EnclosingVolume& obstacle = model_.obstacles[pair.other];
-      for (std::size_t b = 0; b < at.size(); ++b) {
-        double bound = obstacle.distanceFrom(at[b]) - cover.balls[b].radius;
-        if (bound <= 0 && !cover.children.empty()) {
-          bound = std::numeric_limits<double>::infinity();
-          const auto& children = cover.children[b];
-          const auto& childAt = childCentres(pair.shape, b);
-          for (std::size_t c = 0; c < children.size(); ++c)
-            bound = std::min(bound, obstacle.distanceFrom(childAt[c]) - children[c].radius);
-        }
-        best = std::min(best, bound);
+    for (std::size_t b = 0; b < at.size(); ++b) {
+      double bound = obstacle.distanceFrom(at[b]) - cover.balls[b].radius;
+      if (bound <= 0 && !cover.children.empty()) {
+        double finer = std::numeric_limits<double>::infinity();
+        const auto& children = cover.children[b];
+        const auto& childAt = childCentres(pair.shape, b);
+        for (std::size_t c = 0; c < children.size(); ++c)
+          finer = std::min(finer, obstacle.distanceFrom(childAt[c]) - children[c].radius);
+        bound = std::max(bound, finer);
       }
-      return best;
+      best = std::min(best, bound);
+      if (best <= floor) return best;
     }
+    return best;
+  }
+
+  /// The smallest bound over pairs of the shapes' balls (their children where they overlap), or
+  /// the first at most `floor`.
+  double selfBound(const ClearancePair& pair, double floor) {
+    const BallCover& cover = model_.balls[pair.shape];
     const BallCover& other = model_.balls[pair.other];
+    const auto& at = centres(pair.shape);
     const auto& otherAt = centres(pair.other);
+    double best = std::numeric_limits<double>::infinity();
     for (std::size_t b = 0; b < at.size(); ++b) {
       for (std::size_t c = 0; c < otherAt.size(); ++c) {
         double bound = (at[b] - otherAt[c]).norm() - cover.balls[b].radius - other.balls[c].radius;
-        if (bound <= 0) bound = childBound(pair.shape, b, pair.other, c);
+        if (bound <= 0) bound = std::max(bound, childBound(pair.shape, b, pair.other, c, floor));
         best = std::min(best, bound);
+        if (best <= floor) return best;
       }
     }
     return best;
   }
 
- private:
+  const Eigen::Vector3d& wholeCentre(std::size_t shape) {
+    Shape& s = shapes_[shape];
+    if (s.wholeStamp != now_) {
+      s.whole = (*poses_)[shape] * model_.balls[shape].whole.centre;
+      s.wholeStamp = now_;
+    }
+    return s.whole;
+  }
+
   struct Shape {
+    std::size_t wholeStamp = 0;
+    Eigen::Vector3d whole;
     std::size_t stamp = 0;
     std::vector<Eigen::Vector3d> centres;
     std::vector<std::size_t> childStamp;
@@ -96,8 +141,9 @@ class PlacedBalls {
   }
 
   /// The bound between two overlapping balls from their children (the balls themselves for a
-  /// shape without children).
-  double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB) {
+  /// shape without children), or the first at most `floor`.
+  double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB,
+                    double floor) {
     const BallCover& a = model_.balls[shapeA];
     const BallCover& b = model_.balls[shapeB];
     const auto finer = [&](const BallCover& cover, std::size_t shape, std::size_t ball) {
@@ -111,8 +157,10 @@ class PlacedBalls {
     const auto [ballsB, atB] = finer(b, shapeB, ballB);
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < ballsA.size(); ++i) {
-      for (std::size_t j = 0; j < ballsB.size(); ++j)
+      for (std::size_t j = 0; j < ballsB.size(); ++j) {
         best = std::min(best, (atA[i] - atB[j]).norm() - ballsA[i].radius - ballsB[j].radius);
+        if (best <= floor) return best;
+      }
     }
     return best;
   }
@@ -139,7 +187,7 @@ double clearanceLowerBound(const ClearanceModel& model, const ClearancePair& pai
                            const std::vector<Eigen::Isometry3d>& shapePoses) {
   PlacedBalls balls(model);
   balls.placed(shapePoses);
-  return balls.lowerBound(pair);
+  return balls.lowerBound(pair, std::numeric_limits<double>::infinity());
 }
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
@@ -151,34 +199,6 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   PlacedBalls balls(model);
   std::vector<Eigen::Isometry3d> poses;
   std::vector<double> q(dim);
-  // Places state i; writes each active pair's bound (0 where none proves it apart); with
-  // `decide`, asks the exact checker about those pairs and returns true at a contact.
-  const auto look = [&](std::size_t i, const std::vector<std::uint32_t>& active,
-                        std::vector<double>& bounds, bool decide) {
-    motionState(from, to, dim, i, segments, q.data());
-    exact.place(q.data(), poses);
-    balls.placed(poses);
-    ++answer.statesPlaced;
-    for (const std::uint32_t p : active) {
-      const double bound = balls.lowerBound(model.pairs[p]) - kMargin;
-      bounds[p] = bound > 0 ? bound : 0;
-      if (bound > 0 || !decide) continue;
-      ++answer.exactPairChecks;
-      if (exact.touches(model.pairs[p])) return true;
-    }
-    return false;
-  };
-
-  std::vector<std::uint32_t> every(pairs);
-  std::iota(every.begin(), every.end(), 0U);
-  auto atTo = std::make_shared<std::vector<double>>(pairs, 0.0);
-  if (look(segments, every, *atTo, true)) {  // a motion into an obstacle: found at once
-    answer.collidingState = segments;
-    return answer;
-  }
-  if (segments == 1) return answer;
-  auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
-  look(0, every, *atFrom, false);
   // How much one step of the motion can bring each pair closer.
   std::vector<double> perStep(pairs);
   Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
@@ -186,6 +206,51 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     stride[static_cast<Eigen::Index>(j)] =
         std::abs(to[j] - from[j]) / static_cast<double>(segments);
   for (std::size_t p = 0; p < pairs; ++p) perStep[p] = model.pairs[p].levers.dot(stride);
+  // Places state i; writes each active pair's bound (0 where none proves it apart); with
+  // `decide`, asks the exact checker about those pairs and returns true at a contact. A bound
+  // that proves a pair apart over `steps` steps on its own is precise enough; a pair without one
+  // at both ends of the stretch (`close`) goes to the exact checker without a bound: its bound
+  // was not positive there, and a bound costs as much as the check on the mesh Panda's pairs
+  // that sit millimetres apart.
+  const auto look = [&](std::size_t i, const std::vector<std::uint32_t>& active,
+                        std::vector<double>& bounds, bool decide, double steps, const auto& close) {
+    motionState(from, to, dim, i, segments, q.data());
+    exact.place(q.data(), poses);
+    balls.placed(poses);
+    ++answer.statesPlaced;
+    for (const std::uint32_t p : active) {
+      const ClearancePair& pair = model.pairs[p];
+      const double bound =
+          close(p) ? 0 : balls.lowerBound(pair, steps * perStep[p] + kMargin) - kMargin;
+      bounds[p] = bound > 0 ? bound : 0;
+      if (bound > 0) continue;
+      if (pair.askDistance && exact.distance && steps >= kDistanceSteps) {
+        ++answer.exactPairChecks;
+        const double distance = exact.distance(pair);
+        if (distance > kDistanceFloor) {
+          bounds[p] = distance - kMargin;
+          continue;
+        }
+      }
+      if (!decide) continue;
+      ++answer.exactPairChecks;
+      if (exact.touches(pair)) return true;
+    }
+    return false;
+  };
+  const auto never = [](std::uint32_t) { return false; };
+  const double all = static_cast<double>(segments);
+
+  std::vector<std::uint32_t> every(pairs);
+  std::iota(every.begin(), every.end(), 0U);
+  auto atTo = std::make_shared<std::vector<double>>(pairs, 0.0);
+  if (look(segments, every, *atTo, true, all, never)) {  // into an obstacle: found at once
+    answer.collidingState = segments;
+    return answer;
+  }
+  if (segments == 1) return answer;
+  auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
+  look(0, every, *atFrom, false, all, never);
 
   // Breadth first, as the dense check's bisection order: a collision anywhere on the motion is met
   // after a few looks (depth first walked the first half's every unproven state before the
@@ -204,7 +269,10 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     if (open.empty()) continue;
     const std::size_t mid = s.lo + (s.hi - s.lo) / 2;
     auto atMid = std::make_shared<std::vector<double>>(pairs, 0.0);
-    if (look(mid, open, *atMid, true)) {
+    const auto closeAtBothEnds = [&](std::uint32_t p) {
+      return (*s.atLo)[p] == 0 && (*s.atHi)[p] == 0;
+    };
+    if (look(mid, open, *atMid, true, steps / 2, closeAtBothEnds)) {
       answer.collidingState = mid;
       return answer;
     }

@@ -103,10 +103,9 @@ Ball ballAround(const std::vector<Triangle>& triangles, const std::vector<int>& 
 /// triangles, the widest group split in two at the median centroid along its longest side until
 /// there are maxBalls (or every group is one triangle). Each group's triangles are returned in
 /// `groups`.
-std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles, std::vector<int> all,
+std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
+                             const std::vector<Eigen::Vector3d>& centroids, std::vector<int> all,
                              std::size_t maxBalls, std::vector<std::vector<int>>& groups) {
-  std::vector<Eigen::Vector3d> centroids;
-  for (const Triangle& t : triangles) centroids.push_back((t[0] + t[1] + t[2]) / 3);
   groups.assign(1, std::move(all));
   std::vector<Ball> balls{ballAround(triangles, groups[0])};
   while (balls.size() < maxBalls) {
@@ -148,14 +147,18 @@ BallCover meshCover(const TriangleMesh& mesh, std::size_t maxBalls, std::size_t 
     hi = hi.cwiseMax(v);
   }
   const std::vector<Triangle> triangles = pieces(mesh, (hi - lo).norm() / 30);
+  std::vector<Eigen::Vector3d> centroids;
+  for (const Triangle& t : triangles) centroids.push_back((t[0] + t[1] + t[2]) / 3);
   std::vector<int> all(triangles.size());
   std::iota(all.begin(), all.end(), 0);
   BallCover cover;
   std::vector<std::vector<int>> groups, subgroups;
-  cover.balls = groupBalls(triangles, std::move(all), maxBalls, groups);
+  cover.balls = groupBalls(triangles, centroids, std::move(all), maxBalls, groups);
   if (maxChildren > 1) {
-    for (std::vector<int>& group : groups)
-      cover.children.push_back(groupBalls(triangles, std::move(group), maxChildren, subgroups));
+    for (std::vector<int>& group : groups) {
+      cover.children.push_back(
+          groupBalls(triangles, centroids, std::move(group), maxChildren, subgroups));
+    }
   }
   return cover;
 }
@@ -164,9 +167,24 @@ BallCover meshCover(const TriangleMesh& mesh, std::size_t maxBalls, std::size_t 
 
 BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls, std::size_t maxChildren) {
   if (maxBalls == 0) throw InvalidArgument("coveringBalls: at least one ball is needed");
-  if (const auto* mesh = std::get_if<Mesh>(&shape))
-    return meshCover(*mesh->mesh, maxBalls, maxChildren);
-  return {coveringBalls(shape, maxBalls), {}};
+  BallCover cover;
+  if (const auto* mesh = std::get_if<Mesh>(&shape)) {
+    cover = meshCover(*mesh->mesh, maxBalls, maxChildren);
+  } else {
+    cover.balls = coveringBalls(shape, maxBalls);
+  }
+  // About the middle of the box around the balls.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const Ball& b : cover.balls) {
+    lo = lo.cwiseMin((b.centre.array() - b.radius).matrix());
+    hi = hi.cwiseMax((b.centre.array() + b.radius).matrix());
+  }
+  cover.whole.centre = (lo + hi) / 2;
+  for (const Ball& b : cover.balls)
+    cover.whole.radius =
+        std::max(cover.whole.radius, (b.centre - cover.whole.centre).norm() + b.radius);
+  return cover;
 }
 
 std::vector<Ball> coveringBalls(const Shape& shape, std::size_t maxBalls) {

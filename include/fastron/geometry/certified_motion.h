@@ -25,6 +25,9 @@ struct ClearancePair {
   bool selfPair = false;
   /// How fast their distance can shrink, per unit of each configuration coordinate.
   Eigen::VectorXd levers;
+  /// ExactPairCheck::distance may be asked about the pair (the checker's distance is cheap for
+  /// it: FCL's between primitives, not a mesh's, which cost 20-50 collision checks).
+  bool askDistance = false;
 };
 
 /// A robot against one scene, as the certificate sees it.
@@ -40,6 +43,11 @@ struct ExactPairCheck {
   std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses)> place;
   /// True when the pair touches at the configuration last placed, as the exact checker decides.
   std::function<bool(const ClearancePair& pair)> touches;
+  /// Optional: the pair's exact distance at the configuration last placed. Asked instead of
+  /// `touches` about a pair (with askDistance) that no bound keeps apart where a long stretch of
+  /// the motion depends on it: a distance above 0.1 mm is the pair's bound there (and the pair is
+  /// free); below, `touches` decides.
+  std::function<double(const ClearancePair& pair)> distance;
 };
 
 /// The answer of certifiedMotionCheck.
@@ -48,7 +56,7 @@ struct CertifiedMotion {
   std::size_t collidingState = 0;
   /// Configurations placed (forward kinematics and the bounds; `from` counts).
   std::size_t statesPlaced = 0;
-  /// Pair checks the exact checker made.
+  /// Pair checks the exact checker made (distances included).
   std::size_t exactPairChecks = 0;
 };
 

@@ -32,6 +32,7 @@ std::vector<Ball> coveringBalls(const Shape& shape, std::size_t maxBalls = 12);
 /// covering the part of the shape that balls[i] was made for, finer (meshes only; empty for other
 /// shapes). A bound that finds two balls overlapping looks at their children.
 struct BallCover {
+  Ball whole;  ///< encloses every ball
   std::vector<Ball> balls;
   std::vector<std::vector<Ball>> children;  ///< empty, or one list per ball
 };
