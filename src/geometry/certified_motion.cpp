@@ -249,14 +249,24 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     return answer;
   }
   if (segments == 1) return answer;
+  // The midpoint next, before `from` is placed for its bounds: a motion that collides (most of a
+  // planner's extensions) is found after the looks of the dense check's order, and pays for
+  // `from` only when it survives them.
+  const std::size_t half = segments / 2;
+  auto atHalf = std::make_shared<std::vector<double>>(pairs, 0.0);
+  if (look(half, every, *atHalf, true, all / 2, never)) {
+    answer.collidingState = half;
+    return answer;
+  }
   auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
-  look(0, every, *atFrom, false, all, never);
+  look(0, every, *atFrom, false, all / 2, never);
 
   // Breadth first, as the dense check's bisection order: a collision anywhere on the motion is met
   // after a few looks (depth first walked the first half's every unproven state before the
   // second half's midpoint, and doubled the looks of RRT-Connect's mostly colliding extensions).
   std::deque<Stretch> queue;
-  queue.push_back({0, segments, atFrom, atTo, std::move(every)});
+  queue.push_back({0, half, atFrom, atHalf, every});
+  queue.push_back({half, segments, atHalf, atTo, std::move(every)});
   while (!queue.empty()) {
     Stretch s = std::move(queue.front());
     queue.pop_front();

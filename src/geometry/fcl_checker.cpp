@@ -185,6 +185,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   geometry->moves = shapesMovedByConfiguration(robot_);
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
     const Shape padded = paddedShape(robot_, s, options_);
+    robotHasMeshes_ = robotHasMeshes_ || std::holds_alternative<Mesh>(padded);
     geometry->shapes.push_back(geometriesOf(padded));
     if (geometry->moves[s] != 0) geometry->moving.push_back(s);
     geometry->balls.push_back(coveringBallTree(padded));

@@ -109,6 +109,20 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
   const double* a = valuesOf(s1);
   const double* b = valuesOf(s2);
   const std::size_t n = segmentCount(a, b, dim, resolution_);
+  if (const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source_);
+      checker != nullptr && (*checker)->provesPlannerMotionsFree()) {
+    const std::optional<bool> endCollides = ends_.find(b);
+    bool valid = false;
+    if (!endCollides || !*endCollides) {  // the whole motion at once (`b` looked at again)
+      const CollisionChecker::MotionCheck answer = (*checker)->motionCollision(a, b, n);
+      answered_->fetch_add(answer.looked, std::memory_order_relaxed);
+      if (answer.collidingState == 0 || answer.collidingState == n)
+        ends_.remember(b, answer.collidingState == n);
+      valid = answer.collidingState == 0;
+    }
+    (valid ? valid_ : invalid_)++;
+    return valid;
+  }
   thread_local std::vector<double> states;  // planners call this millions of times: no allocation
   motionStates(a, b, dim, n, states);       // row 0 is b itself
   bool valid = false;

@@ -253,6 +253,40 @@ TEST(Motion, ParallelCheckEqualsTheSerialCheck) {
   EXPECT_GT(invalidEdges, 10u) << "the test needs colliding edges";
 }
 
+// A planner handed whole motions (a checker that proves them free) gets the answers it would get
+// state by state: with the same seed, the same path, valid under a dense check at a finer step.
+TEST(Motion, PlannersGetTheSameAnswersFromWholeMotions) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = loadScene(dataDirectory() / "scenes" / "baxter_three_boxes.yaml");
+  const auto certified =
+      std::make_shared<const FclChecker>(baxter, scene, CheckerOptions{.selfCollision = true});
+  const auto dense = std::make_shared<const FclChecker>(
+      baxter, scene, CheckerOptions{.selfCollision = true, .proveMotionsFree = false});
+  ASSERT_TRUE(certified->provesPlannerMotionsFree());
+  ASSERT_FALSE(dense->provesPlannerMotionsFree());
+  Rng rng(8);
+  const Configurations q = uniformConfigurations(baxter.limits(), 200, rng);
+  std::vector<Eigen::VectorXd> free;
+  for (Eigen::Index i = 0; i < q.rows() && free.size() < 8; ++i) {
+    if (!dense->inCollision(std::span<const double>(q.row(i).data(), baxter.dof())))
+      free.emplace_back(q.row(i).transpose());
+  }
+  ASSERT_EQ(free.size(), 8u);
+  const PlannerOptions options{.resolution = 0.03, .timeLimit = 10, .simplifyTime = 0};
+  for (std::size_t i = 0; i + 1 < free.size(); i += 2) {
+    seedPlanners(4, i);
+    const PlanResult onCertified =
+        planMotion(certified, baxter.limits(), free[i], free[i + 1], options);
+    seedPlanners(4, i);
+    const PlanResult onDense = planMotion(dense, baxter.limits(), free[i], free[i + 1], options);
+    ASSERT_TRUE(onCertified.solved()) << "query " << i;
+    ASSERT_EQ(onCertified.path.size(), onDense.path.size()) << "query " << i;
+    for (std::size_t w = 0; w < onDense.path.size(); ++w)
+      EXPECT_TRUE(onCertified.path[w].isApprox(onDense.path[w], 0)) << "query " << i;
+    EXPECT_TRUE(checkPath(*dense, onCertified.path, 0.01).valid()) << "query " << i;
+  }
+}
+
 // threads = 0 decides by the time the first states took: a path whose checks add up to tens of
 // milliseconds (50 us a state, about 800 states) is shared with a worker thread, and a path of
 // cheap checks (about 80 states at well under a microsecond) stays on the calling thread. Both give

@@ -56,6 +56,9 @@ class CollisionChecker {
   /// True when motionCollision skips states it proves free (FclChecker's clearance bounds), so
   /// that a caller should hand it whole motions rather than their states one by one.
   virtual bool provesMotionsFree() const { return false; }
+  /// True when a planner's motion validator should hand it whole motions too (it proves motions
+  /// free, and that pays even where most motions collide, as a planner's extensions do).
+  virtual bool provesPlannerMotionsFree() const { return false; }
 
   /// True when the answers come, at least in part, from a learned model (ModelChecker,
   /// HybridChecker, an AnyOfChecker holding one). Planners check such a source's edges at
