@@ -153,7 +153,9 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
   ompl::msg::noOutputHandler();
   seedPlanners(1, 0);  // the same paths in every run
   const Robot robot = loadRobot(robotName);
-  const auto problems = experiments::generateProblems(robot, {.count = 4});
+  experiments::ProblemOptions cages;
+  cages.count = 4;
+  const auto problems = experiments::generateProblems(robot, cages);
   VerificationPaths v;
   for (const auto& problem : problems) {
     // One scene per problem: the checkers of the last one are kept; earlier paths are checked on

@@ -26,6 +26,8 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;  // clang 14 does not deduce aggregates' arguments
 
 bool covered(const std::vector<Ball>& balls, const Eigen::Vector3d& p) {
   for (const Ball& b : balls) {
@@ -117,7 +119,9 @@ TEST(EnclosingVolume, DistancesAreExactForPrimitivesAndBelowForMeshes) {
       const double bound = volume.distanceFrom(query);
       EXPECT_LE(bound, nearest + 1e-12) << describe(shape);
       // Exact for a primitive: the sampled solid comes within a few centimetres of its surface.
-      if (!std::holds_alternative<Mesh>(shape)) EXPECT_GT(bound, nearest - 0.05) << describe(shape);
+      if (!std::holds_alternative<Mesh>(shape)) {
+        EXPECT_GT(bound, nearest - 0.05) << describe(shape);
+      }
     }
   }
 }
@@ -125,15 +129,27 @@ TEST(EnclosingVolume, DistancesAreExactForPrimitivesAndBelowForMeshes) {
 /// A prismatic joint, a revolute one, and a finger that mimics the revolute joint at -2 times its
 /// angle: levers of every kind of joint.
 Robot slider() {
-  Joint lift{"lift", JointType::Prismatic, 0, 1};
+  Joint lift;
+  lift.name = "lift";
+  lift.type = JointType::Prismatic;
+  lift.parent = 0;
+  lift.child = 1;
   lift.axis = Eigen::Vector3d::UnitZ();
   lift.lower = -0.2;
   lift.upper = 0.5;
-  Joint turn{"turn", JointType::Revolute, 1, 2};
+  Joint turn;
+  turn.name = "turn";
+  turn.type = JointType::Revolute;
+  turn.parent = 1;
+  turn.child = 2;
   turn.origin = Eigen::Translation3d(0, 0, 0.3) * Eigen::Isometry3d::Identity();
   turn.lower = -2;
   turn.upper = 2;
-  Joint finger{"finger", JointType::Revolute, 2, 3};
+  Joint finger;
+  finger.name = "finger";
+  finger.type = JointType::Revolute;
+  finger.parent = 2;
+  finger.child = 3;
   finger.origin = Eigen::Translation3d(0.4, 0, 0) * Eigen::Isometry3d::Identity();
   finger.axis = Eigen::Vector3d::UnitY();
   finger.lower = -4;
@@ -201,7 +217,8 @@ Scene clutter(Rng& rng, int boxes, double reach) {
   for (int i = 0; i < boxes; ++i) {
     const Eigen::Isometry3d pose = Eigen::Translation3d(at(rng), at(rng), at(rng) / 2 + reach / 2) *
                                    Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitZ());
-    scene.add({"box" + std::to_string(i), Box{{size(rng), size(rng), size(rng)}}, pose});
+    scene.add(
+        {"box" + std::to_string(i), Box{{size(rng), size(rng), size(rng)}}, pose, std::nullopt});
   }
   return scene;
 }
@@ -275,7 +292,8 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
 TEST(CertifiedMotion, AMotionWhoseEndCollidesIsFoundAtItsEnd) {
   const Robot robot = slider();
   Scene scene;
-  scene.add({"wall", Box{{0.1, 2, 2}}, Eigen::Isometry3d(Eigen::Translation3d(0.55, 0, 0))});
+  scene.add({"wall", Box{{0.1, 2, 2}}, Eigen::Isometry3d(Eigen::Translation3d(0.55, 0, 0)),
+             std::nullopt});
   const FclChecker checker(robot, scene);
   const std::vector<double> from{0, 1.5}, to{0, 0};  // the arm swings into the wall
   const auto answer = checker.motionCollision(from.data(), to.data(), 50);
