@@ -317,8 +317,12 @@ void bindCore(py::module_& m) {
           py::arg("q"),
           "The exact answer for one configuration (d,) -> bool, or each row of (n, d) -> (n,) "
           "bool (on the calling thread, GIL released).")
-      .def_property_readonly("proves_motions_free", &CollisionChecker::provesMotionsFree,
-                             "True when motion_collision skips the states it proves free.")
+      .def_property_readonly(
+          "proves_motions_free",
+          [](const CollisionChecker& checker) {
+            return checker.motionProofs() != CollisionChecker::MotionProofs::None;
+          },
+          "True when motion_collision skips the states it proves free.")
       .def(
           "motion_collision",
           [](const CollisionChecker& checker, py::handle from, py::handle to,

@@ -94,7 +94,7 @@ CollisionChecker::MotionCheck CollisionChecker::checkMotionStateByState(
   motionStates(from, to, dof(), segments, states);
   const std::size_t first = checkFirst(states.data(), segments);
   if (first == segments) return {0, segments};
-  return {bisectionOrder(segments)[first], first + 1};
+  return {bisectionIndex(segments, first), first + 1};
 }
 
 FunctionChecker::FunctionChecker(std::string name, std::size_t dof,

@@ -28,24 +28,30 @@ void motionState(const double* a, const double* b, std::size_t dim, std::size_t 
   for (std::size_t j = 0; j < dim; ++j) out[j] = a[j] + t * (b[j] - a[j]);
 }
 
-std::vector<std::size_t> bisectionOrder(std::size_t n) {
-  std::vector<std::size_t> order;
-  order.reserve(n);
-  order.push_back(n);
+std::size_t bisectionIndex(std::size_t n, std::size_t row) {
+  if (row == 0) return n;
+  --row;
   std::size_t step = 1;
   while (step * 2 < n) step *= 2;
   for (; step >= 1; step /= 2) {
-    for (std::size_t i = step; i < n; i += 2 * step) order.push_back(i);
+    const std::size_t count = (n + step - 1) / (2 * step);  // odd multiples of step below n
+    if (row < count) return step * (2 * row + 1);
+    row -= count;
   }
-  return order;
+  return n;  // row >= n: no such row
 }
 
+// The loops of bisectionIndex, without its per-row search: planners call this for every motion.
 void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
                   std::vector<double>& out) {
   out.resize(n * dim);
-  const std::vector<std::size_t> order = bisectionOrder(n);
-  for (std::size_t row = 0; row < n; ++row)
-    motionState(a, b, dim, order[row], n, out.data() + row * dim);
+  double* row = out.data();
+  motionState(a, b, dim, n, n, row);
+  std::size_t step = 1;
+  while (step * 2 < n) step *= 2;
+  for (; step >= 1; step /= 2) {
+    for (std::size_t i = step; i < n; i += 2 * step) motionState(a, b, dim, i, n, row += dim);
+  }
 }
 
 }  // namespace fastron

@@ -25,10 +25,11 @@ constexpr double kDistanceFloor = 1e-4;
 /// shape's (and each ball's children) computed on first use.
 class PlacedBalls {
  public:
-  explicit PlacedBalls(const ClearanceModel& model) : model_(model), shapes_(model.balls.size()) {
+  explicit PlacedBalls(const ClearanceModel& model)
+      : model_(model), covers_(*model.balls), shapes_(covers_.size()) {
     for (std::size_t s = 0; s < shapes_.size(); ++s) {
-      shapes_[s].children.resize(model.balls[s].children.size());
-      shapes_[s].childStamp.assign(model.balls[s].children.size(), 0);
+      shapes_[s].children.resize(covers_[s].children.size());
+      shapes_[s].childStamp.assign(covers_[s].children.size(), 0);
     }
   }
 
@@ -42,11 +43,11 @@ class PlacedBalls {
   /// exceeds `wanted`, else from their balls (and the children of balls that overlap), the
   /// larger of the valid bounds.
   double lowerBound(const ClearancePair& pair, double wanted) {
-    const BallCover& cover = model_.balls[pair.shape];
+    const BallCover& cover = covers_[pair.shape];
     const Eigen::Vector3d& whole = wholeCentre(pair.shape);
     const double coarse =
         pair.selfPair ? (whole - wholeCentre(pair.other)).norm() - cover.whole.radius -
-                            model_.balls[pair.other].whole.radius
+                            covers_[pair.other].whole.radius
                       : model_.obstacles[pair.other].distanceFrom(whole) - cover.whole.radius;
     if (coarse > wanted) return coarse;
     // The finer bound matters only above the coarse one (and above 0): its search stops once
@@ -59,7 +60,7 @@ class PlacedBalls {
   /// The smallest bound over the shape's balls (their children where they meet the volume), or
   /// the first at most `floor`.
   double obstacleBound(const ClearancePair& pair, double floor) {
-    const BallCover& cover = model_.balls[pair.shape];
+    const BallCover& cover = covers_[pair.shape];
     const auto& at = centres(pair.shape);
     const EnclosingVolume& obstacle = model_.obstacles[pair.other];
     double best = std::numeric_limits<double>::infinity();
@@ -82,8 +83,8 @@ class PlacedBalls {
   /// The smallest bound over pairs of the shapes' balls (their children where they overlap), or
   /// the first at most `floor`.
   double selfBound(const ClearancePair& pair, double floor) {
-    const BallCover& cover = model_.balls[pair.shape];
-    const BallCover& other = model_.balls[pair.other];
+    const BallCover& cover = covers_[pair.shape];
+    const BallCover& other = covers_[pair.other];
     const auto& at = centres(pair.shape);
     const auto& otherAt = centres(pair.other);
     double best = std::numeric_limits<double>::infinity();
@@ -101,7 +102,7 @@ class PlacedBalls {
   const Eigen::Vector3d& wholeCentre(std::size_t shape) {
     Shape& s = shapes_[shape];
     if (s.wholeStamp != now_) {
-      s.whole = (*poses_)[shape] * model_.balls[shape].whole.centre;
+      s.whole = (*poses_)[shape] * covers_[shape].whole.centre;
       s.wholeStamp = now_;
     }
     return s.whole;
@@ -125,7 +126,7 @@ class PlacedBalls {
   const std::vector<Eigen::Vector3d>& centres(std::size_t shape) {
     Shape& s = shapes_[shape];
     if (s.stamp != now_) {
-      place((*poses_)[shape], model_.balls[shape].balls, s.centres);
+      place((*poses_)[shape], covers_[shape].balls, s.centres);
       s.stamp = now_;
     }
     return s.centres;
@@ -134,7 +135,7 @@ class PlacedBalls {
   const std::vector<Eigen::Vector3d>& childCentres(std::size_t shape, std::size_t ball) {
     Shape& s = shapes_[shape];
     if (s.childStamp[ball] != now_) {
-      place((*poses_)[shape], model_.balls[shape].children[ball], s.children[ball]);
+      place((*poses_)[shape], covers_[shape].children[ball], s.children[ball]);
       s.childStamp[ball] = now_;
     }
     return s.children[ball];
@@ -144,8 +145,8 @@ class PlacedBalls {
   /// shape without children), or the first at most `floor`.
   double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB,
                     double floor) {
-    const BallCover& a = model_.balls[shapeA];
-    const BallCover& b = model_.balls[shapeB];
+    const BallCover& a = covers_[shapeA];
+    const BallCover& b = covers_[shapeB];
     const auto finer = [&](const BallCover& cover, std::size_t shape, std::size_t ball) {
       return cover.children.empty()
                  ? std::make_pair(std::span<const Ball>(&cover.balls[ball], 1),
@@ -166,6 +167,7 @@ class PlacedBalls {
   }
 
   const ClearanceModel& model_;
+  const std::vector<BallCover>& covers_;
   const std::vector<Eigen::Isometry3d>* poses_ = nullptr;
   std::vector<Shape> shapes_;
   std::size_t now_ = 0;
@@ -182,13 +184,6 @@ struct Stretch {
 };
 
 }  // namespace
-
-double clearanceLowerBound(const ClearanceModel& model, const ClearancePair& pair,
-                           const std::vector<Eigen::Isometry3d>& shapePoses) {
-  PlacedBalls balls(model);
-  balls.placed(shapePoses);
-  return balls.lowerBound(pair, std::numeric_limits<double>::infinity());
-}
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
                                      const double* from, const double* to, std::size_t dim,
@@ -225,16 +220,13 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
       bounds[p] = bound > 0 ? bound : 0;
       if (bound > 0) continue;
       if (pair.askDistance && exact.distance && steps >= kDistanceSteps) {
-        ++answer.exactPairChecks;
         const double distance = exact.distance(pair);
         if (distance > kDistanceFloor) {
           bounds[p] = distance - kMargin;
           continue;
         }
       }
-      if (!decide) continue;
-      ++answer.exactPairChecks;
-      if (exact.touches(pair)) return true;
+      if (decide && exact.touches(pair)) return true;
     }
     return false;
   };

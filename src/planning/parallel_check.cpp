@@ -29,7 +29,7 @@ constexpr std::chrono::microseconds kParallelWork{250};
 // enough that a checker's batch path (one world read, one scratch lease) pays.
 constexpr std::size_t kChunk = 8;
 
-/// checkPathParallel for a checker that proves motions free (provesMotionsFree): the waypoints
+/// checkPathParallel for a checker that proves motions free (motionProofs): the waypoints
 /// in one batch, then each edge as one motion (its states between the waypoints), edges handed
 /// out one at a time. An edge whose end waypoint collides has its interior states checked one by
 /// one, as motionCollision would stop at that end.
@@ -90,8 +90,10 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
   // idle that the states' hand-out kept busy: the mesh Panda's MotionBenchMaker samples verified
   // 1.5 times slower by edges on two cores).
   const unsigned cores = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
-  if (checker.provesPlannerMotionsFree() ||
-      (checker.provesMotionsFree() && path.size() - 1 >= 2 * static_cast<std::size_t>(cores))) {
+  using Proofs = CollisionChecker::MotionProofs;
+  if (checker.motionProofs() == Proofs::Everywhere ||
+      (checker.motionProofs() == Proofs::Verification &&
+       path.size() - 1 >= 2 * static_cast<std::size_t>(cores))) {
     return checkByMotions(checker, path, resolution, threads);
   }
   const std::size_t edges = path.size() - 1;

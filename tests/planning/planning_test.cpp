@@ -121,6 +121,26 @@ TEST(Motion, StatesCoverTheMotionOnceInBisectionOrder) {
   }
 }
 
+TEST(Motion, BisectionIndexNamesEachRowsState) {
+  for (std::size_t n = 1; n <= 40; ++n) {
+    std::vector<double> states;
+    const double a[] = {0.0};
+    const double b[] = {static_cast<double>(n)};
+    motionStates(a, b, 1, n, states);
+    std::set<std::size_t> indices;
+    for (std::size_t row = 0; row < n; ++row) {
+      const std::size_t i = bisectionIndex(n, row);
+      double state = 0;
+      motionState(a, b, 1, i, n, &state);
+      EXPECT_EQ(state, states[row]) << n << " row " << row;  // the same arithmetic, bit for bit
+      indices.insert(i);
+    }
+    EXPECT_EQ(indices.size(), n);
+    EXPECT_EQ(*indices.begin(), 1u);
+    EXPECT_EQ(*indices.rbegin(), n);
+  }
+}
+
 TEST(Motion, TheEndStateIsTheEndItself) {
   // -0.8 + (0.35 - -0.8) * 1 rounds to 0.34999999999999987: the end state must be b bit for bit,
   // or a validator's remembered answer about b would be one about another configuration.
@@ -262,8 +282,8 @@ TEST(Motion, PlannersGetTheSameAnswersFromWholeMotions) {
       std::make_shared<const FclChecker>(baxter, scene, CheckerOptions{.selfCollision = true});
   const auto dense = std::make_shared<const FclChecker>(
       baxter, scene, CheckerOptions{.selfCollision = true, .proveMotionsFree = false});
-  ASSERT_TRUE(certified->provesPlannerMotionsFree());
-  ASSERT_FALSE(dense->provesPlannerMotionsFree());
+  ASSERT_EQ(certified->motionProofs(), CollisionChecker::MotionProofs::Everywhere);
+  ASSERT_EQ(dense->motionProofs(), CollisionChecker::MotionProofs::None);
   Rng rng(8);
   const Configurations q = uniformConfigurations(baxter.limits(), 200, rng);
   std::vector<Eigen::VectorXd> free;

@@ -20,13 +20,13 @@ std::size_t segmentCount(const double* a, const double* b, std::size_t dim, doub
 void motionState(const double* a, const double* b, std::size_t dim, std::size_t i, std::size_t n,
                  double* out);
 
-/// The indices 1..n in motionStates' order: n, then the odd multiples of the largest power of
-/// two below n, and so on down to the odd numbers.
-std::vector<std::size_t> bisectionOrder(std::size_t n);
+/// The index i (1..n) of motionStates' row `row` (< n): n for row 0, then the odd multiples of
+/// the largest power of two below n, and so on down to the odd numbers.
+std::size_t bisectionIndex(std::size_t n, std::size_t row);
 
 /// The states a + (b - a) i / n for i = 1..n (b included, a not: a motion starts at a state
 /// already known to be valid), in bisection order: b first, then the midpoint, then the quarter
-/// points, and so on (bisectionOrder), because a collision is found soonest that way. Written row
+/// points, and so on (bisectionIndex), because a collision is found soonest that way. Written row
 /// by row into `out` (n * dim values, resized).
 void motionStates(const double* a, const double* b, std::size_t dim, std::size_t n,
                   std::vector<double>& out);

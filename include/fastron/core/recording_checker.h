@@ -23,8 +23,7 @@ class RecordingChecker final : public CollisionChecker {
 
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
-  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
-  bool provesPlannerMotionsFree() const override { return inner_->provesPlannerMotionsFree(); }
+  MotionProofs motionProofs() const override { return inner_->motionProofs(); }
 
   /// Every answer recorded so far; the record is emptied.
   Dataset take();
@@ -62,8 +61,7 @@ class CountedChecker final : public CollisionChecker {
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
   bool answersFromAModel() const override { return inner_->answersFromAModel(); }
-  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
-  bool provesPlannerMotionsFree() const override { return inner_->provesPlannerMotionsFree(); }
+  MotionProofs motionProofs() const override { return inner_->motionProofs(); }
 
  protected:
   bool check(const double* q) const override;

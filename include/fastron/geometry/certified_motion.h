@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -32,7 +33,8 @@ struct ClearancePair {
 
 /// A robot against one scene, as the certificate sees it.
 struct ClearanceModel {
-  std::vector<BallCover> balls;            ///< per robot shape, in the shape's frame
+  /// Per robot shape, in the shape's frame: the robot's, shared by every scene's model.
+  std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<EnclosingVolume> obstacles;  ///< per obstacle
   std::vector<ClearancePair> pairs;
 };
@@ -56,16 +58,7 @@ struct CertifiedMotion {
   std::size_t collidingState = 0;
   /// Configurations placed (forward kinematics and the bounds; `from` counts).
   std::size_t statesPlaced = 0;
-  /// Pair checks the exact checker made (distances included).
-  std::size_t exactPairChecks = 0;
 };
-
-/// A lower bound on the distance between the pair's members, with every robot shape at
-/// `shapePoses` (balls of shape s placed by shapePoses[s]); at most 0 when they may touch. Two
-/// balls that overlap (or a ball that meets the obstacle's volume) are looked at through their
-/// children when they have any.
-double clearanceLowerBound(const ClearanceModel& model, const ClearancePair& pair,
-                           const std::vector<Eigen::Isometry3d>& shapePoses);
 
 /// Checks the states from + (i / segments) (to - from), i = 1..segments (`to` itself for
 /// i = segments), as a dense check would, and answers as it: looks at `to` first, then bisects,

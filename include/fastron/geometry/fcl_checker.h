@@ -38,17 +38,14 @@ class FclChecker final : public CollisionChecker {
   std::string name() const override { return "FCL"; }
   std::size_t dof() const override { return robot_.dof(); }
   const Robot& robot() const { return robot_; }
-  /// options.proveMotionsFree: a motion's check skips the states that clearance bounds prove
-  /// free (certified_motion.h) and asks FCL only about the pairs of shapes no bound keeps apart.
-  bool provesMotionsFree() const override { return options_.proveMotionsFree; }
-  /// provesMotionsFree, for a robot without meshes. A mesh robot's motions are left to be checked
-  /// state by state in planners: its ball covers keep few pairs apart (the mesh Panda's SRDF
-  /// leaves links millimetres apart enabled), and where most motions collide the bounds cost
-  /// more than they save (FCL planned the mesh Panda's cage problems 1.2 times slower so, the
-  /// gripper-arm's box problems 1.3 times faster: docs/planning.md).
-  bool provesPlannerMotionsFree() const override {
-    return options_.proveMotionsFree && !robotHasMeshes_;
-  }
+  /// With options.proveMotionsFree, a motion's check skips the states that clearance bounds
+  /// prove free (certified_motion.h) and asks FCL only about the pairs of shapes no bound keeps
+  /// apart: Everywhere for a robot without meshes, Verification for one with meshes, whose ball
+  /// covers keep few pairs apart (the mesh Panda's SRDF leaves links millimetres apart enabled),
+  /// so that where most motions collide the bounds cost more than they save (FCL planned the mesh
+  /// Panda's cage problems 1.2 times slower so, the gripper-arm's box problems 1.3 times faster,
+  /// means of one run each: docs/planning.md).
+  MotionProofs motionProofs() const override { return proofs_; }
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
@@ -98,7 +95,7 @@ class FclChecker final : public CollisionChecker {
   Snapshot<Obstacles> obstacles_;
   std::atomic<std::size_t> meshBuilds_{0};
   mutable ScratchPool<Scratch> scratch_;
-  bool robotHasMeshes_ = false;
+  MotionProofs proofs_ = MotionProofs::None;
 };
 
 }  // namespace fastron

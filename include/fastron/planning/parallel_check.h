@@ -16,9 +16,8 @@ namespace FASTRON_API fastron {
 /// checks wherever it lies. An edge stops being checked at its first collision. `checker` must be
 /// safe to call from many threads (every CollisionChecker of Fastron is). A checker that proves
 /// motions free gets the waypoints in one batch and then whole edges (motionCollision), one edge
-/// at a time per thread, when its proofs pay even in planners
-/// (CollisionChecker::provesPlannerMotionsFree) or the path has two edges per thread at least
-/// (CollisionChecker::provesMotionsFree). Throws InvalidArgument on
+/// at a time per thread, when its proofs pay everywhere (CollisionChecker::motionProofs), or in
+/// verification and the path has two edges per thread at least. Throws InvalidArgument on
 /// waypoints of the wrong dimension, and rethrows the first exception a check throws.
 PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
                             double resolution, unsigned threads = 0);
