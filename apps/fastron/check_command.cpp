@@ -1,5 +1,5 @@
-// fastron check: is this configuration in collision? Exit 0 when FCL finds it free, 1 when in
-// collision, 2 on an error.
+// fastron check: is this configuration in collision? Every exact checker answers; exit 0 when the
+// one of --checker (FCL unless told) finds it free, 1 when in collision, 2 on an error.
 
 #include <iomanip>
 #include <iostream>
@@ -7,21 +7,17 @@
 
 #include "commands.h"
 #include "fastron/core/error.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
-#include "fastron/geometry/scene_file.h"
 #include "robot_options.h"
+#include "scene_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct CheckOptions {
   RobotOptions robot;
-  std::string scene;
+  SceneOptions scene;
   std::vector<double> config;
-  bool selfCollision = false;
-  double padding = 0;
 };
 
 int runCheck(const CheckOptions& o) {
@@ -38,26 +34,28 @@ int runCheck(const CheckOptions& o) {
                 << "]\n";
     }
   }
-  const Scene scene = loadScene(o.scene);
-  const CheckerOptions options{o.selfCollision, o.padding};
-  const FclChecker fcl(robot, scene, options);
-  const GjkChecker gjk(robot, scene, options);
-
+  const Scene scene = sceneFromOptions(o.scene);
   std::cout << "robot   " << robot.name() << ", " << robot.dof() << " actuated joints"
-            << (o.selfCollision ? ", self-collision on" : "") << (o.padding > 0 ? ", padded" : "")
-            << '\n';
-  std::cout << "scene   " << o.scene << ", " << scene.size()
+            << (o.scene.selfCollision ? ", self-collision on" : "")
+            << (o.scene.padding > 0 ? ", padded" : "") << '\n';
+  std::cout << "scene   " << o.scene.file << ", " << scene.size()
             << (scene.size() == 1 ? " obstacle\n" : " obstacles\n");
-  const auto contact = fcl.firstContact(o.config);
-  std::cout << "FCL     ";
-  if (contact) {
-    std::cout << "in collision: " << describe(*contact) << '\n';
-  } else {
-    std::cout << "free, " << std::fixed << std::setprecision(4) << fcl.distance(o.config)
-              << " m from the nearest obstacle\n";
+  bool collides = false;
+  for (const SceneCheckerKind& kind : sceneCheckerKinds()) {
+    const auto checker = makeSceneChecker(kind.name, robot, scene, checkerOptionsFrom(o.scene));
+    const auto contact = checker->firstContact(o.config);
+    std::cout << std::left << std::setw(8) << checker->name();
+    if (contact) {
+      std::cout << "in collision: " << describe(*contact) << '\n';
+    } else if (checker->measuresDistance()) {
+      std::cout << "free, " << std::fixed << std::setprecision(4) << checker->distance(o.config)
+                << " m from the nearest obstacle\n";
+    } else {
+      std::cout << "free\n";
+    }
+    if (kind.name == o.scene.checker) collides = contact.has_value();
   }
-  std::cout << "GJK     " << (gjk.inCollision(o.config) ? "in collision" : "free") << '\n';
-  return contact ? 1 : 0;
+  return collides ? 1 : 0;
 }
 
 }  // namespace
@@ -66,17 +64,14 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<CheckOptions>();
   CLI::App* cmd = app.add_subcommand(
       "check",
-      "Check one configuration with FCL and GJK (exit 0: free, 1: in collision, 2: error)");
+      "Check one configuration with every exact checker (exit 0: free under --checker, 1: in "
+      "collision, 2: error)");
   addRobotOptions(*cmd, o->robot);
-  cmd->add_option("--scene", o->scene, "scene file: the project's YAML or a MoveIt PlanningScene")
-      ->required()
-      ->check(CLI::ExistingFile);
+  addSceneOptions(*cmd, o->scene, {.checkerRole = "decides the exit code"});
   cmd->add_option("--config", o->config, "joint values of the actuated joints, comma-separated")
       ->required()
       ->delimiter(',')
       ->allow_extra_args(false);
-  cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
-  cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");
   cmd->callback([o, &exitCode] { exitCode = runCheck(*o); });
 }
 

@@ -1,4 +1,5 @@
-// fastron eval: a model against a labelled dataset, or against FCL on fresh samples of a scene.
+// fastron eval: a model against a labelled dataset, or against an exact checker (FCL unless told)
+// on fresh samples of a scene.
 
 #include <algorithm>
 #include <array>
@@ -22,25 +23,24 @@
 #include "fastron/core/simd.h"
 #include "fastron/experiments/common.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/scene_file.h"
 #include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
 #include "plotting.h"
 #include "report_format.h"
 #include "robot_options.h"
+#include "scene_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct EvalOptions {
-  std::string model, data, scene, path, out;
-  std::vector<std::string> allow;  ///< LINK:OBSTACLE pairs that may touch
+  std::string model, data, path, out;
   RobotOptions robot;
+  SceneOptions scene;
   std::size_t samples = 20000;
   std::uint64_t seed = 2;
   std::optional<double> resolution;  ///< with --path; default kPathResolution
-  bool selfCollision = false, clearance = false, plot = true;
+  bool clearance = false, plot = true;
 };
 
 constexpr double kPathResolution = 0.03;  // fastron plan's default edge resolution
@@ -48,16 +48,16 @@ constexpr double kTimingSeconds = 0.2;    // each timing repeats the configurati
 constexpr std::size_t kMissLinksShown = 5;
 
 /// "panda_link5 60, panda_hand 19, ...": the robot links of the collisions the model called free,
-/// by the first contact FCL reports (the link, or "self" for a self-collision), most first. Which
-/// links the model misses is what tells a user where a control point is lacking.
-std::string missesByLink(const Model& model, const FclChecker& fcl, const Dataset& data) {
+/// by the first contact the exact checker reports (the link, or "self" for a self-collision), most
+/// first. Which links the model misses is what tells a user where a control point is lacking.
+std::string missesByLink(const Model& model, const SceneChecker& exact, const Dataset& data) {
   std::map<std::string, std::size_t> counts;
   for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
     if (data.labels[static_cast<std::size_t>(i)] <= 0) continue;
     const Eigen::VectorXd q = data.points.row(i).transpose();
     if (model.inCollision(q.data())) continue;
-    const auto contact = fcl.firstContact({q.data(), static_cast<std::size_t>(q.size())});
-    if (!contact) continue;  // cannot happen: FCL labelled it colliding
+    const auto contact = exact.firstContact({q.data(), static_cast<std::size_t>(q.size())});
+    if (!contact) continue;  // cannot happen: the checker labelled it colliding
     ++counts[contact->selfCollision ? contact->robotLink + " (self)" : contact->robotLink];
   }
   std::vector<std::pair<std::string, std::size_t>> sorted(counts.begin(), counts.end());
@@ -154,19 +154,20 @@ void writeAlongPath(const EvalOptions& o, const experiments::Table& table) {
 
 int runEval(const EvalOptions& o) {
   // --robot with --self-collision alone: a model of the robot's self-collisions (fastron train
-  // --robot R --self-collision), against FCL on the robot without obstacles.
+  // --robot R --self-collision), against the exact checker on the robot without obstacles.
+  const bool hasScene = !o.scene.file.empty();
   const bool selfAlone =
-      o.data.empty() && o.scene.empty() && o.selfCollision && !o.robot.robot.empty();
-  if (!selfAlone && o.data.empty() == o.scene.empty()) {
+      o.data.empty() && !hasScene && o.scene.selfCollision && !o.robot.robot.empty();
+  if (!selfAlone && o.data.empty() == !hasScene) {
     throw InvalidArgument(
         "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
         "--self-collision alone: the robot's self-collisions)");
   }
-  if (!o.scene.empty() && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
+  if (hasScene && o.robot.robot.empty()) throw InvalidArgument("--scene needs --robot");
   if (!o.out.empty() && o.path.empty()) throw InvalidArgument("--out needs --path");
   if (o.resolution && o.path.empty()) throw InvalidArgument("--resolution needs --path");
-  if (!o.allow.empty() && o.scene.empty()) throw InvalidArgument("--allow needs --scene");
-  if ((!o.path.empty() || o.clearance) && o.scene.empty()) {
+  if (!o.scene.allow.empty() && !hasScene) throw InvalidArgument("--allow needs --scene");
+  if ((!o.path.empty() || o.clearance) && !hasScene) {
     throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
                           " needs --robot and --scene");
   }
@@ -175,11 +176,13 @@ int runEval(const EvalOptions& o) {
   const Model model = robot ? loadModelFor(o.model, *robot) : loadModel(o.model);
 
   Dataset data;
-  std::shared_ptr<const FclChecker> fcl;
-  if (!o.scene.empty() || selfAlone) {
-    Scene scene = selfAlone ? Scene{} : loadScene(o.scene);
-    allowPairs(o.allow, scene);
-    fcl = std::make_shared<const FclChecker>(*robot, scene, CheckerOptions{o.selfCollision});
+  std::shared_ptr<const SceneChecker> exact;
+  if (hasScene || selfAlone) {
+    exact = checkerFromOptions(o.scene, *robot, sceneFromOptions(o.scene));
+    if ((o.clearance || !o.path.empty()) && !exact->measuresDistance()) {
+      throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
+                            " needs a checker that measures distances, not " + exact->name());
+    }
     if (o.path.empty()) {
       Rng rng(o.seed);
       data.points = uniformConfigurations(robot->limits(), o.samples, rng);
@@ -187,7 +190,7 @@ int runEval(const EvalOptions& o) {
       data.points = statesAlongPath(readPathCsv(o.path, robot->actuatedJointNames()),
                                     o.resolution.value_or(kPathResolution));
     }
-    data.labels = labelConfigurations(*fcl, data.points);
+    data.labels = labelConfigurations(*exact, data.points);
   } else {
     data = readDataset(o.data);
   }
@@ -213,16 +216,17 @@ int runEval(const EvalOptions& o) {
             << model.supportCount() << " support points, features " << model.features().summary()
             << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
             << ", " << describeTerms(model.kernel(), model.featureDim()) << '\n';
-  if (fcl) {
+  if (exact) {
     std::cout << "data        " << data.size();
     if (o.path.empty()) {
       std::cout << " uniform configurations of "
-                << (selfAlone ? std::string("the robot without obstacles") : o.scene)
-                << " labelled by FCL (seed " << o.seed << "), ";
+                << (selfAlone ? std::string("the robot without obstacles") : o.scene.file)
+                << " labelled by " << exact->name() << " (seed " << o.seed << "), ";
     } else {
       std::cout << " states along " << o.path << " (every "
                 << o.resolution.value_or(kPathResolution)
-                << " rad, as a planner checks its edges) in " << o.scene << " labelled by FCL, ";
+                << " rad, as a planner checks its edges) in " << o.scene.file << " labelled by "
+                << exact->name() << ", ";
     }
     std::cout << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
                       static_cast<double>(data.size()))
@@ -234,10 +238,10 @@ int runEval(const EvalOptions& o) {
             << "\nTNR         " << rate(c.tnr()) << '\n';
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "
             << c.falsePositives << ", FN " << c.falseNegatives << '\n';
-  if (fcl) std::cout << "FN by link  " << missesByLink(model, *fcl, data) << '\n';
+  if (exact) std::cout << "FN by link  " << missesByLink(model, *exact, data) << '\n';
   std::optional<experiments::Table> alongPath;
-  if (fcl && (o.clearance || !o.path.empty())) {
-    const std::vector<double> clearance = experiments::clearances(*fcl, data.points);
+  if (exact && (o.clearance || !o.path.empty())) {
+    const std::vector<double> clearance = experiments::clearances(*exact, data.points);
     // The batch scores, as evaluate() counts the confusion above: one answer per state.
     const Eigen::VectorXd scores = model.scoreBatch(data.points);
     std::cout << "clearance   free states by distance to the nearest obstacle: "
@@ -250,10 +254,10 @@ int runEval(const EvalOptions& o) {
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
             << ")\n";
-  if (fcl) {
-    const double exact = experiments::meanSecondsPerCheck(data.points, *fcl, kTimingSeconds);
-    std::cout << "FK+FCL      " << durationText(exact) << " per configuration: the model is "
-              << times(exact / query) << " faster\n";
+  if (exact) {
+    const double seconds = experiments::meanSecondsPerCheck(data.points, *exact, kTimingSeconds);
+    std::cout << std::left << std::setw(12) << "FK+" + exact->name() << durationText(seconds)
+              << " per configuration: the model is " << times(seconds / query) << " faster\n";
   }
   if (alongPath) writeAlongPath(o, *alongPath);
   return 0;
@@ -264,15 +268,13 @@ int runEval(const EvalOptions& o) {
 void addEvalCommand(CLI::App& app, int& exitCode) {
   auto o = std::make_shared<EvalOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "eval", "Evaluate a model on a labelled dataset, or against FCL on a robot in a scene");
+      "eval",
+      "Evaluate a model on a labelled dataset, or against an exact checker on a robot in a scene");
   cmd->add_option("--model", o->model, "model file from fastron train")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--data", o->data, "CSV or .npy labelled dataset")->check(CLI::ExistingFile);
   addRobotOptions(*cmd, o->robot, false);
-  cmd->add_option("--scene", o->scene,
-                  "with --robot: compare with FCL on fresh uniform samples of this scene")
-      ->check(CLI::ExistingFile);
   cmd->add_option("--path", o->path,
                   "with --scene: the states along this path (CSV as fastron plan --out writes it) "
                   "instead of uniform samples, with the free states' clearance")
@@ -285,7 +287,13 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                   "with --path: folder for along_path.csv (each state: FCL's answer, the model's "
                   "score and answer, the clearance) and along_path.png");
   cmd->add_flag("!--no-plot", o->plot, "with --out: skip the PNG plot");
-  addAllowOption(*cmd, o->allow);
+  addSceneOptions(*cmd, o->scene,
+                  {.sceneRequired = false,
+                   .selfCollisionHelp =
+                       "with --scene: count self-collisions as collisions; with --robot alone: "
+                       "against the robot's self-collisions alone (a model of fastron train "
+                       "--robot R --self-collision)",
+                   .checkerRole = "labels the samples (with --robot and --scene)"});
   cmd->add_flag("--clearance", o->clearance,
                 "with --scene: also the free states by distance to the nearest obstacle, and the "
                 "share of each the model calls colliding (FCL distances: slow on mesh robots)");
@@ -293,10 +301,6 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "with --scene: seed of the samples")->capture_default_str();
-  cmd->add_flag("--self-collision", o->selfCollision,
-                "with --scene: count self-collisions as collisions; with --robot alone: against "
-                "the robot's self-collisions alone (a model of fastron train --robot R "
-                "--self-collision)");
   cmd->callback([o, &exitCode] { exitCode = runEval(*o); });
 }
 

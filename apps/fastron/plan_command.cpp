@@ -20,8 +20,6 @@
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/common.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
@@ -29,6 +27,7 @@
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
 #include "robot_options.h"
+#include "scene_options.h"
 
 namespace fastron::cli {
 
@@ -50,20 +49,18 @@ namespace {
 
 struct PlanOptions {
   RobotOptions robot;
-  std::string scene, request, model, selfModel, out, checker = "fastron", planner = "RRTConnect";
+  SceneOptions scene;  // its checker verifies, and labels the samples of a model trained here
+  std::string request, model, selfModel, out, checker = "fastron", planner = "RRTConnect";
   std::vector<double> start, goal;
-  std::vector<std::string> allow;  // "link:obstacle" pairs that may touch
   FeatureOptions features;
   // pipeline::SceneModelOptions' defaults: bench motion-bench measured them (docs/planning.md).
   std::size_t samples = pipeline::SceneModelOptions{}.samples,
               updates = pipeline::SceneModelOptions{}.updates;
   unsigned learningRounds = PlannerOptions{}.learningRounds;
   std::optional<double> gamma, beta;
-  double resolution = 0.03, modelResolution = 0, timeLimit = 10, padding = 0, simplifyTime = 0.1,
-         range = 0;
+  double resolution = 0.03, modelResolution = 0, timeLimit = 10, simplifyTime = 0.1, range = 0;
   std::uint64_t seed = 1;
   PathSimplification simplification = PathSimplification::Full;
-  bool selfCollision = false;
 };
 
 /// "Fastron: no path within the time limit (1.70 ms, 812 checks); Fastron+FCL: solved (48.2 ms,
@@ -82,10 +79,10 @@ std::string attemptsText(const std::vector<PlanAttempt>& attempts) {
   return attempts.empty() ? "none" : text.str();
 }
 
-/// Why `q` is not free under FCL, e.g. "right_hand touches box", or "" when it is free.
-std::string contactAt(const FclChecker& fcl, const Eigen::VectorXd& q) {
+/// Why `q` is not free under `exact`, e.g. "right_hand touches box", or "" when it is free.
+std::string contactAt(const SceneChecker& exact, const Eigen::VectorXd& q) {
   const auto contact =
-      fcl.firstContact(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
+      exact.firstContact(std::span<const double>(q.data(), static_cast<std::size_t>(q.size())));
   return contact ? describe(*contact) : "";
 }
 
@@ -103,31 +100,33 @@ pipeline::SceneModel trainObstacleModel(const PlanOptions& o, const Robot& robot
                                         const Scene& scene) {
   const FeatureMap features = featuresFromOptions(o.features, robot);
   pipeline::SceneModel model =
-      pipeline::trainSceneModel(robot, scene, CheckerOptions{o.selfCollision, o.padding}, features,
+      pipeline::trainSceneModel(robot, scene, checkerOptionsFrom(o.scene), features,
                                 {.samples = o.samples,
                                  .updates = o.updates,
                                  .seed = o.seed,
                                  .gamma = o.gamma,
-                                 .beta = o.beta});
-  std::cout << "model    " << (o.selfCollision ? "of the obstacles, " : "") << "trained on "
-            << o.samples << " FCL-labelled samples and " << o.updates
+                                 .beta = o.beta,
+                                 .checker = o.scene.checker});
+  std::cout << "model    " << (o.scene.selfCollision ? "of the obstacles, " : "") << "trained on "
+            << o.samples << " samples labelled by " << model.oracle->name() << " and " << o.updates
             << " active-learning updates in " << durationText(model.trainSeconds) << ", "
             << model.detector->model()->supportCount() << " support points, features "
             << features.summary() << '\n';
   return model;
 }
 
-/// --self-model: plans on the scene's obstacle model (read with --model, or trained here on FCL
-/// without self-collisions) and the robot's self-collision model together, and verifies and
-/// repairs with `fcl`, which checks both. (No band: the pair has none to plan a hybrid on.)
+/// --self-model: plans on the scene's obstacle model (read with --model, or trained here on the
+/// exact checker without self-collisions) and the robot's self-collision model together, and
+/// verifies and repairs with `exact`, which checks both. (No band: the pair has none to plan a
+/// hybrid on.)
 VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const Scene& scene,
-                               const std::shared_ptr<const FclChecker>& fcl,
+                               const std::shared_ptr<const SceneChecker>& exact,
                                const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
                                const PlannerOptions& options) {
   std::shared_ptr<const Model> self;
   if (o.selfModel == "auto") {  // learned once for the robot, kept in the cache
     const pipeline::SelfModel cached =
-        pipeline::selfCollisionModel(robot, {.padding = o.padding, .cacheDirectory = {}});
+        pipeline::selfCollisionModel(robot, {.padding = o.scene.padding, .cacheDirectory = {}});
     self = cached.model;
     std::cout << "self     " << cached.file.string() << ", "
               << (cached.fromCache ? std::string("read from the cache")
@@ -139,14 +138,14 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
   }
   const auto obstacles = !o.model.empty() ? readModel(o.model, robot, "model    ")
                                           : trainObstacleModel(o, robot, scene).detector->model();
-  return pipeline::planOnSplitModel(pipeline::splitModel(obstacles, self), fcl, robot.limits(),
+  return pipeline::planOnSplitModel(pipeline::splitModel(obstacles, self), exact, robot.limits(),
                                     start, goal, options);
 }
 
 int runPlan(const PlanOptions& o) {
   ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
   RobotDescription description = robotDescriptionFromOptions(o.robot);
-  Scene scene = loadScene(o.scene);
+  const Scene scene = sceneFromOptions(o.scene);
   Eigen::VectorXd start, goal;
   if (!o.request.empty()) {
     if (!o.start.empty() || !o.goal.empty())
@@ -174,16 +173,14 @@ int runPlan(const PlanOptions& o) {
     start = configurationFromOption(o.start, robot, "--start");
     goal = configurationFromOption(o.goal, robot, "--goal");
   }
-  allowPairs(o.allow, scene);
-  if (!o.selfModel.empty() && !o.selfCollision) {
+  if (!o.selfModel.empty() && !o.scene.selfCollision) {
     throw InvalidArgument(
         "--self-model needs --self-collision: the final path is checked for self-collisions too");
   }
   if (!o.selfModel.empty() && o.checker != "fastron") {
     throw InvalidArgument("--self-model goes with --checker fastron, not " + o.checker);
   }
-  const CheckerOptions checkerOptions{o.selfCollision, o.padding};
-  const auto fcl = std::make_shared<const FclChecker>(robot, scene, checkerOptions);
+  const std::shared_ptr<const SceneChecker> exact = checkerFromOptions(o.scene, robot, scene);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
                                .range = o.range,
                                .resolution = o.resolution,
@@ -194,27 +191,27 @@ int runPlan(const PlanOptions& o) {
   validate(options);
 
   std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
-            << "scene    " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+            << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
   for (const auto& [what, q] : {std::pair{"start", &start}, std::pair{"goal", &goal}}) {
-    if (const std::string contact = contactAt(*fcl, *q); !contact.empty()) {
-      std::cout << what << " in collision under FCL: " << contact << '\n';
+    if (const std::string contact = contactAt(*exact, *q); !contact.empty()) {
+      std::cout << what << " in collision under " << exact->name() << ": " << contact << '\n';
       return 1;
     }
   }
 
   VerifiedPlan plan;
-  if (o.checker == "fcl") {
-    plan = planExactly(fcl, limits, start, goal, options);
-  } else if (o.checker == "gjk") {
-    const auto gjk = std::make_shared<const GjkChecker>(robot, scene, checkerOptions);
-    plan = planVerified(gjk, fcl, limits, start, goal, options);
+  if (o.checker == o.scene.checker) {
+    plan = planExactly(exact, limits, start, goal, options);
+  } else if (o.checker != "fastron") {  // another exact checker, verified with `exact`
+    const auto other = makeSceneChecker(o.checker, robot, scene, checkerOptionsFrom(o.scene));
+    plan = planVerified(other, exact, limits, start, goal, options);
   } else if (!o.selfModel.empty()) {
-    plan = planWithSelfModel(o, robot, scene, fcl, start, goal, options);
+    plan = planWithSelfModel(o, robot, scene, exact, start, goal, options);
   } else if (!o.model.empty()) {
-    // A model read from a file has no calibrated band: the planner falls back from it to FCL
+    // A model read from a file has no calibrated band: the planner falls back from it to `exact`
     // directly.
-    plan = planVerified(CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}, fcl, limits,
-                        start, goal, options);
+    plan = planVerified(CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}, exact,
+                        limits, start, goal, options);
   } else {
     // The default method (pipeline/scene_model.h; bench motion-bench's "Fastron"): a model of
     // the obstacles alone, self-collisions, when checked, left to verification; with
@@ -223,11 +220,12 @@ int runPlan(const PlanOptions& o) {
     pipeline::SceneModel model = trainObstacleModel(o, robot, scene);
     PlannerOptions learning = options;
     learning.learningRounds = o.learningRounds;
-    plan = pipeline::planOnSceneModel(model, fcl, limits, start, goal, learning);
+    plan = pipeline::planOnSceneModel(model, exact, limits, start, goal, learning);
   }
 
   std::cout << "planner  " << plannerName(options.type) << " on " << o.checker
-            << (o.checker == "fcl" ? "" : ", verified and repaired with FCL") << '\n'
+            << (o.checker == o.scene.checker ? "" : ", verified and repaired with " + exact->name())
+            << '\n'
             << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
             << "time     plan " << durationText(inSeconds(plan.planTime)) << " (of which simplify "
@@ -237,9 +235,9 @@ int runPlan(const PlanOptions& o) {
             << durationText(inSeconds(plan.repairTime)) << ", total "
             << durationText(inSeconds(plan.totalTime())) << '\n';
   std::cout << "plans    " << attemptsText(plan.attempts) << '\n'
-            << "checks   " << fcl->name() << " " << plan.exactChecks;
+            << "checks   " << exact->name() << " " << plan.exactChecks;
   if (plan.relaxedChecks > 0) {
-    std::cout << "; the model's oracle (" << fcl->name() << ", obstacles only) "
+    std::cout << "; the model's oracle (" << exact->name() << ", obstacles only) "
               << plan.relaxedChecks;
   }
   std::cout << '\n';
@@ -265,16 +263,20 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand(
       "plan", "Plan one motion with Fastron, GJK or FCL (exit 0: valid path, 1: none, 2: error)");
   addRobotOptions(*cmd, o->robot);
-  cmd->add_option("--scene", o->scene, "scene file: the project's YAML or a MoveIt PlanningScene")
-      ->required()
-      ->check(CLI::ExistingFile);
+  addSceneOptions(*cmd, o->scene,
+                  {.checkerRole = "verifies and repairs every path and labels a model's samples",
+                   .checkerOption = "--exact"});
   cmd->add_option("--start", o->start, "start joint values, comma-separated")->delimiter(',');
   cmd->add_option("--goal", o->goal, "goal joint values, comma-separated")->delimiter(',');
   cmd->add_option("--request", o->request, "MoveIt MotionPlanRequest YAML with start and goal")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--checker", o->checker, "fastron, gjk or fcl")
+  std::vector<std::string> plannedOn{"fastron"};
+  for (const SceneCheckerKind& kind : sceneCheckerKinds()) plannedOn.push_back(kind.name);
+  cmd->add_option("--checker", o->checker,
+                  "what the planner asks: fastron (a model, verified with --exact) or an exact "
+                  "checker's name")
       ->capture_default_str()
-      ->check(CLI::IsMember({"fastron", "gjk", "fcl"}));
+      ->transform(CLI::IsMember(plannedOn, CLI::ignore_case));
   cmd->add_option("--planner", o->planner, "RRT, RRTConnect, RRT* or BIT*")->capture_default_str();
   cmd->add_option("--model", o->model, "a model file to plan on (default: train one on the scene)")
       ->check(CLI::ExistingFile);
@@ -306,7 +308,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--model-resolution", o->modelResolution,
                   "joint-space step of edge checks on a Fastron model or its hybrid (default: 3 "
-                  "times --resolution; their paths are verified with FCL at --resolution)")
+                  "times --resolution; their paths are verified with --exact at --resolution)")
       ->check(numberAbove(0));
   cmd->add_option("--time-limit", o->timeLimit, "seconds per planning query")
       ->capture_default_str()
@@ -321,9 +323,6 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0, true));
   addSimplificationOption(*cmd, [o](PathSimplification s) { o->simplification = s; });
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
-  cmd->add_flag("--self-collision", o->selfCollision, "also check the robot against itself");
-  cmd->add_option("--padding", o->padding, "grow the robot's shapes by this much (m)");
-  addAllowOption(*cmd, o->allow);
   cmd->add_option("--out", o->out,
                   "write the path as CSV (a header of joint names, a waypoint per row)");
   cmd->callback([o, &exitCode] { exitCode = runPlan(*o); });

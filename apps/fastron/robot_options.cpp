@@ -101,20 +101,4 @@ FeatureMap featuresFromOptions(const FeatureOptions& options, const Robot& robot
   return robotFeatures(robot, kind, std::move(points));
 }
 
-void addAllowOption(CLI::App& cmd, std::vector<std::string>& pairs) {
-  cmd.add_option("--allow", pairs,
-                 "LINK:OBSTACLE pairs that may touch (e.g. a grasped object and the hand)")
-      ->delimiter(',');
-}
-
-void allowPairs(const std::vector<std::string>& pairs, Scene& scene) {
-  for (const std::string& pair : pairs) {
-    const auto colon = pair.find(':');
-    if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size()) {
-      throw InvalidArgument("--allow '" + pair + "' is not LINK:OBSTACLE");
-    }
-    scene.allowedCollisions.allow(pair.substr(0, colon), pair.substr(colon + 1));
-  }
-}
-
 }  // namespace fastron::cli

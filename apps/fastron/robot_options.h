@@ -36,11 +36,6 @@ RobotDescription robotDescriptionFromOptions(const RobotOptions& options);
 Eigen::VectorXd configurationFromOption(const std::vector<double>& values, const Robot& robot,
                                         const char* option);
 
-/// --allow LINK:OBSTACLE,...: pairs that may touch (e.g. a grasped object and the hand).
-void addAllowOption(CLI::App& cmd, std::vector<std::string>& pairs);
-/// Allows each LINK:OBSTACLE pair in `scene`; throws InvalidArgument naming a pair of another form.
-void allowPairs(const std::vector<std::string>& pairs, Scene& scene);
-
 /// The options that choose a model's features: --features, --control-links, --control-points.
 struct FeatureOptions {
   std::string kind = "fk";

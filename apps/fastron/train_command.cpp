@@ -16,21 +16,21 @@
 #include "fastron/core/model_file.h"
 #include "fastron/core/trainer.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/held_out_model.h"
 #include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
 #include "robot_options.h"
+#include "scene_options.h"
 
 namespace fastron::cli {
 namespace {
 
 struct TrainOptions {
-  std::string data, output, kernel = "rq", scene;
+  std::string data, output, kernel = "rq";
   std::vector<std::string> limits;
   RobotOptions robot;
+  SceneOptions scene;
   FeatureOptions features;
   std::optional<double> gamma, beta;
   std::optional<std::uint32_t> kernelBlock;
@@ -41,7 +41,6 @@ struct TrainOptions {
   std::vector<double> margins{kGrownObstacleMargins.begin(), kGrownObstacleMargins.end()};
   double holdout = 0;
   std::uint64_t seed = 1;
-  bool selfCollision = false;
   bool secondCandidate = true;
   bool featuresGiven = false;  ///< --features on the command line
 };
@@ -49,7 +48,7 @@ struct TrainOptions {
 /// --robot with --self-collision and neither --scene nor --data: a model of the robot's
 /// self-collisions alone, for `fastron plan --self-model`.
 bool selfCollisionsAlone(const TrainOptions& o) {
-  return o.data.empty() && o.scene.empty() && o.selfCollision && !o.robot.robot.empty();
+  return o.data.empty() && o.scene.file.empty() && o.scene.selfCollision && !o.robot.robot.empty();
 }
 
 /// "lo:hi" per joint, or the dataset's bounding box when none are given.
@@ -155,21 +154,21 @@ int trainOnScene(const TrainOptions& o) {
   }
   const Robot robot = loadRobotFromOptions(o.robot);
   const bool selfAlone = selfCollisionsAlone(o);
-  const Scene scene = selfAlone ? Scene{} : loadScene(o.scene);
+  const Scene scene = sceneFromOptions(o.scene);
   // Self-collisions depend on the joint values alone, and a kernel over them modelled them better
   // than one over control points (docs/planning.md, "A self-collision model learned once").
   FeatureOptions featureOptions = o.features;
   if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
   const FeatureMap features = featuresFromOptions(featureOptions, robot);
   ProxyParams params;
-  params.train = withOptions(sceneTrainParams(features.kind(), o.selfCollision), o);
+  params.train = withOptions(sceneTrainParams(features.kind(), o.scene.selfCollision), o);
   params.seed = o.seed;
   params.relabelSupport = false;  // the scene stands still
   std::cout << "robot         " << robot.name() << ", " << robot.dof() << " actuated joints\n";
   if (selfAlone) {
     std::cout << "scene         none: a model of the robot's self-collisions alone\n";
   } else {
-    std::cout << "scene         " << o.scene << ", " << scene.size() << " obstacle(s)\n";
+    std::cout << "scene         " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
   }
   printParams(params.train, features);
   std::shared_ptr<const Model> model;
@@ -178,7 +177,9 @@ int trainOnScene(const TrainOptions& o) {
     options.samples = o.samples;
     options.targets = o.heldOut;
     options.margins = o.margins;
-    options.selfCollision = o.selfCollision;
+    options.selfCollision = o.scene.selfCollision;
+    options.padding = o.scene.padding;
+    options.checker = o.scene.checker;
     // The other candidates were measured with automatic task-space control points.
     if (o.secondCandidate && o.features.controlLinks.empty())
       options.automatic = o.features.automatic;
@@ -187,9 +188,9 @@ int trainOnScene(const TrainOptions& o) {
     const pipeline::HeldOutModel made =
         pipeline::trainHeldOutModel(robot, scene, features, params.train, options);
     const HeldOutTraining& trained = made.training;
-    std::cout << "samples       " << o.samples << " labelled by FCL, then rounds of "
-              << o.heldOut.samplesPerRound << " held out (targets: accuracy " << o.heldOut.accuracy
-              << ", TPR " << o.heldOut.truePositiveRate << ")\n";
+    std::cout << "samples       " << o.samples << " labelled by " << made.oracle
+              << ", then rounds of " << o.heldOut.samplesPerRound << " held out (targets: accuracy "
+              << o.heldOut.accuracy << ", TPR " << o.heldOut.truePositiveRate << ")\n";
     printRounds(trained, made.margins, made.candidates);
     if (trained.rounds[trained.chosenRound].candidate > 0) {
       const ModelCandidate& kept =
@@ -201,11 +202,10 @@ int trainOnScene(const TrainOptions& o) {
     std::cout << "time          " << durationText(made.seconds) << " for labelling and training\n";
     model = trained.model;
   } else {
-    const auto fcl =
-        std::make_shared<const FclChecker>(robot, scene, CheckerOptions{o.selfCollision});
-    ProxyCollisionDetector proxy(fcl, features, params);
+    const std::shared_ptr<const SceneChecker> oracle = checkerFromOptions(o.scene, robot, scene);
+    ProxyCollisionDetector proxy(oracle, features, params);
     StepReport step = proxy.initialize(o.samples);
-    std::cout << "samples       " << o.samples << " labelled by FCL in "
+    std::cout << "samples       " << o.samples << " labelled by " << oracle->name() << " in "
               << durationText(inSeconds(step.labelTime)) << '\n';
     printReport(step.update);
     for (std::size_t k = 0; k < o.activeLearning; ++k) {
@@ -222,7 +222,7 @@ int trainOnScene(const TrainOptions& o) {
 
 int runTrain(const TrainOptions& o) {
   if (o.holdout < 0 || o.holdout >= 1) throw InvalidArgument("--holdout must be in [0, 1)");
-  if (!selfCollisionsAlone(o) && o.data.empty() == o.scene.empty()) {
+  if (!selfCollisionsAlone(o) && o.data.empty() == o.scene.file.empty()) {
     throw InvalidArgument(
         "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
         "--self-collision alone: a model of the robot's self-collisions)");
@@ -293,12 +293,16 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--data", o->data, "CSV or .npy: configuration columns, then the label +1 / -1")
       ->check(CLI::ExistingFile);
   addRobotOptions(*cmd, o->robot, false);
-  cmd->add_option("--scene", o->scene,
-                  "with --robot: train on FCL-labelled samples of this scene (the project's YAML "
-                  "or a MoveIt PlanningScene)")
-      ->check(CLI::ExistingFile);
+  addSceneOptions(
+      *cmd, o->scene,
+      {.sceneRequired = false,
+       .selfCollisionHelp = "with --scene: label self-collisions as collisions too; with --robot "
+                            "alone: learn the robot's self-collisions alone (joint features by "
+                            "default), for fastron plan --self-model",
+       .checkerRole = "labels the samples (with --robot)"});
   addFeatureOptions(*cmd, o->features);
-  cmd->add_option("--samples", o->samples, "with --scene: uniform samples labelled by FCL")
+  cmd->add_option("--samples", o->samples,
+                  "with --scene: uniform samples labelled by the exact checker")
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--active-learning", o->activeLearning,
@@ -328,10 +332,6 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->delimiter(',')
       ->check(numberAbove(0, true))
       ->capture_default_str();
-  cmd->add_flag("--self-collision", o->selfCollision,
-                "with --scene: label self-collisions as collisions too; with --robot alone: "
-                "learn the robot's self-collisions alone (joint features by default), for "
-                "fastron plan --self-model");
   cmd->add_flag("--second-candidate,!--no-second-candidate", o->secondCandidate,
                 "with --scene and automatic fk control points, no --self-collision: a round that "
                 "misses the targets also trains a model with one more control point and beta 10 "

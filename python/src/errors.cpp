@@ -29,7 +29,7 @@ py::handle exceptionClass(py::module_& m, const char* name, const py::tuple& bas
 
 void bindErrors(py::module_& m) {
   const py::object builtins = py::module_::import("builtins");
-  static py::handle error, invalid, file, notFound, oracle;
+  static py::handle error, invalid, file, notFound, oracle, unsupported;
   error = exceptionClass(m, "Error", py::make_tuple(builtins.attr("RuntimeError")),
                          "Base of every exception Fastron raises.");
   invalid = exceptionClass(m, "InvalidArgument", py::make_tuple(error, builtins.attr("ValueError")),
@@ -42,6 +42,9 @@ void bindErrors(py::module_& m) {
   oracle = exceptionClass(m, "OracleFault", py::make_tuple(error),
                           "The exact checker failed while labelling: it raised, passed its "
                           "deadline, or answered one configuration both ways.");
+  unsupported = exceptionClass(
+      m, "Unsupported", py::make_tuple(error, builtins.attr("NotImplementedError")),
+      "The object cannot do what was asked (a scene checker that measures no distances).");
   py::register_exception_translator([](std::exception_ptr thrown) {
     // The most derived class first.
     try {
@@ -52,6 +55,8 @@ void bindErrors(py::module_& m) {
       PyErr_SetString(file.ptr(), e.what());
     } catch (const InvalidArgument& e) {
       PyErr_SetString(invalid.ptr(), e.what());
+    } catch (const Unsupported& e) {
+      PyErr_SetString(unsupported.ptr(), e.what());
     } catch (const OracleFault& e) {
       PyErr_SetString(oracle.ptr(), e.what());
     } catch (const Error& e) {

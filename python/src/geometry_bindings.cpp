@@ -13,6 +13,7 @@
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
 
 namespace fastron::python {
@@ -256,39 +257,70 @@ void bindGeometry(py::module_& m) {
         return "Contact('" + c.robotLink + "', '" + c.other + "'" +
                (c.selfCollision ? ", self_collision=True)" : ")");
       });
+}
 
-  py::class_<FclChecker, CollisionChecker, std::shared_ptr<FclChecker>>(
-      m, "FclChecker", "The exact checker: forward kinematics, then FCL against the scene.")
-      .def(py::init(&makeChecker<FclChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
-           py::arg("self_collision") = false, py::arg("padding") = 0.0,
-           py::arg("prove_motions_free") = true)
-      .def_property_readonly("robot", &FclChecker::robot)
-      .def("set_scene", &FclChecker::setScene, py::arg("scene"),
+void bindSceneCheckers(py::module_& m) {
+  py::class_<SceneChecker, CollisionChecker, std::shared_ptr<SceneChecker>>(
+      m, "SceneChecker",
+      "A robot checked exactly against a scene (FclChecker, GjkChecker, or scene_checker(name)).")
+      .def_property_readonly("robot", &SceneChecker::robot)
+      .def("set_scene", &SceneChecker::setScene, py::arg("scene"),
            "Takes the obstacles' new poses; safe while other threads check.")
       .def(
           "first_contact",
-          [](const FclChecker& fcl, py::handle q) {
-            const Eigen::VectorXd v = vector(q, fcl.dof(), "q");
-            return contactObject(fcl.firstContact({v.data(), fcl.dof()}));
+          [](const SceneChecker& checker, py::handle q) {
+            const Eigen::VectorXd v = vector(q, checker.dof(), "q");
+            return contactObject(checker.firstContact({v.data(), checker.dof()}));
           },
           py::arg("q"), "The first contact found at q, or None when q is free.")
+      .def_property_readonly("measures_distance", &SceneChecker::measuresDistance,
+                             "True when distance() answers (FCL; not GJK).")
       .def(
           "distance",
-          [](const FclChecker& fcl, py::handle q) {
-            const Eigen::VectorXd v = vector(q, fcl.dof(), "q");
-            return fcl.distance({v.data(), fcl.dof()});
+          [](const SceneChecker& checker, py::handle q) {
+            const Eigen::VectorXd v = vector(q, checker.dof(), "q");
+            return checker.distance({v.data(), checker.dof()});
           },
-          py::arg("q"), "Smallest distance between the robot and any obstacle (0 in collision).");
+          py::arg("q"),
+          "Smallest distance between the robot and any obstacle (0 in collision); raises "
+          "Unsupported when measures_distance is False.");
 
-  py::class_<GjkChecker, CollisionChecker, std::shared_ptr<GjkChecker>>(
+  py::class_<FclChecker, SceneChecker, std::shared_ptr<FclChecker>>(
+      m, "FclChecker", "The exact checker: forward kinematics, then FCL against the scene.")
+      .def(py::init(&makeChecker<FclChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
+           py::arg("self_collision") = false, py::arg("padding") = 0.0,
+           py::arg("prove_motions_free") = true);
+
+  py::class_<GjkChecker, SceneChecker, std::shared_ptr<GjkChecker>>(
       m, "GjkChecker", "Forward kinematics, then libccd's GJK on convex shapes.")
       .def(py::init([](const Robot& robot, const Scene& scene, bool selfCollision, double padding) {
              return makeChecker<GjkChecker>(robot, scene, selfCollision, padding, false);
            }),
            py::arg("robot"), py::arg("scene"), py::kw_only(), py::arg("self_collision") = false,
-           py::arg("padding") = 0.0)
-      .def_property_readonly("robot", &GjkChecker::robot)
-      .def("set_scene", &GjkChecker::setScene, py::arg("scene"));
+           py::arg("padding") = 0.0);
+
+  m.def(
+      "scene_checker_names",
+      [] {
+        std::vector<std::string> names;
+        for (const SceneCheckerKind& kind : sceneCheckerKinds()) names.push_back(kind.name);
+        return names;
+      },
+      "The exact checkers' names, the default ('fcl') first.");
+  m.def(
+      "scene_checker",
+      [](const std::string& name, const Robot& robot, const Scene& scene, bool selfCollision,
+         double padding, bool proveMotionsFree) {
+        return makeSceneChecker(name, robot, scene,
+                                CheckerOptions{.selfCollision = selfCollision,
+                                               .padding = padding,
+                                               .proveMotionsFree = proveMotionsFree});
+      },
+      py::arg("name"), py::arg("robot"), py::arg("scene"), py::kw_only(),
+      py::arg("self_collision") = false, py::arg("padding") = 0.0,
+      py::arg("prove_motions_free") = true,
+      "The exact checker `name` (scene_checker_names()) on `robot` in `scene`, as the command "
+      "line's --checker builds it.");
 }
 
 }  // namespace fastron::python

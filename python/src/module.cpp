@@ -14,6 +14,7 @@ PYBIND11_MODULE(_fastron, m) {
   fastron::python::bindErrors(m);
   fastron::python::bindCore(m);
   fastron::python::bindGeometry(m);
+  fastron::python::bindSceneCheckers(m);
   fastron::python::bindProxy(m);
   fastron::python::bindPlanning(m);
   fastron::python::bindPipeline(m);

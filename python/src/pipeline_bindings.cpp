@@ -19,13 +19,17 @@ void bindPipeline(py::module_& m) {
       "train_scene_model",
       [](const Robot& robot, const Scene& scene, const std::optional<FeatureMap>& features,
          std::size_t samples, std::size_t updates, std::uint64_t seed, std::optional<double> gamma,
-         std::optional<double> beta, bool selfCollision, double padding) {
+         std::optional<double> beta, bool selfCollision, double padding,
+         const std::string& checker) {
         const FeatureMap map = features ? *features : robotFeatures(robot, FeatureKind::Kinematic);
         pipeline::SceneModel model;
         {
           py::gil_scoped_release released;
-          model = pipeline::trainSceneModel(robot, scene, {selfCollision, padding}, map,
-                                            {samples, updates, seed, gamma, beta});
+          CheckerOptions checking;
+          checking.selfCollision = selfCollision;
+          checking.padding = padding;
+          model = pipeline::trainSceneModel(robot, scene, checking, map,
+                                            {samples, updates, seed, gamma, beta, checker});
         }
         return DetectorHolder(model.detector.release());
       },
@@ -33,10 +37,12 @@ void bindPipeline(py::module_& m) {
       py::arg("samples") = defaults.samples, py::arg("updates") = defaults.updates,
       py::arg("seed") = 1, py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
       py::arg("self_collision") = false, py::arg("padding") = 0.0,
+      py::arg("checker") = defaults.checker,
       "The default method's model of a scene (what `fastron plan` trains, the same function): "
-      "a ProxyCollisionDetector of the scene's obstacles alone (its oracle FCL without "
-      "self-collision; `self_collision` and `padding` are the exact checker's), trained on "
-      "`samples` FCL labels and `updates` active-learning updates, no band. Plan with it as "
+      "a ProxyCollisionDetector of the scene's obstacles alone (its oracle the exact checker "
+      "`checker` (scene_checker_names()) without self-collision; `self_collision` and `padding` "
+      "are the exact checker's), trained on `samples` labels and `updates` active-learning "
+      "updates, no band. Plan with it as "
       "`fastron plan` does: plan_verified(detector, exact, start, goal, static_scene=True, "
       "oracle_relaxes_exact=True).");
 
@@ -47,7 +53,7 @@ void bindPipeline(py::module_& m) {
          std::size_t heldOutSamples, double targetAccuracy, double targetTpr,
          std::size_t maxSamples, const std::vector<double>& margins, bool selfCollision,
          std::optional<double> gamma, std::optional<double> beta, bool otherCandidates,
-         std::uint64_t seed) {
+         std::uint64_t seed, const std::string& checker) {
         const FeatureMap map = robotFeatures(robot, parseFeatureKind(features));
         TrainParams params = sceneTrainParams(map.kind(), selfCollision);
         if (gamma) params.kernel.gamma = *gamma;
@@ -57,6 +63,7 @@ void bindPipeline(py::module_& m) {
         options.targets = {targetAccuracy, targetTpr, heldOutSamples, maxSamples};
         options.margins = margins;
         options.selfCollision = selfCollision;
+        options.checker = checker;
         if (otherCandidates) options.automatic = ControlPointOptions{};
         options.candidateBeta = beta;
         options.seed = seed;
@@ -84,10 +91,11 @@ void bindPipeline(py::module_& m) {
       py::arg("max_samples") = heldOut.targets.maxTrainingSamples,
       py::arg("margins") = heldOut.margins, py::arg("self_collision") = false,
       py::arg("gamma") = py::none(), py::arg("beta") = py::none(),
-      py::arg("other_candidates") = true, py::arg("seed") = 1,
+      py::arg("other_candidates") = true, py::arg("seed") = 1, py::arg("checker") = heldOut.checker,
       "The most accurate model of a scene that stands still, by the function `fastron train "
-      "--robot R --scene S` calls (the same seed gives the command's model): `samples` FCL "
-      "labels, then rounds of `held_out` fresh configurations until accuracy and TPR reach the "
+      "--robot R --scene S` calls (the same seed gives the command's model): `samples` labels "
+      "of the exact checker `checker`, then rounds of `held_out` fresh configurations until "
+      "accuracy and TPR reach the "
       "targets (obstacles grown by `margins` when only the TPR is missed; with 'fk' features "
       "and other_candidates, one more control point by each rule tried too). Returns (model, "
       "rounds, kept): each round's training samples, |S|, held-out accuracy and TPR, grown "

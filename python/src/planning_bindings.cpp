@@ -69,14 +69,14 @@ void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
 }
 
 /// The joint limits of a planning problem: given, else the source's own (a model's or a
-/// detector's, or the robot's of an FclChecker / GjkChecker).
+/// detector's, or the robot's of a SceneChecker).
 JointLimits limitsOf(py::handle source, const std::optional<JointLimits>& given) {
   if (given) return *given;
   if (py::isinstance<Model>(source)) return source.cast<const Model&>().limits();
   if (py::isinstance<ProxyCollisionDetector>(source))
     return source.cast<const ProxyCollisionDetector&>().limits();
-  if (py::isinstance<FclChecker>(source)) return source.cast<const FclChecker&>().robot().limits();
-  if (py::isinstance<GjkChecker>(source)) return source.cast<const GjkChecker&>().robot().limits();
+  if (py::isinstance<SceneChecker>(source))
+    return source.cast<const SceneChecker&>().robot().limits();
   throw InvalidArgument("limits=: this collision source has no joint limits of its own");
 }
 

@@ -88,6 +88,40 @@ def test_contacts_distance_and_moving_scenes(baxter):
     assert np.allclose(scene.position("wall"), [5, 0, 0])
 
 
+def test_scene_checkers_by_name_share_one_interface(tmp_path, fastron_command, baxter,
+                                                   three_boxes):
+    import subprocess
+    assert fastron.scene_checker_names()[0] == "fcl"
+    assert set(fastron.scene_checker_names()) >= {"fcl", "gjk"}
+    x = uniform(baxter.limits, 300, seed=6)
+    for name in fastron.scene_checker_names():
+        checker = fastron.scene_checker(name, baxter, three_boxes, self_collision=True)
+        assert isinstance(checker, fastron.SceneChecker) and checker.robot.name == "baxter"
+        hits = checker.in_collision(x)
+        assert 0 < hits.sum() < len(x)
+        assert checker.first_contact(x[np.argmax(hits)]) is not None
+        assert checker.first_contact(x[np.argmin(hits)]) is None
+        if checker.measures_distance:
+            assert checker.distance(x[np.argmin(hits)]) > 0
+        else:
+            with pytest.raises(fastron.Unsupported, match="does not measure distances"):
+                checker.distance(x[0])
+            with pytest.raises(NotImplementedError):
+                checker.distance(x[0])
+        # A plan's limits come from the checker's robot, whichever backend it is.
+        assert fastron.check_path(checker, x[np.argmin(hits)][None, :], 0.05)
+    assert isinstance(fastron.scene_checker("gjk", baxter, three_boxes), fastron.GjkChecker)
+    with pytest.raises(fastron.InvalidArgument, match="unknown checker 'bullet' \\(known: fcl"):
+        fastron.scene_checker("bullet", baxter, three_boxes)
+    # The command's --checker labels as the checker of that name does.
+    data = tmp_path / "gjk.csv"
+    scene = fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml"
+    subprocess.run([fastron_command, "sample", "--robot", "baxter", "--scene", scene, "-n", "300",
+                    "--checker", "gjk", "-o", data], check=True, capture_output=True)
+    q, y = fastron.read_dataset(data)
+    assert np.array_equal(fastron.scene_checker("gjk", baxter, three_boxes).in_collision(q), y > 0)
+
+
 def test_motions_checked_whole_answer_as_every_state(baxter, three_boxes):
     certified = fastron.FclChecker(baxter, three_boxes, self_collision=True)
     dense = fastron.FclChecker(baxter, three_boxes, self_collision=True, prove_motions_free=False)

@@ -10,9 +10,8 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/support_reduction.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"
 #include "fastron/proxy/proxy_collision_detector.h"
@@ -35,8 +34,8 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
       const std::uint64_t seed = o.seed * 1000 + trial;
       Scene scene = sceneForTrial(c.scene, seed);
-      auto fcl = std::make_shared<FclChecker>(robot, scene);
-      auto gjk = std::make_shared<GjkChecker>(robot, scene);
+      auto fcl = makeSceneChecker("fcl", robot, scene);
+      auto gjk = makeSceneChecker("gjk", robot, scene);
       // The paper's pipeline has no uncertainty band: its update times are compared without the
       // calibration points (the planning experiments keep them for the Hybrid method).
       ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
@@ -233,8 +232,8 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
         scene.add({"box" + std::to_string(k), Box{Eigen::Vector3d::Constant(0.1)}, makePose(p),
                    std::nullopt});
       }
-      auto fcl = std::make_shared<FclChecker>(robot, scene);
-      const GjkChecker gjk(robot, scene);
+      auto fcl = makeSceneChecker("fcl", robot, scene);
+      const auto gjk = makeSceneChecker("gjk", robot, scene);
       ProxyCollisionDetector proxy(fcl, features, proxyParams(c, rng(), o.features));
       proxy.initialize(o.quick ? 500 : 3000);
       for (int s = 0; s < (o.quick ? 2 : 10); ++s)
@@ -252,7 +251,7 @@ Table runObstacleSweep(const SweepOptions& o, const Progress& progress) {
           meanSecondsPerCall(
               test, [&](const double* q) { return model->inCollision(q); }, 0.02),
           static_cast<double>(model->supportCount()));
-      row("FK+GJK", meanSecondsPerCheck(test, gjk, 0.02), std::nan(""));
+      row("FK+GJK", meanSecondsPerCheck(test, *gjk, 0.02), std::nan(""));
       row("FK+FCL", meanSecondsPerCheck(test, *fcl, 0.02), std::nan(""));
     }
   }

@@ -186,11 +186,11 @@ double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& chec
       minSeconds);
 }
 
-std::vector<double> clearances(const FclChecker& fcl, const Configurations& q) {
+std::vector<double> clearances(const SceneChecker& exact, const Configurations& q) {
   std::vector<double> distance(static_cast<std::size_t>(q.rows()));
   forEachChunk(distance.size(), 8, 0, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      distance[i] = fcl.distance({q.row(static_cast<Eigen::Index>(i)).data(), fcl.dof()});
+      distance[i] = exact.distance({q.row(static_cast<Eigen::Index>(i)).data(), exact.dof()});
     }
   });
   return distance;

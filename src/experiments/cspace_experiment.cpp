@@ -7,8 +7,8 @@
 #include "fastron/baselines/incremental_svm.h"
 #include "fastron/baselines/sparse_svm.h"
 #include "fastron/core/active_learning.h"
-#include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"
 
 namespace fastron::experiments {
@@ -41,10 +41,10 @@ CspaceResults runCspace(const CspaceOptions& o, const Progress& progress) {
                std::to_string(o.environments));
     Rng rng(o.seed * 1000 + e);
     const Scene scene = randomCubes(4, 0.15, 0.30, 0.5, rng);
-    const FclChecker fcl(rod, scene);
-    const Labels truth = labelConfigurations(fcl, gridJoints);
+    const auto fcl = makeSceneChecker("fcl", rod, scene);
+    const Labels truth = labelConfigurations(*fcl, gridJoints);
     const Configurations q = uniformConfigurations(limits, n, rng);
-    const Labels y = labelConfigurations(fcl, q);
+    const Labels y = labelConfigurations(*fcl, q);
 
     FastronClassifier fastron(limits, {.kernel = {KernelType::RationalQuadratic, gamma},
                                        .maxIterations = 1'000'000,
@@ -53,7 +53,7 @@ CspaceResults runCspace(const CspaceOptions& o, const Progress& progress) {
     IsvmClassifier isvm(
         limits, {KernelType::Gaussian, gamma},
         {.C = 10, .initialPoints = n / 10, .maxAdded = n - n / 10, .batch = n / 20, .seed = rng()});
-    isvm.trainActively([&](const Configurations& a) { return labelConfigurations(fcl, a); });
+    isvm.trainActively([&](const Configurations& a) { return labelConfigurations(*fcl, a); });
     SsvmClassifier ssvm(limits, {KernelType::RationalQuadratic, gamma}, {.C = 10});
     ssvm.train(q, y);
 

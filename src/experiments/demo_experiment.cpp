@@ -11,8 +11,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"
 #include "plan_rows.h"
 
@@ -34,9 +33,9 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   const Robot robot = baxterWithJoints(c.joints);
   const JointLimits limits = robot.limits();
   Scene scene = sceneForTrial(c.scene, o.seed);
-  auto fcl = std::make_shared<FclChecker>(robot, scene);
-  auto gjk = std::make_shared<GjkChecker>(robot, scene);
-  FclChecker audit(robot, scene);
+  auto fcl = makeSceneChecker("fcl", robot, scene);
+  auto gjk = makeSceneChecker("gjk", robot, scene);
+  const auto audit = makeSceneChecker("fcl", robot, scene);
   const ProxyParams params = demoProxyParams(o);
   // Before the proxy: its thread updates these until it is joined.
   std::mutex updateMutex;
@@ -68,12 +67,12 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     scene.step();
     fcl->setScene(scene);
     gjk->setScene(scene);
-    audit.setScene(scene);
+    audit->setScene(scene);
     const CalibratedModel calibrated = proxy.calibratedModel();
     const auto& model = calibrated.model;
     Dataset test;
     test.points = uniformConfigurations(limits, o.testPoints, rng);
-    test.labels = labelConfigurations(audit, test.points, 1);
+    test.labels = labelConfigurations(*audit, test.points, 1);
     const ConfusionCounts counts = evaluate(*model, test.points, test.labels);
     // The boxes can block one side of the workspace for a while: then this tick plans nothing.
     const auto ends = tryOppositeEnds(limits, *fcl, rng, 20000);
@@ -106,7 +105,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
       results.ticks.rows.push_back({{{"tick", std::to_string(tick)}},
                                     "RRTConnect",
                                     method,
-                                    outcomeOf(each, audit, o.resolution),
+                                    outcomeOf(each, *audit, o.resolution),
                                     {{"support", static_cast<double>(model->supportCount())},
                                      {"accuracy", counts.accuracy()},
                                      {"tpr", counts.tpr()},

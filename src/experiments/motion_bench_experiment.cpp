@@ -12,9 +12,8 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_checker.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/urdf.h"
 #include "fastron/pipeline/scene_model.h"
@@ -83,7 +82,7 @@ std::string allowGrasp(const Robot& robot, Scene& scene, const Eigen::VectorXd& 
   const auto span = std::span<const double>(goal.data(), static_cast<std::size_t>(goal.size()));
   std::string note;
   for (int round = 0; round < 4; ++round) {
-    const auto contact = FclChecker(robot, scene).firstContact(span);
+    const auto contact = makeSceneChecker("fcl", robot, scene)->firstContact(span);
     if (!contact) return note;
     const bool hand = contact->robotLink.find("hand") != std::string::npos ||
                       contact->robotLink.find("finger") != std::string::npos;
@@ -117,8 +116,8 @@ struct AlongFclPath {
 /// and the share the model calls colliding. A model is wrong near walls in every family, and a
 /// plan on it fails where every way to the goal passes near them (docs/planning.md, "Families
 /// beyond the samples"). NaN when FCL found no path.
-AlongFclPath alongFclPath(const VerifiedPlan& fclPlan, const Model& model, const FclChecker& audit,
-                          double resolution) {
+AlongFclPath alongFclPath(const VerifiedPlan& fclPlan, const Model& model,
+                          const SceneChecker& audit, double resolution) {
   if (!fclPlan.solved()) return {};
   const Configurations states = statesAlongPath(fclPlan.path, resolution);
   const std::vector<double> clearance = clearances(audit, states);
@@ -233,8 +232,8 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   const Eigen::VectorXd& start = ends.start;
   const Eigen::VectorXd& goal = ends.goal;
   const std::string note = allowGrasp(robot, scene, goal);
-  auto fcl = std::make_shared<FclChecker>(robot, scene, checking);
-  const FclChecker audit(robot, scene, checking);
+  auto fcl = makeSceneChecker("fcl", robot, scene, checking);
+  const auto audit = makeSceneChecker("fcl", robot, scene, checking);
 
   const ProxyParams params =
       withKernelOptions(pipeline::forStaticScene(pipeline::robotProxyParams(
@@ -248,7 +247,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
   // labelled by the audit FCL (self-collision included when it is checked).
   Rng testRng(o.seed * 104729 + p);
   const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
-  const Labels truth = labelConfigurations(audit, test, 1);
+  const Labels truth = labelConfigurations(*audit, test, 1);
   ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
   // The default method's model (what `fastron plan` trains, pipeline::trainSceneModel): of this
   // scene's obstacles alone (self-collisions, when checked, left to verification and learned
@@ -304,7 +303,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
       const auto exact = std::find_if(plans.begin(), plans.end(),
                                       [](const MethodPlan& m) { return m.method == "FCL"; });
       if (exact != plans.end()) {
-        along = alongFclPath(exact->plan, *obstacles.model(), audit, o.resolution);
+        along = alongFclPath(exact->plan, *obstacles.model(), *audit, o.resolution);
       }
     }
     std::vector<PlanRow> rows;  // the default method's first
@@ -313,7 +312,7 @@ void runProblem(const Problem& problem, std::size_t p, const RobotDescription& d
       rows.push_back({queryColumns,
                       "RRTConnect",
                       each.method,
-                      outcomeOf(each, audit, o.resolution),
+                      outcomeOf(each, *audit, o.resolution),
                       {{"support", modelSupport},
                        {"accuracy", modelQuality.accuracy()},
                        {"tpr", modelQuality.tpr()},

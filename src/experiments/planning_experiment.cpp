@@ -6,8 +6,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"
 #include "plan_rows.h"
 
@@ -23,9 +22,9 @@ PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
     const JointLimits limits = robot.limits();
     const std::uint64_t seed = o.seed * 1000 + c.joints;
     Scene scene = sceneForTrial(c.scene, seed);
-    auto fcl = std::make_shared<FclChecker>(robot, scene);
-    auto gjk = std::make_shared<GjkChecker>(robot, scene);
-    FclChecker audit(robot, scene);
+    auto fcl = makeSceneChecker("fcl", robot, scene);
+    auto gjk = makeSceneChecker("gjk", robot, scene);
+    const auto audit = makeSceneChecker("fcl", robot, scene);
     ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features),
                                  proxyParams(c, seed, o.features));
     proxy.initialize(initial);
@@ -36,13 +35,13 @@ PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
       scene.step(5);
       fcl->setScene(scene);
       gjk->setScene(scene);
-      audit.setScene(scene);
+      audit->setScene(scene);
       for (int update = 0; update < 5; ++update) proxy.step();
       const CalibratedModel calibrated = proxy.calibratedModel();
       const auto& model = calibrated.model;
       // The model's accuracy beside its speed: fresh configurations, labelled by the audit FCL.
       const Configurations test = uniformConfigurations(limits, testPoints, rng);
-      const ConfusionCounts counts = evaluate(*model, test, labelConfigurations(audit, test, 1));
+      const ConfusionCounts counts = evaluate(*model, test, labelConfigurations(*audit, test, 1));
       const auto [start, goal] = oppositeEnds(limits, *fcl, rng);
       for (std::size_t k = 0; k < o.planners.size(); ++k) {
         const PlannerType type = o.planners[k];
@@ -52,7 +51,7 @@ PlanRows runPlanning(const PlanningOptions& o, const Progress& progress) {
           results.rows.push_back({{{"case", name}, {"trial", std::to_string(trial)}},
                                   plannerName(type),
                                   each.method,
-                                  outcomeOf(each, audit, o.resolution),
+                                  outcomeOf(each, *audit, o.resolution),
                                   {{"support", static_cast<double>(model->supportCount())},
                                    {"accuracy", counts.accuracy()},
                                    {"tpr", counts.tpr()}}});

@@ -5,10 +5,9 @@
 #include <sstream>
 
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
 #include "plan_rows.h"
 
@@ -22,9 +21,9 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
   const JointLimits limits(ur3.limits().lower().cwiseMax(-std::numbers::pi),
                            ur3.limits().upper().cwiseMin(std::numbers::pi));
   const Scene scene = loadScene(dataDirectory() / "scenes" / "ur3_shelf.yaml");
-  auto fcl = std::make_shared<FclChecker>(ur3, scene);
-  auto gjk = std::make_shared<GjkChecker>(ur3, scene);
-  const FclChecker audit(ur3, scene);
+  auto fcl = makeSceneChecker("fcl", ur3, scene);
+  auto gjk = makeSceneChecker("gjk", ur3, scene);
+  const auto audit = makeSceneChecker("fcl", ur3, scene);
   ProxyCollisionDetector proxy(
       fcl, robotFeatures(ur3, o.features, limits),
       pipeline::forStaticScene(pipeline::robotProxyParams(o.features, 10, 100, o.seed)));
@@ -64,7 +63,7 @@ PlanRows runShelf(const ShelfOptions& o, const Progress& progress) {
       results.rows.push_back({{{"trial", std::to_string(trial)}},
                               "RRT",
                               each.method,
-                              outcomeOf(each, audit, o.resolution),
+                              outcomeOf(each, *audit, o.resolution),
                               {{"support", static_cast<double>(model->supportCount())}}});
     }
   }

@@ -11,9 +11,8 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"
 
 namespace fastron::experiments {
@@ -46,13 +45,13 @@ std::size_t testSize(bool quick) {
 struct Trial {
   Robot robot;
   Scene scene;
-  std::shared_ptr<FclChecker> fcl;
+  std::shared_ptr<SceneChecker> fcl;
   Configurations test;
   Labels truth;
 
   Trial(const Setup& s, bool quick, Rng& rng)
       : robot(loadRobot(s.robot)), scene(randomCubes(4, s.minSide, s.maxSide, s.reach, rng)) {
-    fcl = std::make_shared<FclChecker>(robot, scene);
+    fcl = makeSceneChecker("fcl", robot, scene);
     test = uniformConfigurations(robot.limits(), testSize(quick), rng);
     truth = labelConfigurations(*fcl, test);
   }
@@ -89,7 +88,7 @@ Table runStatic(const StaticOptions& o, const Progress& progress) {
       Rng rng(o.seed * 1000 + static_cast<std::uint64_t>(dof) * 100 + trial);
       Trial t(s, o.quick, rng);
       const JointLimits limits = t.robot.limits();
-      const GjkChecker gjk(t.robot, t.scene);
+      const auto gjk = makeSceneChecker("gjk", t.robot, t.scene);
       std::vector<MethodResult> results;
 
       // The training set of Fastron, SSVM and LIBSVM: N uniform configurations labelled by FCL.
@@ -147,9 +146,9 @@ Table runStatic(const StaticOptions& o, const Progress& progress) {
       results.push_back({"FK+GJK",
                          confusion(t,
                                    [&](const double* x) {
-                                     return gjk.inCollision({x, d});
+                                     return gjk->inCollision({x, d});
                                    }),
-                         std::nan(""), meanSecondsPerCheck(t.test, gjk), std::nan("")});
+                         std::nan(""), meanSecondsPerCheck(t.test, *gjk), std::nan("")});
       results.push_back({"FK+FCL",
                          confusion(t,
                                    [&](const double* x) {

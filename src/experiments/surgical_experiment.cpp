@@ -6,10 +6,9 @@
 #include <thread>
 
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
-#include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
 #include "plan_rows.h"
 
@@ -20,12 +19,12 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
   const Robot psm = loadRobot("psm");
   const JointLimits limits = psm.limits();
   Scene scene = loadScene(dataDirectory() / "scenes" / "psm_surgical.yaml");
-  auto fcl = std::make_shared<FclChecker>(psm, scene);
-  auto gjk = std::make_shared<GjkChecker>(psm, scene);
-  FclChecker audit(psm, scene);
+  auto fcl = makeSceneChecker("fcl", psm, scene);
+  auto gjk = makeSceneChecker("gjk", psm, scene);
+  const auto audit = makeSceneChecker("fcl", psm, scene);
   // The model learns a padded PSM3, so it stays conservative while the instruments move on
   // between its updates (paper, Sec. V-B).
-  auto padded = std::make_shared<FclChecker>(psm, scene, CheckerOptions{.padding = o.padding});
+  auto padded = makeSceneChecker("fcl", psm, scene, CheckerOptions{.padding = o.padding});
   ProxyParams params = pipeline::robotProxyParams(o.features, 10, 100, o.seed);
   params.train.maxIterations = TrainParams{}.maxIterations;
   params.train.maxSupportPoints = TrainParams{}.maxSupportPoints;
@@ -71,7 +70,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
     fcl->setScene(scene);
     gjk->setScene(scene);
     padded->setScene(scene);
-    audit.setScene(scene);
+    audit->setScene(scene);
     const Eigen::VectorXd goal = towardTarget ? target : home;
     if (!freeUnder(*fcl, current) || !freeUnder(*fcl, goal)) continue;  // blocked
     const CalibratedModel calibrated = proxy.calibratedModel();
@@ -82,7 +81,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
       results.rows.push_back({{{"tick", std::to_string(tick)}},
                               "RRT",
                               each.method,
-                              outcomeOf(each, audit, o.resolution),
+                              outcomeOf(each, *audit, o.resolution),
                               {{"support", static_cast<double>(model->supportCount())},
                                {"model_updates", static_cast<double>(updates.load())}}});
     }

@@ -430,18 +430,16 @@ CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const 
   return {answer.collidingState, answer.statesPlaced};
 }
 
-std::optional<Contact> FclChecker::firstContact(std::span<const double> q) const {
-  checkConfiguration(q, dof());
+std::optional<Contact> FclChecker::contactAt(const double* q) const {
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
-  return collide(*world, *scratch, q.data(), true);
+  return collide(*world, *scratch, q, true);
 }
 
-double FclChecker::distance(std::span<const double> q) const {
-  checkConfiguration(q, dof());
+double FclChecker::distanceAt(const double* q) const {
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
-  if (collide(*world, *scratch, q.data(), false)) return 0;  // the robot is placed
+  if (collide(*world, *scratch, q, false)) return 0;  // the robot is placed
   double best = std::numeric_limits<double>::infinity();
   fcl::DistanceRequestd request;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
@@ -456,11 +454,6 @@ double FclChecker::distance(std::span<const double> q) const {
     }
   }
   return best;
-}
-
-std::string describe(const Contact& contact) {
-  return contact.robotLink + (contact.selfCollision ? " touches link " : " touches ") +
-         contact.other;
 }
 
 }  // namespace fastron

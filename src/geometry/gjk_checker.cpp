@@ -122,6 +122,7 @@ struct GjkChecker::Scratch {
 
 struct GjkChecker::World {
   std::vector<ConvexBody> obstacles;
+  std::vector<std::string> names;  // the obstacles'
   Eigen::Isometry3d robotBase = Eigen::Isometry3d::Identity();
   std::vector<std::pair<std::size_t, std::size_t>> selfPairs;  // pairs a configuration can change
   std::vector<std::uint8_t> allowed;                           // see allowedObstacleContacts
@@ -129,7 +130,7 @@ struct GjkChecker::World {
   // moving ones are placed per check, in Scratch). One of those touches an obstacle or another
   // such shape, in this scene: every configuration collides (found once here, as in FclChecker).
   std::vector<ConvexBody> fixedBodies;
-  bool fixedShapesCollide = false;
+  std::optional<Touch> fixedTouch;
 
   /// Robot shape `shape` as placed for the configuration in `scratch`, or here if it does not move.
   const ConvexBody& robotBody(const Scratch& scratch, std::size_t shape, bool moves) const;
@@ -162,6 +163,7 @@ void GjkChecker::setScene(const Scene& scene) {
     ConvexBody body = ConvexBody::from(o.shape);
     body.pose = o.pose;
     next->obstacles.push_back(std::move(body));
+    next->names.push_back(o.name);
   }
   next->allowed = allowedObstacleContacts(robot_, scene);
   const KinematicsData kinematics = kinematicsAtZero(robot_, next->robotBase);
@@ -170,14 +172,15 @@ void GjkChecker::setScene(const Scene& scene) {
   for (std::size_t s = 0; s < fixed.size(); ++s) {
     if (shapeMoves_[s] != 0) continue;
     fixed[s].pose = shapePose(robot_, kinematics, s);
-    next->fixedShapesCollide = next->fixedShapesCollide || obstacleTouches(*next, fixed[s], s);
+    const auto obstacle = touchedObstacle(*next, fixed[s], s);
+    if (obstacle && !next->fixedTouch) next->fixedTouch = Touch{s, *obstacle, false};
   }
   if (options_.selfCollision) {
     for (const auto& [a, b] : robot_.selfCollisionPairs(scene.allowedCollisions)) {
       if (shapeMoves_[a] != 0 || shapeMoves_[b] != 0) {
         next->selfPairs.emplace_back(a, b);
-      } else {
-        next->fixedShapesCollide = next->fixedShapesCollide || gjkIntersect(fixed[a], fixed[b]);
+      } else if (!next->fixedTouch && gjkIntersect(fixed[a], fixed[b])) {
+        next->fixedTouch = Touch{a, b, true};
       }
     }
   }
@@ -189,14 +192,14 @@ const ConvexBody& GjkChecker::World::robotBody(const Scratch& scratch, std::size
   return moves ? scratch.robot[shape] : fixedBodies[shape];
 }
 
-bool GjkChecker::obstacleTouches(const World& world, const ConvexBody& body,
-                                 std::size_t shape) const {
+std::optional<std::size_t> GjkChecker::touchedObstacle(const World& world, const ConvexBody& body,
+                                                       std::size_t shape) const {
   const std::size_t count = world.obstacles.size();
   for (std::size_t o = 0; o < count; ++o) {
     if (!world.allowed.empty() && world.allowed[shape * count + o] != 0) continue;
-    if (gjkIntersect(body, world.obstacles[o])) return true;
+    if (gjkIntersect(body, world.obstacles[o])) return o;
   }
-  return false;
+  return std::nullopt;
 }
 
 bool GjkChecker::check(const double* q) const {
@@ -208,7 +211,7 @@ std::size_t GjkChecker::checkFirst(const double* q, std::size_t n) const {
   const std::shared_ptr<const World> world = world_.get();
   auto scratch = scratch_.lease();
   for (std::size_t i = 0; i < n; ++i) {
-    if (collides(*world, *scratch, q + i * robot_.dof())) return i;
+    if (firstTouch(*world, *scratch, q + i * robot_.dof())) return i;
   }
   return n;
 }
@@ -216,25 +219,40 @@ std::size_t GjkChecker::checkFirst(const double* q, std::size_t n) const {
 void GjkChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
   const std::shared_ptr<const World> world = world_.get();
   auto scratch = scratch_.lease();
-  for (std::size_t i = 0; i < n; ++i) out[i] = collides(*world, *scratch, q + i * robot_.dof());
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = firstTouch(*world, *scratch, q + i * robot_.dof()).has_value();
 }
 
-bool GjkChecker::collides(const World& world, Scratch& scratch, const double* q) const {
-  if (world.fixedShapesCollide) return true;
+std::optional<Contact> GjkChecker::contactAt(const double* q) const {
+  const std::shared_ptr<const World> world = world_.get();
+  auto scratch = scratch_.lease();
+  const std::optional<Touch> touch = firstTouch(*world, *scratch, q);
+  if (!touch) return std::nullopt;
+  const auto linkOf = [&](std::size_t shape) -> const std::string& {
+    return robot_.links()[static_cast<std::size_t>(robot_.shapes()[shape].link)].name;
+  };
+  return Contact{linkOf(touch->shape),
+                 touch->self ? linkOf(touch->other) : world->names[touch->other], touch->self};
+}
+
+std::optional<GjkChecker::Touch> GjkChecker::firstTouch(const World& world, Scratch& scratch,
+                                                        const double* q) const {
+  if (world.fixedTouch) return world.fixedTouch;
   forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
   const auto& shapes = robot_.shapes();
   for (std::size_t s = 0; s < shapes.size(); ++s) {
     if (shapeMoves_[s] == 0) continue;  // placed and checked by setScene
     scratch.robot[s].pose =
         scratch.kinematics.linkPoses[static_cast<std::size_t>(shapes[s].link)] * shapes[s].origin;
-    if (obstacleTouches(world, scratch.robot[s], s)) return true;
+    if (const auto obstacle = touchedObstacle(world, scratch.robot[s], s))
+      return Touch{s, *obstacle, false};
   }
   for (const auto& [a, b] : world.selfPairs) {
     if (gjkIntersect(world.robotBody(scratch, a, shapeMoves_[a] != 0),
                      world.robotBody(scratch, b, shapeMoves_[b] != 0)))
-      return true;
+      return Touch{a, b, true};
   }
-  return false;
+  return std::nullopt;
 }
 
 }  // namespace fastron

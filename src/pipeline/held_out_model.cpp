@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "fastron/core/error.h"
-#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/scene_checkers.h"
 
 namespace fastron::pipeline {
 
@@ -50,20 +50,21 @@ HeldOutModel trainHeldOutModel(const Robot& robot, const Scene& scene, const Fea
   // A scene without obstacles has nothing to grow.
   if (scene.size() > 0) result.margins = increasingMargins(options.margins);
   const CheckerOptions checking{options.selfCollision, options.padding};
-  const FclChecker oracle(robot, scene, checking);
-  std::vector<std::unique_ptr<const FclChecker>> grown;
+  const auto oracle = makeSceneChecker(options.checker, robot, scene, checking);
+  std::vector<std::shared_ptr<const SceneChecker>> grown;
   std::vector<const CollisionChecker*> grownOracles;
   for (const double margin : result.margins) {
-    grown.push_back(std::make_unique<const FclChecker>(robot, scene.grown(margin), checking));
+    grown.push_back(makeSceneChecker(options.checker, robot, scene.grown(margin), checking));
     grownOracles.push_back(grown.back().get());
   }
   if (options.automatic && !options.selfCollision) {
     result.candidates = moreControlPointCandidates(robot, features, *options.automatic, params,
                                                    options.candidateBeta.value_or(kMorePointsBeta));
   }
+  result.oracle = oracle->name();
   Rng rng(options.seed);
   result.training =
-      trainToHeldOutTargets(oracle, features, params, options.samples, options.targets, rng,
+      trainToHeldOutTargets(*oracle, features, params, options.samples, options.targets, rng,
                             options.threads, grownOracles, result.candidates);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -10,8 +10,9 @@ namespace fastron::pipeline {
 SceneModel trainSceneModel(const Robot& robot, const Scene& scene, const CheckerOptions& checking,
                            const FeatureMap& features, const SceneModelOptions& options) {
   SceneModel model;
-  model.oracle = std::make_shared<const FclChecker>(
-      robot, scene, CheckerOptions{.selfCollision = false, .padding = checking.padding});
+  CheckerOptions obstaclesOnly = checking;
+  obstaclesOnly.selfCollision = false;
+  model.oracle = makeSceneChecker(options.checker, robot, scene, obstaclesOnly);
   ProxyParams params =
       withoutBand(forStaticScene(robotProxyParams(features.kind(), 5, 500, options.seed)));
   if (options.gamma) params.train.kernel.gamma = *options.gamma;

@@ -9,7 +9,7 @@
 #include "fastron/core/model_file.h"
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/control_points.h"
-#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/pipeline/presets.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -128,8 +128,8 @@ SelfModel selfCollisionModel(const Robot& robot, const SelfModelOptions& options
     return result;
   }
   ProxyCollisionDetector self(
-      std::make_shared<FclChecker>(
-          robot, Scene{}, CheckerOptions{.selfCollision = true, .padding = options.padding}),
+      makeSceneChecker(kDefaultSceneChecker, robot, Scene{},
+                       CheckerOptions{.selfCollision = true, .padding = options.padding}),
       robotFeatures(robot, FeatureKind::JointScaling), selfModelParams(options.seed));
   result.trainSeconds =
       std::chrono::duration<double>(trainStatic(self, options.samples, options.updates).total)

@@ -64,6 +64,13 @@ class FileNotFound : public FileError {
   using FileError::FileError;
 };
 
+/// An implementation cannot do what was asked (a scene checker that measures no distances); the
+/// message names it and what was asked.
+class Unsupported : public Error {
+ public:
+  using Error::Error;
+};
+
 /// The exact checker (the oracle) failed while labelling: it threw, passed its deadline, or gave
 /// two answers for the same configuration. The message names the oracle and what it did.
 class OracleFault : public Error {

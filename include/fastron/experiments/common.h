@@ -12,9 +12,9 @@
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/types.h"
-#include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
+#include "fastron/geometry/scene_checker.h"
 #include "fastron/planning/planner.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -71,9 +71,9 @@ std::string cell(double value);
 double meanSecondsPerCheck(const Configurations& q, const CollisionChecker& checker,
                            double minSeconds = 0.05);
 
-/// Each row's distance to the nearest obstacle under `fcl` (0 for one in collision), on every
+/// Each row's distance to the nearest obstacle under `exact` (0 for one in collision), on every
 /// core: between meshes a distance takes milliseconds (about 3 ms on the mesh Panda).
-std::vector<double> clearances(const FclChecker& fcl, const Configurations& q);
+std::vector<double> clearances(const SceneChecker& exact, const Configurations& q);
 
 /// Mean seconds per call of `fn` on each row of q, over at least `minSeconds` (whole passes).
 double meanSecondsPerCall(const Configurations& q, const std::function<bool(const double*)>& fn,

@@ -12,32 +12,21 @@
 
 #include "fastron/core/export.h"
 #include "fastron/geometry/certified_motion.h"
-#include "fastron/geometry/checker_options.h"
-#include "fastron/geometry/robot.h"
-#include "fastron/geometry/scene.h"
+#include "fastron/geometry/scene_checker.h"
 #include "fastron/geometry/scratch_pool.h"
 #include "fastron/geometry/snapshot.h"
 
 namespace FASTRON_API fastron {
 
-/// What collided: a robot link and an obstacle, or two robot links (self-collision).
-struct Contact {
-  std::string robotLink;
-  std::string other;
-  bool selfCollision = false;
-};
-
-/// "right_hand touches box", or "panda_link7 touches link panda_link5" for a self-collision.
-std::string describe(const Contact& contact);
-
-class FclChecker final : public CollisionChecker {
+/// The scene checker named "fcl" (scene_checkers.h).
+class FclChecker final : public SceneChecker {
  public:
   FclChecker(Robot robot, const Scene& scene, CheckerOptions options = {});
   ~FclChecker() override;
 
   std::string name() const override { return "FCL"; }
-  std::size_t dof() const override { return robot_.dof(); }
-  const Robot& robot() const { return robot_; }
+  const Robot& robot() const override { return robot_; }
+  const CheckerOptions& options() const override { return options_; }
   /// With options.proveMotionsFree, a motion's check skips the states that clearance bounds
   /// prove free (certified_motion.h) and asks FCL only about the pairs of shapes no bound keeps
   /// apart: Everywhere for a robot without meshes, Verification for one with meshes, whose ball
@@ -51,20 +40,16 @@ class FclChecker final : public CollisionChecker {
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
   /// volume hierarchy is built once per mesh (the same TriangleMesh object) and kept while the
   /// scene still has it: moving a scene updates poses only.
-  void setScene(const Scene& scene);
+  void setScene(const Scene& scene) override;
   /// Mesh obstacle hierarchies built so far (once per distinct mesh the scenes held).
   std::size_t meshHierarchiesBuilt() const { return meshBuilds_; }
-
-  /// The first contact found, or nothing when q is free.
-  std::optional<Contact> firstContact(std::span<const double> q) const;
 
   /// Every pair of robot links in contact at q, each pair once (the link that comes first in
   /// robot().links() first). Empty unless the checker was built with options.selfCollision;
   /// obstacles are not looked at.
   std::vector<Contact> selfContacts(std::span<const double> q) const;
 
-  /// Smallest distance between the robot and any obstacle; 0 when in collision.
-  double distance(std::span<const double> q) const;
+  bool measuresDistance() const override { return true; }
 
  protected:
   bool check(const double* q) const override;
@@ -72,6 +57,8 @@ class FclChecker final : public CollisionChecker {
   void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
   MotionCheck checkMotion(const double* from, const double* to,
                           std::size_t segments) const override;
+  std::optional<Contact> contactAt(const double* q) const override;
+  double distanceAt(const double* q) const override;
 
  private:
   struct Geometry;

@@ -8,9 +8,7 @@
 #include <mutex>
 
 #include "fastron/core/export.h"
-#include "fastron/geometry/checker_options.h"
-#include "fastron/geometry/robot.h"
-#include "fastron/geometry/scene.h"
+#include "fastron/geometry/scene_checker.h"
 #include "fastron/geometry/scratch_pool.h"
 #include "fastron/geometry/snapshot.h"
 
@@ -32,29 +30,37 @@ struct ConvexBody {
 /// True when the two bodies intersect (libccd's GJK).
 bool gjkIntersect(const ConvexBody& a, const ConvexBody& b);
 
-class GjkChecker final : public CollisionChecker {
+/// The scene checker named "gjk" (scene_checkers.h). Measures no distances.
+class GjkChecker final : public SceneChecker {
  public:
   GjkChecker(Robot robot, const Scene& scene, CheckerOptions options = {});
   ~GjkChecker() override;
 
   std::string name() const override { return "GJK"; }
-  std::size_t dof() const override { return robot_.dof(); }
-  const Robot& robot() const { return robot_; }
+  const Robot& robot() const override { return robot_; }
+  const CheckerOptions& options() const override { return options_; }
   /// Safe while other threads check, as FclChecker::setScene.
-  void setScene(const Scene& scene);
+  void setScene(const Scene& scene) override;
 
  protected:
   bool check(const double* q) const override;
   std::size_t checkFirst(const double* q, std::size_t n) const override;
   void checkEach(const double* q, std::size_t n, std::uint8_t* out) const override;
+  std::optional<Contact> contactAt(const double* q) const override;
 
  private:
   struct World;
   struct Scratch;
-  /// Places the robot at q in `scratch`; true when it touches an obstacle of `world` or itself.
-  bool collides(const World& world, Scratch& scratch, const double* q) const;
-  /// Whether robot shape `shape`, placed as `body`, touches an obstacle it may not touch.
-  bool obstacleTouches(const World& world, const ConvexBody& body, std::size_t shape) const;
+  /// Two shapes that touch: a robot shape and an obstacle, or two robot shapes.
+  struct Touch {
+    std::size_t shape = 0, other = 0;
+    bool self = false;
+  };
+  /// Places the robot at q in `scratch`; the first touch with an obstacle of `world` or itself.
+  std::optional<Touch> firstTouch(const World& world, Scratch& scratch, const double* q) const;
+  /// The first obstacle robot shape `shape`, placed as `body`, touches and may not touch.
+  std::optional<std::size_t> touchedObstacle(const World& world, const ConvexBody& body,
+                                             std::size_t shape) const;
 
   Robot robot_;
   CheckerOptions options_;

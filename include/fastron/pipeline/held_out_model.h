@@ -15,6 +15,7 @@
 #include "fastron/geometry/control_points.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/held_out_training.h"
 
 namespace FASTRON_API fastron {
@@ -30,7 +31,8 @@ struct HeldOutModelOptions {
   /// Labels of FCL with self-collision (and no grown obstacles or other candidates, which were
   /// measured on obstacles' labels).
   bool selfCollision = false;
-  double padding = 0;  ///< grows the robot's shapes in every label (m)
+  double padding = 0;                         ///< grows the robot's shapes in every label (m)
+  std::string checker{kDefaultSceneChecker};  ///< the labels' exact checker (scene_checkers.h)
   /// The automatic control points that `features` were chosen by, when they were: the rounds
   /// then also try one more point by each rule (otherCandidates). Empty: no other candidates.
   std::optional<ControlPointOptions> automatic;
@@ -46,6 +48,7 @@ struct HeldOutModel {
   std::vector<double> margins;  ///< the margins used (HeldOutRound::grownLevel indexes them)
   std::vector<ModelCandidate> candidates;  ///< the other candidates (HeldOutRound::candidate - 1)
   double seconds = 0;                      ///< labelling and training
+  std::string oracle;                      ///< the labels' checker, by its name() ("FCL")
 };
 
 /// Margins without zeros; throws InvalidArgument naming the pair unless they increase.

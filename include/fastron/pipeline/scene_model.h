@@ -11,7 +11,7 @@
 #include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/geometry/checker_options.h"
-#include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/scene_checkers.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -28,13 +28,15 @@ struct SceneModelOptions {
   std::size_t updates = 1;     ///< active-learning updates after them
   std::uint64_t seed = 1;
   std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
+  std::string checker{kDefaultSceneChecker};  ///< the oracle's backend (scene_checkers.h)
 };
 
 /// A model of a scene's obstacles and the checker it learned from.
 struct SceneModel {
-  /// FCL on the scene without self-collision: a relaxation of the exact checker, which may
-  /// check self-collision too (self-collisions are left to verification).
-  std::shared_ptr<const FclChecker> oracle;
+  /// The exact checker (options.checker) on the scene without self-collision: a relaxation of
+  /// the exact checker of verification, which may check self-collision too (self-collisions are
+  /// left to verification).
+  std::shared_ptr<const SceneChecker> oracle;
   std::unique_ptr<ProxyCollisionDetector> detector;  ///< no band: it plans without one
   double trainSeconds = 0;                           ///< labelling and training
 };

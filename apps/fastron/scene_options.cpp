@@ -1,0 +1,59 @@
+#include "scene_options.h"
+
+#include "fastron/core/error.h"
+#include "fastron/geometry/scene_file.h"
+
+namespace fastron::cli {
+
+void addSceneOptions(CLI::App& cmd, SceneOptions& options, const SceneOptionUse& use) {
+  CLI::Option* scene = cmd.add_option("--scene", options.file,
+                                      "scene file: the project's YAML or a MoveIt PlanningScene")
+                           ->check(CLI::ExistingFile);
+  if (use.sceneRequired) scene->required();
+  cmd.add_option("--allow", options.allow,
+                 "LINK:OBSTACLE pairs that may touch (e.g. a grasped object and the hand)")
+      ->delimiter(',');
+  cmd.add_flag("--self-collision", options.selfCollision, use.selfCollisionHelp);
+  if (use.padding) {
+    cmd.add_option("--padding", options.padding, "grow the robot's shapes by this much (m)")
+        ->check(CLI::NonNegativeNumber);
+  }
+  std::vector<std::string> names;
+  std::string list;
+  for (const SceneCheckerKind& kind : sceneCheckerKinds()) {
+    names.push_back(kind.name);
+    list += (list.empty() ? "" : "; ") + kind.name + ": " + kind.description;
+  }
+  cmd.add_option(use.checkerOption, options.checker,
+                 "the exact checker that " + use.checkerRole + " (" + list + ")")
+      ->capture_default_str()
+      ->transform(CLI::IsMember(names, CLI::ignore_case));
+}
+
+Scene sceneFromOptions(const SceneOptions& options) {
+  if (options.file.empty() && !options.allow.empty())
+    throw InvalidArgument("--allow needs --scene");
+  Scene scene = options.file.empty() ? Scene{} : loadScene(options.file);
+  for (const std::string& pair : options.allow) {
+    const auto colon = pair.find(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size()) {
+      throw InvalidArgument("--allow '" + pair + "' is not LINK:OBSTACLE");
+    }
+    scene.allowedCollisions.allow(pair.substr(0, colon), pair.substr(colon + 1));
+  }
+  return scene;
+}
+
+CheckerOptions checkerOptionsFrom(const SceneOptions& options) {
+  CheckerOptions checking;
+  checking.selfCollision = options.selfCollision;
+  checking.padding = options.padding;
+  return checking;
+}
+
+std::shared_ptr<SceneChecker> checkerFromOptions(const SceneOptions& options, const Robot& robot,
+                                                 const Scene& scene) {
+  return makeSceneChecker(options.checker, robot, scene, checkerOptionsFrom(options));
+}
+
+}  // namespace fastron::cli
