@@ -631,7 +631,7 @@ def test_paths_written_read_and_cut_as_the_checks_cut_them(tmp_path, baxter, bax
 
 
 def test_a_detector_learns_the_answers_its_model_got_wrong(baxter):
-    # The loop of docs/planning.md, "Learning from verification in one scene": keep the exact
+    # The loop of docs/log/2026-11-23-motion-bench-panda-meshes-and-srdf.md, "Learning from verification in one scene": keep the exact
     # answers the model got wrong and learn them without asking the oracle.
     scene = fastron.load_scene(fastron.data_directory() / "scenes" / "baxter_three_boxes.yaml")
     fcl = fastron.FclChecker(baxter, scene)

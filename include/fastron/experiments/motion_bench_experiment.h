@@ -60,7 +60,7 @@ struct MotionBenchOptions {
   double timeLimit = 10;
   /// Longest tree edge of every method's RRT-Connect, joint units (0: OMPL's default, a fifth of
   /// the diagonal of the joint limits: 3.3 rad in Baxter's 14 joints, where the exact baseline
-  /// failed; docs/planning.md, "Fourteen joints").
+  /// failed; docs/log/2026-11-28-robots-of-other-makers.md, "Fourteen joints").
   double range = 0;
   double resolution = 0.03;
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)

@@ -35,7 +35,7 @@ enum class PathSimplification : std::uint8_t {
   /// Up to five passes each of OMPL's shortcutPath and reduceVertices (fewer when one gains
   /// nothing or simplifyTime is up), then collapseCloseVertices and checkAndRepair, as simplify
   /// ends: no B-spline smoothing, whose subdivided states make most of the checks. Repairs use it
-  /// for their bridges (docs/planning.md, "Lighter bridges").
+  /// for their bridges (docs/log/2026-11-28-lighter-bridges.md, "Lighter bridges").
   Shortcuts,
 };
 
@@ -111,7 +111,7 @@ struct PlannerOptions {
   /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found
   /// no path, most often because an end sits in a pocket the model closed (a goal inside a
   /// cage), and RRT-Connect adds a motion only when it is free over its whole length: shorter
-  /// motions leave a pocket sooner (docs/planning.md, "A shorter range for the hybrid").
+  /// motions leave a pocket sooner (docs/log/2026-11-28-a-shorter-range-for-the-hybrid.md, "A shorter range for the hybrid").
   double hybridRange = 0;
 };
 
