@@ -85,9 +85,8 @@ py::tuple train(py::handle x, py::handle y, std::optional<FeatureMap> features,
   return py::make_tuple(std::const_pointer_cast<Model>(model), report);
 }
 
-}  // namespace
-
-void bindCore(py::module_& m) {
+/// JointLimits and FeatureMap.
+void bindLimitsAndFeatures(py::module_& m) {
   py::class_<JointLimits>(m, "JointLimits",
                           "Lower and upper limit of each joint; joint scaling maps them to "
                           "[-1, 1].")
@@ -122,7 +121,10 @@ void bindCore(py::module_& m) {
           },
           py::arg("q"), "Features of one configuration (d,) or of each row of (n, d).")
       .def("__repr__", [](const FeatureMap& f) { return "FeatureMap(" + f.summary() + ")"; });
+}
 
+/// UpdateReport and Model.
+void bindModel(py::module_& m) {
   py::class_<UpdateReport>(m, "UpdateReport", "What one run of Algorithm 1 did.")
       .def_readonly("iterations", &UpdateReport::iterations)
       .def_property_readonly(
@@ -202,7 +204,10 @@ void bindCore(py::module_& m) {
                model.features().summary() +
                "', support_count=" + std::to_string(model.supportCount()) + ")";
       });
+}
 
+/// train, and smaller support sets (prune_support, merge_support).
+void bindTraining(py::module_& m) {
   m.def("train", &train, py::arg("X"), py::arg("y"), py::kw_only(),
         py::arg("features") = py::none(), py::arg("limits") = py::none(),
         py::arg("gamma") = py::none(), py::arg("beta") = py::none(), py::arg("kernel") = "rq",
@@ -237,7 +242,10 @@ void bindCore(py::module_& m) {
       py::arg("model"), py::arg("radius"),
       "A model whose support points of one sign closer than radius in feature space are merged "
       "into the heaviest one near them (D-Fastron's clustering), which takes their weight.");
+}
 
+/// ConfusionCounts and evaluate, the SIMD paths, dataset files.
+void bindMetricsAndData(py::module_& m) {
   py::class_<ConfusionCounts>(m, "ConfusionCounts",
                               "Predictions against labels, 'positive' meaning in collision.")
       .def_readonly("true_positives", &ConfusionCounts::truePositives)
@@ -294,7 +302,10 @@ void bindCore(py::module_& m) {
         writeDataset(Dataset{Configurations(rows.matrix()), labels(y, rows.rows, "y"), {}}, path);
       },
       py::arg("path"), py::arg("X"), py::arg("y"), "Writes a .csv or .npy dataset.");
+}
 
+/// CollisionChecker, the interface of every oracle.
+void bindCollisionChecker(py::module_& m) {
   py::class_<CollisionChecker, std::shared_ptr<CollisionChecker>>(
       m, "CollisionChecker", "An exact collision checker (the oracle Fastron learns from).")
       .def_property_readonly("name", &CollisionChecker::name)
@@ -342,7 +353,10 @@ void bindCore(py::module_& m) {
           py::arg("start"), py::arg("end"), py::arg("segments"),
           "The straight motion looked at in `segments` equal steps (states i = 1..segments, `end` "
           "last): (i of a state in collision, or None, configurations looked at).");
+}
 
+/// Checkers made of a callable, a model, or other checkers.
+void bindCheckerWrappers(py::module_& m) {
   py::class_<PythonChecker, CollisionChecker, std::shared_ptr<PythonChecker>>(
       m, "FunctionChecker",
       "An exact checker written in Python: fn(q) -> bool for a (dof,) array. Fastron calls it "
@@ -381,6 +395,17 @@ void bindCore(py::module_& m) {
                                                                       checkers.end()));
            }),
            py::arg("checkers"));
+}
+
+}  // namespace
+
+void bindCore(py::module_& m) {
+  bindLimitsAndFeatures(m);
+  bindModel(m);
+  bindTraining(m);
+  bindMetricsAndData(m);
+  bindCollisionChecker(m);
+  bindCheckerWrappers(m);
 }
 
 }  // namespace fastron::python

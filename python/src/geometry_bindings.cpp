@@ -74,9 +74,8 @@ py::object contactObject(const std::optional<Contact>& contact) {
   return py::cast(*contact);
 }
 
-}  // namespace
-
-void bindGeometry(py::module_& m) {
+/// Robot, and loading robots (shipped, URDF, with an SRDF).
+void bindRobots(py::module_& m) {
   py::class_<Robot>(m, "Robot", "A robot from a URDF: kinematic tree, collision shapes, limits.")
       .def_property_readonly("name", &Robot::name)
       .def_property_readonly("dof", &Robot::dof, "Actuated joints (values per configuration).")
@@ -135,7 +134,10 @@ void bindGeometry(py::module_& m) {
       "Names of the robots shipped with Fastron.");
   m.def("data_directory", &dataDirectory,
         "The data folder (robots/, scenes/): $FASTRON_DATA_DIR, else the installation's.");
+}
 
+/// Scene, scene files, MoveIt requests and the robot a request plans.
+void bindScenes(py::module_& m) {
   py::class_<Scene>(m, "Scene", "Obstacles (some moving) and where the robot's base is.")
       .def(py::init<>())
       .def_property_readonly("obstacle_names",
@@ -211,7 +213,10 @@ void bindGeometry(py::module_& m) {
       "request's group actuated (from `groups`, as load_robot_description gives them) and its "
       "other joints held where the scene's robot_state and the request's start state put them; "
       "values within 0.05 of a limit clamped; warning says when the group is not in `groups`.");
+}
 
+/// robot_features and load_model: what needs a robot in core's terms.
+void bindFeaturesAndModels(py::module_& m) {
   m.def(
       "robot_features",
       [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points,
@@ -248,7 +253,10 @@ void bindGeometry(py::module_& m) {
       },
       py::arg("path"), py::arg("robot") = py::none(),
       "Reads a model file; a task-space ('fk') model needs the robot it was trained for.");
+}
 
+/// Contact, what a scene checker's first_contact names.
+void bindContact(py::module_& m) {
   py::class_<Contact>(m, "Contact", "What collided.")
       .def_readonly("robot_link", &Contact::robotLink)
       .def_readonly("other", &Contact::other, "An obstacle, or a link for a self-collision.")
@@ -257,6 +265,15 @@ void bindGeometry(py::module_& m) {
         return "Contact('" + c.robotLink + "', '" + c.other + "'" +
                (c.selfCollision ? ", self_collision=True)" : ")");
       });
+}
+
+}  // namespace
+
+void bindGeometry(py::module_& m) {
+  bindRobots(m);
+  bindScenes(m);
+  bindFeaturesAndModels(m);
+  bindContact(m);
 }
 
 void bindSceneCheckers(py::module_& m) {

@@ -13,7 +13,10 @@ namespace fastron::python {
 
 namespace py = pybind11;
 
-void bindPipeline(py::module_& m) {
+namespace {
+
+/// train_scene_model: the default method's model of a scene.
+void bindSceneModel(py::module_& m) {
   const pipeline::SceneModelOptions defaults;
   m.def(
       "train_scene_model",
@@ -45,7 +48,10 @@ void bindPipeline(py::module_& m) {
       "updates, no band. Plan with it as "
       "`fastron plan` does: plan_verified(detector, exact, start, goal, static_scene=True, "
       "oracle_relaxes_exact=True).");
+}
 
+/// train_held_out_model: the model of fastron train --robot --scene.
+void bindHeldOutModel(py::module_& m) {
   const pipeline::HeldOutModelOptions heldOut;
   m.def(
       "train_held_out_model",
@@ -100,6 +106,13 @@ void bindPipeline(py::module_& m) {
       "and other_candidates, one more control point by each rule tried too). Returns (model, "
       "rounds, kept): each round's training samples, |S|, held-out accuracy and TPR, grown "
       "margin and candidate (0: the first features), and the index of the round kept.");
+}
+
+}  // namespace
+
+void bindPipeline(py::module_& m) {
+  bindSceneModel(m);
+  bindHeldOutModel(m);
 }
 
 }  // namespace fastron::python

@@ -151,9 +151,8 @@ PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
           plan.relaxedChecks};
 }
 
-}  // namespace
-
-void bindPlanning(py::module_& m) {
+/// PlanResult and VerifiedPlan.
+void bindPlanResults(py::module_& m) {
   py::class_<PythonPlan>(m, "PlanResult", "One planning query on one collision source.")
       .def_readonly("status", &PythonPlan::status,
                     "'solved', 'start in collision', 'goal in collision' or 'timeout'.")
@@ -201,7 +200,10 @@ void bindPlanning(py::module_& m) {
         return "VerifiedPlan('" + p.status + "', " + std::to_string(p.path.shape(0)) +
                " waypoints, " + std::to_string(p.invalidStretches) + " stretches repaired)";
       });
+}
 
+/// plan: one query on one collision source.
+void bindPlan(py::module_& m) {
   m.def(
       "plan",
       [](py::handle source, py::handle start, py::handle goal, std::optional<JointLimits> limits,
@@ -231,7 +233,10 @@ void bindPlanning(py::module_& m) {
       "'shortcuts': shortcutting and vertex reduction only, fewer checks). Edges are checked "
       "every `resolution`, on a model (or a checker answering from one) every "
       "`model_resolution` (0: 3 times `resolution`).");
+}
 
+/// plan_verified: a plan on an approximate source, verified and repaired.
+void bindPlanVerified(py::module_& m) {
   m.def(
       "plan_verified",
       [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
@@ -297,7 +302,10 @@ void bindPlanning(py::module_& m) {
       "model's path colliding, the detector first learns the answers its model got wrong and "
       "plans again, up to N times, before repairing. The shares are of `time_limit`: "
       "docs/planning.md and PlannerOptions in fastron/planning/planner.h.");
+}
 
+/// Path checks and path files.
+void bindPaths(py::module_& m) {
   m.def(
       "check_path",
       [](const CollisionChecker& checker, py::handle path, double resolution) {
@@ -333,6 +341,15 @@ void bindPlanning(py::module_& m) {
       py::arg("file"), py::arg("robot"),
       "Reads a path CSV (fastron plan --out's format) of this robot's joints as a (k, d) array; "
       "raises FileError naming the file, line and column of a problem.");
+}
+
+}  // namespace
+
+void bindPlanning(py::module_& m) {
+  bindPlanResults(m);
+  bindPlan(m);
+  bindPlanVerified(m);
+  bindPaths(m);
 }
 
 }  // namespace fastron::python

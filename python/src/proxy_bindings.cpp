@@ -103,9 +103,8 @@ py::tuple trainScene(
   return py::make_tuple(std::const_pointer_cast<Model>(trained.model), rounds, trained.chosenRound);
 }
 
-}  // namespace
-
-void bindProxy(py::module_& m) {
+/// answers_missed_by and train_scene.
+void bindLabellingAndTraining(py::module_& m) {
   m.def(
       "answers_missed_by",
       [](const Model& model, py::handle x, py::handle y) {
@@ -143,6 +142,10 @@ void bindProxy(py::module_& m) {
         "k-th grown oracle's, candidate: 0 `features`, k the k-th alternative), and the index of "
         "the round whose model, the closest to the targets, is returned. "
         "The GIL is released while it trains (a Python oracle takes it for each call).");
+}
+
+/// StepReport and BackgroundHealth.
+void bindStepReports(py::module_& m) {
   py::class_<StepReport>(m, "StepReport", "What one initialize() or step() did.")
       .def_readonly("update", &StepReport::update)
       .def_readonly("labelled", &StepReport::labelled, "Oracle calls made.")
@@ -171,7 +174,10 @@ void bindProxy(py::module_& m) {
                ", faults=" + std::to_string(h.faults) +
                ", consecutive_faults=" + std::to_string(h.consecutiveFaults) + ")";
       });
+}
 
+/// ProxyCollisionDetector.
+void bindDetector(py::module_& m) {
   py::class_<ProxyCollisionDetector, DetectorHolder>(
       m, "ProxyCollisionDetector",
       "Fig. 2 of the paper: keeps a Fastron model of an oracle's C-space current while the world "
@@ -248,6 +254,14 @@ void bindProxy(py::module_& m) {
       .def_property_readonly("background_running", &ProxyCollisionDetector::backgroundRunning)
       .def_property_readonly("features", &ProxyCollisionDetector::features)
       .def_property_readonly("limits", &ProxyCollisionDetector::limits);
+}
+
+}  // namespace
+
+void bindProxy(py::module_& m) {
+  bindLabellingAndTraining(m);
+  bindStepReports(m);
+  bindDetector(m);
 }
 
 }  // namespace fastron::python
