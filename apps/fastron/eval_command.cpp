@@ -80,7 +80,8 @@ std::string missesByLink(const Model& model, const SceneChecker& exact, const Da
 /// Where the model is wrong about free states, by their distance to the nearest obstacle: for
 /// each band, how many free states lie in it and the share the model calls colliding. A model
 /// that is accurate on average can still close a passage that a planner needs, because the
-/// states there lie close to obstacles (docs/log/2026-11-26-generated-cage-and-box-families.md, "Families beyond the samples").
+/// states there lie close to obstacles (docs/log/2026-11-26-generated-cage-and-box-families.md,
+/// "Families beyond the samples").
 std::string freeStatesByClearance(const Dataset& data, const std::vector<double>& clearance,
                                   const Eigen::VectorXd& scores) {
   constexpr std::array<double, 3> kBounds{0.01, 0.02, 0.05};  // metres

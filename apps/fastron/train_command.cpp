@@ -156,7 +156,8 @@ int trainOnScene(const TrainOptions& o) {
   const bool selfAlone = selfCollisionsAlone(o);
   const Scene scene = sceneFromOptions(o.scene);
   // Self-collisions depend on the joint values alone, and a kernel over them modelled them better
-  // than one over control points (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A self-collision model learned once").
+  // than one over control points (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A
+  // self-collision model learned once").
   FeatureOptions featureOptions = o.features;
   if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
   const FeatureMap features = featuresFromOptions(featureOptions, robot);

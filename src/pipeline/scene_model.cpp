@@ -45,7 +45,8 @@ VerifiedPlan planOnSplitModel(const std::shared_ptr<const CollisionChecker>& spl
                               const Eigen::VectorXd& goal, const PlannerOptions& options) {
   // A conservative self model near an end (a grasp, a folded arm) closes the way as an obstacle
   // model near a wall does; planned on alone, the whole motion then went to `exact`
-  // (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "The optimistic hybrid for `--self-model`").
+  // (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "The optimistic hybrid for
+  // `--self-model`").
   return planVerifiedOptimistically(split, exact, limits, start, goal, options);
 }
 

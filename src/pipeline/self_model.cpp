@@ -56,7 +56,8 @@ void hashShape(Hash& h, const Shape& shape) {
 }
 
 /// The preset of the self-collision model: joint-space RQ kernel, gamma 5 and beta 500, no band
-/// (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A self-collision model learned once").
+/// (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A self-collision model learned
+/// once").
 ProxyParams selfModelParams(std::uint64_t seed) {
   return withoutBand(robotProxyParams(5, 500, seed));
 }

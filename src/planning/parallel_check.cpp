@@ -22,7 +22,8 @@ struct Item {
 // where a background model update owns the other core it only takes turns with it: on Baxter
 // among boxes (0.7-1 us a state, paths of 100-400 states) two threads verified 1.35 times faster
 // in `bench plan` and no faster in `fastron demo`; on the mesh Panda (about 10 us a state) 1.6-1.7
-// times faster in `bench motion-bench` (docs/log/2026-11-23-motion-bench-panda-meshes-and-srdf.md, "Verification on every core").
+// times faster in `bench motion-bench` (docs/log/2026-11-23-motion-bench-panda-meshes-and-srdf.md,
+// "Verification on every core").
 constexpr std::size_t kProbe = 16;
 constexpr std::chrono::microseconds kParallelWork{250};
 // States handed to a thread at a time: few, so that the bisection order is kept roughly, and

@@ -70,9 +70,9 @@ inline constexpr std::size_t kSceneSamples = 16000;
 /// regions (shelves) once the rounds have supplied the samples it needs. The mesh Panda in the 20
 /// sample MotionBenchMaker scenes, 3 seeds, with the rounds: accuracy 0.976 and TPR 0.962, both
 /// 0.97 and 0.95 in 49 of 60 trainings, against 44 with gamma 40 and beta 60 and 34 without rounds
-/// (docs/log/2026-11-24-training-on-scenes-rounds-and-candidates.md, "Training on one scene"). Planners that train per query (`fastron plan`,
-/// motion-bench) keep the smaller, cheaper models: there larger ones planned slower, counting their
-/// training or not.
+/// (docs/log/2026-11-24-training-on-scenes-rounds-and-candidates.md, "Training on one scene").
+/// Planners that train per query (`fastron plan`, motion-bench) keep the smaller, cheaper models:
+/// there larger ones planned slower, counting their training or not.
 TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels = false);
 
 enum class StopReason {

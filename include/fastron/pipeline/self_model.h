@@ -46,11 +46,12 @@ struct SelfModel {
 };
 
 /// `robot`'s self-collision model over its actuated joints (joint features; an RQ kernel, gamma
-/// 5 and beta 500, as measured in docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A self-collision model learned once"):
-/// read from selfModelFile when it is there and readable, else trained on FCL's labels of the
-/// robot alone and written there (to a temporary file first, then moved: a run stopped halfway
-/// leaves no half file; two runs that train at once write the same model). Throws FileError
-/// when the cache directory cannot be made or written. Not thread-safe for one cache file.
+/// 5 and beta 500, as measured in docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A
+/// self-collision model learned once"): read from selfModelFile when it is there and readable, else
+/// trained on FCL's labels of the robot alone and written there (to a temporary file first, then
+/// moved: a run stopped halfway leaves no half file; two runs that train at once write the same
+/// model). Throws FileError when the cache directory cannot be made or written. Not thread-safe for
+/// one cache file.
 SelfModel selfCollisionModel(const Robot& robot, const SelfModelOptions& options = {});
 
 }  // namespace pipeline

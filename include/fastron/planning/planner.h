@@ -111,7 +111,8 @@ struct PlannerOptions {
   /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found
   /// no path, most often because an end sits in a pocket the model closed (a goal inside a
   /// cage), and RRT-Connect adds a motion only when it is free over its whole length: shorter
-  /// motions leave a pocket sooner (docs/log/2026-11-28-a-shorter-range-for-the-hybrid.md, "A shorter range for the hybrid").
+  /// motions leave a pocket sooner (docs/log/2026-11-28-a-shorter-range-for-the-hybrid.md, "A
+  /// shorter range for the hybrid").
   double hybridRange = 0;
 };
 
