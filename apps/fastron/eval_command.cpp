@@ -153,13 +153,16 @@ void writeAlongPath(const EvalOptions& o, const experiments::Table& table) {
   std::cout << '\n';
 }
 
-int runEval(const EvalOptions& o) {
-  // --robot with --self-collision alone: a model of the robot's self-collisions (fastron train
-  // --robot R --self-collision), against the exact checker on the robot without obstacles.
+/// --robot with --self-collision alone: a model of the robot's self-collisions (fastron train
+/// --robot R --self-collision), against the exact checker on the robot without obstacles.
+bool selfCollisionsAlone(const EvalOptions& o) {
+  return o.data.empty() && o.scene.file.empty() && o.scene.selfCollision && !o.robot.robot.empty();
+}
+
+/// Throws InvalidArgument naming the options that do not go together.
+void checkEvalOptions(const EvalOptions& o) {
   const bool hasScene = !o.scene.file.empty();
-  const bool selfAlone =
-      o.data.empty() && !hasScene && o.scene.selfCollision && !o.robot.robot.empty();
-  if (!selfAlone && o.data.empty() == !hasScene) {
+  if (!selfCollisionsAlone(o) && o.data.empty() == !hasScene) {
     throw InvalidArgument(
         "give --data (a labelled dataset) or --robot with --scene, not both (or --robot with "
         "--self-collision alone: the robot's self-collisions)");
@@ -172,26 +175,60 @@ int runEval(const EvalOptions& o) {
     throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
                           " needs --robot and --scene");
   }
+}
+
+/// Configurations labelled by `exact`: uniform samples, or the states along --path.
+Dataset labelledSamples(const EvalOptions& o, const Robot& robot, const SceneChecker& exact) {
+  if ((o.clearance || !o.path.empty()) && !exact.measuresDistance()) {
+    throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
+                          " needs a checker that measures distances, not " + exact.name());
+  }
+  Dataset data;
+  if (o.path.empty()) {
+    Rng rng(o.seed);
+    data.points = uniformConfigurations(robot.limits(), o.samples, rng);
+  } else {
+    data.points = statesAlongPath(readPathCsv(o.path, robot.actuatedJointNames()),
+                                  o.resolution.value_or(kPathResolution));
+  }
+  data.labels = labelConfigurations(exact, data.points);
+  return data;
+}
+
+/// "data        20000 uniform configurations of S labelled by FCL (seed 2), 31.2% in collision".
+void printDataLine(const EvalOptions& o, const Dataset& data, const ConfusionCounts& c,
+                   const SceneChecker* exact) {
+  if (!exact) {
+    std::cout << "data        " << o.data << ": " << data.size() << " configurations\n";
+    return;
+  }
+  std::cout << "data        " << data.size();
+  if (o.path.empty()) {
+    std::cout << " uniform configurations of "
+              << (selfCollisionsAlone(o) ? std::string("the robot without obstacles")
+                                         : o.scene.file)
+              << " labelled by " << exact->name() << " (seed " << o.seed << "), ";
+  } else {
+    std::cout << " states along " << o.path << " (every " << o.resolution.value_or(kPathResolution)
+              << " rad, as a planner checks its edges) in " << o.scene.file << " labelled by "
+              << exact->name() << ", ";
+  }
+  std::cout << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
+                    static_cast<double>(data.size()))
+            << " in collision\n";
+}
+
+int runEval(const EvalOptions& o) {
+  checkEvalOptions(o);
   std::optional<Robot> robot;
   if (!o.robot.robot.empty()) robot = loadRobotFromOptions(o.robot);
   const Model model = robot ? loadModelFor(o.model, *robot) : loadModel(o.model);
 
   Dataset data;
   std::shared_ptr<const SceneChecker> exact;
-  if (hasScene || selfAlone) {
+  if (!o.scene.file.empty() || selfCollisionsAlone(o)) {
     exact = checkerFromOptions(o.scene, *robot, sceneFromOptions(o.scene));
-    if ((o.clearance || !o.path.empty()) && !exact->measuresDistance()) {
-      throw InvalidArgument(std::string(o.path.empty() ? "--clearance" : "--path") +
-                            " needs a checker that measures distances, not " + exact->name());
-    }
-    if (o.path.empty()) {
-      Rng rng(o.seed);
-      data.points = uniformConfigurations(robot->limits(), o.samples, rng);
-    } else {
-      data.points = statesAlongPath(readPathCsv(o.path, robot->actuatedJointNames()),
-                                    o.resolution.value_or(kPathResolution));
-    }
-    data.labels = labelConfigurations(*exact, data.points);
+    data = labelledSamples(o, *robot, *exact);
   } else {
     data = readDataset(o.data);
   }
@@ -217,24 +254,7 @@ int runEval(const EvalOptions& o) {
             << model.supportCount() << " support points, features " << model.features().summary()
             << ", kernel " << toString(model.kernel().type) << " gamma " << model.kernel().gamma
             << ", " << describeTerms(model.kernel(), model.featureDim()) << '\n';
-  if (exact) {
-    std::cout << "data        " << data.size();
-    if (o.path.empty()) {
-      std::cout << " uniform configurations of "
-                << (selfAlone ? std::string("the robot without obstacles") : o.scene.file)
-                << " labelled by " << exact->name() << " (seed " << o.seed << "), ";
-    } else {
-      std::cout << " states along " << o.path << " (every "
-                << o.resolution.value_or(kPathResolution)
-                << " rad, as a planner checks its edges) in " << o.scene.file << " labelled by "
-                << exact->name() << ", ";
-    }
-    std::cout << rate(static_cast<double>(c.truePositives + c.falseNegatives) /
-                      static_cast<double>(data.size()))
-              << " in collision\n";
-  } else {
-    std::cout << "data        " << o.data << ": " << data.size() << " configurations\n";
-  }
+  printDataLine(o, data, c, exact.get());
   std::cout << "accuracy    " << rate(c.accuracy()) << "\nTPR         " << rate(c.tpr())
             << "\nTNR         " << rate(c.tnr()) << '\n';
   std::cout << "confusion   TP " << c.truePositives << ", TN " << c.trueNegatives << ", FP "

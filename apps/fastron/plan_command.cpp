@@ -142,89 +142,68 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
                                     start, goal, options);
 }
 
-int runPlan(const PlanOptions& o) {
-  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
-  RobotDescription description = robotDescriptionFromOptions(o.robot);
-  const Scene scene = sceneFromOptions(o.scene);
+/// The robot to plan (the request's group, unless --joints or --group chose the joints; other
+/// joints where the scene and the start state put them) and the query's ends.
+struct PlanQuery {
+  Robot robot;
   Eigen::VectorXd start, goal;
-  if (!o.request.empty()) {
-    if (!o.start.empty() || !o.goal.empty())
-      throw InvalidArgument("give either --request or --start and --goal, not both");
-    // The request's group, unless --joints or --group chose the joints; other joints where the
-    // scene and the start state put them.
-    const PlanRequest request = loadMoveItRequest(o.request);
-    const bool jointsChosen = !o.robot.joints.empty() || !o.robot.group.empty();
-    RequestRobot forRequest =
-        robotForRequest(std::move(description.robot),
-                        jointsChosen ? std::vector<SrdfGroup>{} : description.srdf.groups, scene,
-                        request, o.request);
-    if (!forRequest.warning.empty())
-      std::cerr << "fastron: warning: " << forRequest.warning << '\n';
-    description.robot = std::move(forRequest.robot);
-    RequestEnds ends = requestEnds(description.robot, request, o.request);
-    start = std::move(ends.start);
-    goal = std::move(ends.goal);
-  }
-  const Robot& robot = description.robot;
-  const JointLimits limits = robot.limits();
+};
+
+PlanQuery planQuery(const PlanOptions& o, const Scene& scene) {
+  RobotDescription description = robotDescriptionFromOptions(o.robot);
   if (o.request.empty()) {
     if (o.start.empty() || o.goal.empty())
       throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
-    start = configurationFromOption(o.start, robot, "--start");
-    goal = configurationFromOption(o.goal, robot, "--goal");
+    PlanQuery query{std::move(description.robot), {}, {}};
+    query.start = configurationFromOption(o.start, query.robot, "--start");
+    query.goal = configurationFromOption(o.goal, query.robot, "--goal");
+    return query;
   }
-  if (!o.selfModel.empty() && !o.scene.selfCollision) {
-    throw InvalidArgument(
-        "--self-model needs --self-collision: the final path is checked for self-collisions too");
-  }
-  if (!o.selfModel.empty() && o.checker != "fastron") {
-    throw InvalidArgument("--self-model goes with --checker fastron, not " + o.checker);
-  }
-  const std::shared_ptr<const SceneChecker> exact = checkerFromOptions(o.scene, robot, scene);
-  const PlannerOptions options{.type = parsePlannerType(o.planner),
-                               .range = o.range,
-                               .resolution = o.resolution,
-                               .modelResolution = o.modelResolution,
-                               .timeLimit = o.timeLimit,
-                               .simplifyTime = o.simplifyTime,
-                               .simplification = o.simplification};
-  validate(options);
+  if (!o.start.empty() || !o.goal.empty())
+    throw InvalidArgument("give either --request or --start and --goal, not both");
+  const PlanRequest request = loadMoveItRequest(o.request);
+  const bool jointsChosen = !o.robot.joints.empty() || !o.robot.group.empty();
+  RequestRobot forRequest = robotForRequest(
+      std::move(description.robot),
+      jointsChosen ? std::vector<SrdfGroup>{} : description.srdf.groups, scene, request, o.request);
+  if (!forRequest.warning.empty()) std::cerr << "fastron: warning: " << forRequest.warning << '\n';
+  RequestEnds ends = requestEnds(forRequest.robot, request, o.request);
+  return {std::move(forRequest.robot), std::move(ends.start), std::move(ends.goal)};
+}
 
-  std::cout << "robot    " << robot.name() << ", " << robot.dof() << " actuated joints\n"
-            << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
-  for (const auto& [what, q] : {std::pair{"start", &start}, std::pair{"goal", &goal}}) {
-    if (const std::string contact = contactAt(*exact, *q); !contact.empty()) {
-      std::cout << what << " in collision under " << exact->name() << ": " << contact << '\n';
-      return 1;
-    }
+/// The plan of the method --checker names: an exact checker's (verified with `exact` when it is
+/// another), or Fastron's (with --self-model, a --model file, or the default method).
+VerifiedPlan planByMethod(const PlanOptions& o, const PlanQuery& q, const Scene& scene,
+                          const std::shared_ptr<const SceneChecker>& exact,
+                          const PlannerOptions& options) {
+  const JointLimits limits = q.robot.limits();
+  if (o.checker == o.scene.checker) return planExactly(exact, limits, q.start, q.goal, options);
+  if (o.checker != "fastron") {  // another exact checker, verified with `exact`
+    const auto other = makeSceneChecker(o.checker, q.robot, scene, checkerOptionsFrom(o.scene));
+    return planVerified(other, exact, limits, q.start, q.goal, options);
   }
-
-  VerifiedPlan plan;
-  if (o.checker == o.scene.checker) {
-    plan = planExactly(exact, limits, start, goal, options);
-  } else if (o.checker != "fastron") {  // another exact checker, verified with `exact`
-    const auto other = makeSceneChecker(o.checker, robot, scene, checkerOptionsFrom(o.scene));
-    plan = planVerified(other, exact, limits, start, goal, options);
-  } else if (!o.selfModel.empty()) {
-    plan = planWithSelfModel(o, robot, scene, exact, start, goal, options);
-  } else if (!o.model.empty()) {
+  if (!o.selfModel.empty())
+    return planWithSelfModel(o, q.robot, scene, exact, q.start, q.goal, options);
+  if (!o.model.empty()) {
     // A model read from a file has no calibrated band: the planner falls back from it to `exact`
     // directly.
-    plan = planVerified(CalibratedModel{readModel(o.model, robot, "model    "), {}, 0}, exact,
-                        limits, start, goal, options);
-  } else {
-    // The default method (pipeline/scene_model.h; bench motion-bench's "Fastron"): a model of
-    // the obstacles alone, self-collisions, when checked, left to verification; with
-    // --learning-rounds N it learns what verification found it got wrong and plans again before
-    // repairing.
-    pipeline::SceneModel model = trainObstacleModel(o, robot, scene);
-    PlannerOptions learning = options;
-    learning.learningRounds = o.learningRounds;
-    plan = pipeline::planOnSceneModel(model, exact, limits, start, goal, learning);
+    return planVerified(CalibratedModel{readModel(o.model, q.robot, "model    "), {}, 0}, exact,
+                        limits, q.start, q.goal, options);
   }
+  // The default method (pipeline/scene_model.h; bench motion-bench's "Fastron"): a model of the
+  // obstacles alone, self-collisions, when checked, left to verification; with --learning-rounds
+  // N it learns what verification found it got wrong and plans again before repairing.
+  pipeline::SceneModel model = trainObstacleModel(o, q.robot, scene);
+  PlannerOptions learning = options;
+  learning.learningRounds = o.learningRounds;
+  return pipeline::planOnSceneModel(model, exact, limits, q.start, q.goal, learning);
+}
 
+/// The plan's report: what planned, its status, where the time went, the checks, the path.
+void printPlan(const PlanOptions& o, const VerifiedPlan& plan, const SceneChecker& exact,
+               const PlannerOptions& options) {
   std::cout << "planner  " << plannerName(options.type) << " on " << o.checker
-            << (o.checker == o.scene.checker ? "" : ", verified and repaired with " + exact->name())
+            << (o.checker == o.scene.checker ? "" : ", verified and repaired with " + exact.name())
             << '\n'
             << "path of  " << plan.plannedOn << '\n'
             << "status   " << (plan.solved() ? "solved" : plan.failure) << '\n'
@@ -235,13 +214,13 @@ int runPlan(const PlanOptions& o) {
             << durationText(inSeconds(plan.repairTime)) << ", total "
             << durationText(inSeconds(plan.totalTime())) << '\n';
   std::cout << "plans    " << attemptsText(plan.attempts) << '\n'
-            << "checks   " << exact->name() << " " << plan.exactChecks;
+            << "checks   " << exact.name() << " " << plan.exactChecks;
   if (plan.relaxedChecks > 0) {
-    std::cout << "; the model's oracle (" << exact->name() << ", obstacles only) "
+    std::cout << "; the model's oracle (" << exact.name() << ", obstacles only) "
               << plan.relaxedChecks;
   }
   std::cout << '\n';
-  if (!plan.solved()) return 1;
+  if (!plan.solved()) return;
   std::cout << "path     " << plan.path.size() << " waypoints, length " << std::setprecision(4)
             << pathLength(plan.path) << " (joint space), " << plan.invalidStretches
             << " stretch(es) repaired";
@@ -249,8 +228,43 @@ int runPlan(const PlanOptions& o) {
     std::cout << ", the model learned from verification " << plan.relearned << " time(s) first";
   }
   std::cout << '\n';
+}
+
+int runPlan(const PlanOptions& o) {
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(o.seed));
+  const Scene scene = sceneFromOptions(o.scene);
+  const PlanQuery query = planQuery(o, scene);
+  if (!o.selfModel.empty() && !o.scene.selfCollision) {
+    throw InvalidArgument(
+        "--self-model needs --self-collision: the final path is checked for self-collisions too");
+  }
+  if (!o.selfModel.empty() && o.checker != "fastron") {
+    throw InvalidArgument("--self-model goes with --checker fastron, not " + o.checker);
+  }
+  const std::shared_ptr<const SceneChecker> exact = checkerFromOptions(o.scene, query.robot, scene);
+  const PlannerOptions options{.type = parsePlannerType(o.planner),
+                               .range = o.range,
+                               .resolution = o.resolution,
+                               .modelResolution = o.modelResolution,
+                               .timeLimit = o.timeLimit,
+                               .simplifyTime = o.simplifyTime,
+                               .simplification = o.simplification};
+  validate(options);
+
+  std::cout << "robot    " << query.robot.name() << ", " << query.robot.dof()
+            << " actuated joints\n"
+            << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
+  for (const auto& [what, q] : {std::pair{"start", &query.start}, std::pair{"goal", &query.goal}}) {
+    if (const std::string contact = contactAt(*exact, *q); !contact.empty()) {
+      std::cout << what << " in collision under " << exact->name() << ": " << contact << '\n';
+      return 1;
+    }
+  }
+  const VerifiedPlan plan = planByMethod(o, query, scene, exact, options);
+  printPlan(o, plan, *exact, options);
+  if (!plan.solved()) return 1;
   if (!o.out.empty()) {
-    writePathCsv(plan.path, robot.actuatedJointNames(), o.out);
+    writePathCsv(plan.path, query.robot.actuatedJointNames(), o.out);
     std::cout << "written  " << o.out << '\n';
   }
   return 0;

@@ -284,6 +284,70 @@ int runTrain(const TrainOptions& o) {
   return 0;
 }
 
+/// With --scene: the samples, the held-out rounds and their targets, the margins, the candidates.
+void addSceneTrainingOptions(CLI::App& cmd, TrainOptions& o) {
+  cmd.add_option("--samples", o.samples,
+                 "with --scene: uniform samples labelled by the exact checker")
+      ->capture_default_str()
+      ->check(numberAbove(0));
+  cmd.add_option("--active-learning", o.activeLearning,
+                 "with --scene: rounds of active learning (Algorithm 2) after the first update")
+      ->capture_default_str();
+  cmd.add_option("--held-out", o.heldOut.samplesPerRound,
+                 "with --scene: fresh labelled configurations per round on which the model "
+                 "is measured; below the targets it learns them and is measured on new ones "
+                 "(0: no rounds)")
+      ->capture_default_str();
+  cmd.add_option("--target-accuracy", o.heldOut.accuracy,
+                 "with --scene: held-out accuracy to reach")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd.add_option("--target-tpr", o.heldOut.truePositiveRate, "with --scene: held-out TPR to reach")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd.add_option("--max-samples", o.heldOut.maxTrainingSamples,
+                 "with --scene: no more held-out rounds once the model has learned this many "
+                 "labelled configurations")
+      ->capture_default_str();
+  cmd.add_option("--margins", o.margins,
+                 "with --scene: obstacle margins (m, increasing, comma-separated) of the labels "
+                 "a round learns when it meets the target accuracy and misses the TPR; the "
+                 "rounds are measured on exact labels (--margins 0: none)")
+      ->delimiter(',')
+      ->check(numberAbove(0, true))
+      ->capture_default_str();
+  cmd.add_flag("--second-candidate,!--no-second-candidate", o.secondCandidate,
+               "with --scene and automatic fk control points, no --self-collision: a round that "
+               "misses the targets also trains a model with one more control point and beta 10 "
+               "(or --beta) "
+               "on the same samples, and the one closer to the targets is kept (default: on)");
+}
+
+/// Algorithm 1's settings: kernel, its terms, conditional bias, limits of the run.
+void addAlgorithmOptions(CLI::App& cmd, TrainOptions& o) {
+  cmd.add_option("--gamma", o.gamma,
+                 "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
+                 "features, 60 for fk with --scene, 5 for joints)");
+  cmd.add_option("--kernel", o.kernel, "rq (rational quadratic) or gaussian")
+      ->capture_default_str();
+  cmd.add_option("--kernel-block", o.kernelBlock,
+                 "features per kernel point term: 0 one term over all features, 3 one term per "
+                 "control point (default: 3 for fk features without --self-collision, 0 "
+                 "otherwise)");
+  cmd.add_option("--kernel-whole-share", o.wholeShare,
+                 "with point terms: the whole feature vector's share of the kernel, in [0, 1] "
+                 "(default 0.5)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd.add_option("--beta", o.beta,
+                 "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 30 for "
+                 "fk features, 40 for fk with --scene, 10 for fk with --self-collision, 500 for "
+                 "joints)");
+  cmd.add_option("--max-iter", o.maxIterations,
+                 "iteration limit (default 5000; 20000 with --scene)");
+  cmd.add_option("--max-support", o.maxSupport,
+                 "support-point cap (default 3000; 5000 with --robot)");
+}
+
 }  // namespace
 
 void addTrainCommand(CLI::App& app, int& exitCode) {
@@ -302,64 +366,9 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
                             "default), for fastron plan --self-model",
        .checkerRole = "labels the samples (with --robot)"});
   addFeatureOptions(*cmd, o->features);
-  cmd->add_option("--samples", o->samples,
-                  "with --scene: uniform samples labelled by the exact checker")
-      ->capture_default_str()
-      ->check(numberAbove(0));
-  cmd->add_option("--active-learning", o->activeLearning,
-                  "with --scene: rounds of active learning (Algorithm 2) after the first update")
-      ->capture_default_str();
-  cmd->add_option("--held-out", o->heldOut.samplesPerRound,
-                  "with --scene: fresh FCL-labelled configurations per round on which the model "
-                  "is measured; below the targets it learns them and is measured on new ones "
-                  "(0: no rounds)")
-      ->capture_default_str();
-  cmd->add_option("--target-accuracy", o->heldOut.accuracy,
-                  "with --scene: held-out accuracy to reach")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--target-tpr", o->heldOut.truePositiveRate,
-                  "with --scene: held-out TPR to reach")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--max-samples", o->heldOut.maxTrainingSamples,
-                  "with --scene: no more held-out rounds once the model has learned this many "
-                  "labelled configurations")
-      ->capture_default_str();
-  cmd->add_option("--margins", o->margins,
-                  "with --scene: obstacle margins (m, increasing, comma-separated) of the labels "
-                  "a round learns when it meets the target accuracy and misses the TPR; the "
-                  "rounds are measured on exact labels (--margins 0: none)")
-      ->delimiter(',')
-      ->check(numberAbove(0, true))
-      ->capture_default_str();
-  cmd->add_flag("--second-candidate,!--no-second-candidate", o->secondCandidate,
-                "with --scene and automatic fk control points, no --self-collision: a round that "
-                "misses the targets also trains a model with one more control point and beta 10 "
-                "(or --beta) "
-                "on the same samples, and the one closer to the targets is kept (default: on)");
+  addSceneTrainingOptions(*cmd, *o);
   cmd->add_option("-o,--output", o->output, "model file to write")->required();
-  cmd->add_option("--gamma", o->gamma,
-                  "kernel width (default: 10 for a dataset alone; with --robot 40 for fk "
-                  "features, 60 for fk with --scene, 5 for joints)");
-  cmd->add_option("--kernel", o->kernel, "rq (rational quadratic) or gaussian")
-      ->capture_default_str();
-  cmd->add_option("--kernel-block", o->kernelBlock,
-                  "features per kernel point term: 0 one term over all features, 3 one term per "
-                  "control point (default: 3 for fk features without --self-collision, 0 "
-                  "otherwise)");
-  cmd->add_option("--kernel-whole-share", o->wholeShare,
-                  "with point terms: the whole feature vector's share of the kernel, in [0, 1] "
-                  "(default 0.5)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--beta", o->beta,
-                  "conditional bias, >= 1 (default: 1 for a dataset alone; with --robot 30 for "
-                  "fk features, 40 for fk with --scene, 10 for fk with --self-collision, 500 for "
-                  "joints)");
-  cmd->add_option("--max-iter", o->maxIterations,
-                  "iteration limit (default 5000; 20000 with --scene)");
-  cmd->add_option("--max-support", o->maxSupport,
-                  "support-point cap (default 3000; 5000 with --robot)");
+  addAlgorithmOptions(*cmd, *o);
   cmd->add_option(
          "--limits", o->limits,
          "joint limits LOWER:UPPER per column, comma-separated (write --limits=-3.14:3.14,...); "
