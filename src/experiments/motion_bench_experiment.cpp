@@ -205,149 +205,182 @@ void writeRowsSoFar(const PlanRows& rows, const std::filesystem::path& path) {
   std::filesystem::rename(partial, path);
 }
 
-void runProblem(const Problem& problem, std::size_t p, const RobotDescription& description,
-                const MotionBenchOptions& o, const Progress& progress, RobotModels& models,
-                PlanRows& results) {
+/// What the queries of one problem share: its robot and ends, the exact checkers, the scene's
+/// models (the paper's recipe, the default method's, the split source) and their scores.
+struct ProblemRun {
+  explicit ProblemRun(Robot r) : robot(std::move(r)) {}
+  Robot robot;
+  PlanRequest request;
+  Eigen::VectorXd start, goal;
+  std::string note;                                ///< a grasp allowed, or empty
+  std::shared_ptr<const SceneChecker> fcl, audit;  ///< the planners' and the final paths' judge
+  std::unique_ptr<ProxyCollisionDetector> paper;   ///< the paper's model of everything FCL checks
+  CalibratedModel calibrated;
+  double paperTrain = 0, paperSupport = 0;
+  ConfusionCounts paperQuality;
+  pipeline::SceneModel obstacles;  ///< the default method's model
+  double obstaclesSupport = 0;     ///< its |S| as trained (the split source's)
+  Configurations test;             ///< fresh uniform configurations the models are scored on
+  Labels truth, obstacleTruth;     ///< of `test`, by the audit and by the default model's oracle
+  std::shared_ptr<const CollisionChecker> split;  ///< with a self-collision model
+  ConfusionCounts splitQuality;
+};
+
+/// Reads problem `p`, finds its robot (the request's group; RobotModels follow a new robot) and
+/// trains the scene's models.
+ProblemRun prepareProblem(const Problem& problem, std::size_t p,
+                          const RobotDescription& description, const MotionBenchOptions& o,
+                          const Progress& progress, RobotModels& models, PlanRows& results) {
   Scene scene = loadScene(problem.scene);
-  const PlanRequest request = loadMoveItRequest(problem.request);
-  const RequestRobot forRequest = robotForRequest(description.robot, description.srdf.groups, scene,
-                                                  request, problem.request.string());
+  PlanRequest request = loadMoveItRequest(problem.request);
+  RequestRobot forRequest = robotForRequest(description.robot, description.srdf.groups, scene,
+                                            request, problem.request.string());
   if (!forRequest.warning.empty() && std::find(results.warnings.begin(), results.warnings.end(),
                                                forRequest.warning) == results.warnings.end())
     results.warnings.push_back(forRequest.warning);
-  const Robot& robot = forRequest.robot;
+  ProblemRun run(std::move(forRequest.robot));
+  run.request = std::move(request);
+  const Robot& robot = run.robot;
   if (const std::uint64_t checksum = kinematicsChecksum(robot); checksum != models.checksum) {
     models = {checksum, robotFeatures(robot, o.features), nullptr, 0};
     if (o.selfModel) learnSelfCollisions(robot, o, progress, models);
   }
-  const JointLimits limits = robot.limits();
-  const FeatureMap& features = models.features;
   const CheckerOptions checking{.selfCollision = o.selfCollision,
                                 .proveMotionsFree = !o.denseChecks};
-  const std::shared_ptr<const Model>& selfModel = models.selfModel;
-  const double selfTrainSeconds = models.selfTrainSeconds;
-  const std::size_t samples = trainingSamples(o);
-  const std::size_t updates = trainingUpdates(o);
-  const RequestEnds ends = requestEnds(robot, request, problem.request.string());
-  const Eigen::VectorXd& start = ends.start;
-  const Eigen::VectorXd& goal = ends.goal;
-  const std::string note = allowGrasp(robot, scene, goal);
-  auto fcl = makeSceneChecker("fcl", robot, scene, checking);
-  const auto audit = makeSceneChecker("fcl", robot, scene, checking);
+  const RequestEnds ends = requestEnds(robot, run.request, problem.request.string());
+  run.start = ends.start;
+  run.goal = ends.goal;
+  run.note = allowGrasp(robot, scene, run.goal);
+  run.fcl = makeSceneChecker("fcl", robot, scene, checking);
+  run.audit = makeSceneChecker("fcl", robot, scene, checking);
 
   const ProxyParams params =
       withKernelOptions(pipeline::forStaticScene(pipeline::robotProxyParams(
                             o.features, 5, 500, o.seed + p, o.selfCollision)),
                         o);
-  ProxyCollisionDetector proxy(fcl, features, params);
-  const double trainSeconds = train(proxy, samples, updates);
-  CalibratedModel calibrated = proxy.calibratedModel();
-  auto support = static_cast<double>(calibrated.model->supportCount());
+  run.paper = std::make_unique<ProxyCollisionDetector>(run.fcl, models.features, params);
+  run.paperTrain = train(*run.paper, trainingSamples(o), trainingUpdates(o));
+  run.calibrated = run.paper->calibratedModel();
+  run.paperSupport = static_cast<double>(run.calibrated.model->supportCount());
   // The models' accuracy beside their speed: fresh uniform configurations of this scene,
   // labelled by the audit FCL (self-collision included when it is checked).
   Rng testRng(o.seed * 104729 + p);
-  const Configurations test = uniformConfigurations(limits, testPoints(o), testRng);
-  const Labels truth = labelConfigurations(*audit, test, 1);
-  ConfusionCounts quality = evaluate(*calibrated.model, test, truth);
+  run.test = uniformConfigurations(robot.limits(), testPoints(o), testRng);
+  run.truth = labelConfigurations(*run.audit, run.test, 1);
+  run.paperQuality = evaluate(*run.calibrated.model, run.test, run.truth);
   // The default method's model (what `fastron plan` trains, pipeline::trainSceneModel): of this
   // scene's obstacles alone (self-collisions, when checked, left to verification and learned
   // from it). With the robot's self-collision model beside it, also the split source.
-  pipeline::SceneModel sceneModel = pipeline::trainSceneModel(robot, scene, checking, features,
-                                                              {.samples = samples,
-                                                               .updates = updates,
-                                                               .seed = o.seed + p,
-                                                               .gamma = o.gamma,
-                                                               .beta = o.beta});
-  ProxyCollisionDetector& obstacles = *sceneModel.detector;
-  const double obstaclesTrain = sceneModel.trainSeconds;
-  const Labels obstacleTruth =  // of `test`, by the model's oracle
-      o.selfCollision ? labelConfigurations(*sceneModel.oracle, test, 1) : truth;
-  ConfusionCounts splitQuality;
-  std::shared_ptr<const CollisionChecker> split;
-  const auto obstaclesSupport = static_cast<double>(obstacles.model()->supportCount());
-  if (selfModel) {
-    split = pipeline::splitModel(obstacles.model(), selfModel);
-    const std::vector<std::uint8_t> predicted = split->inCollisionBatch(test);
-    splitQuality = confusionOf(truth, [&](std::size_t i) { return predicted[i] != 0; });
+  run.obstacles = pipeline::trainSceneModel(robot, scene, checking, models.features,
+                                            {.samples = trainingSamples(o),
+                                             .updates = trainingUpdates(o),
+                                             .seed = o.seed + p,
+                                             .gamma = o.gamma,
+                                             .beta = o.beta,
+                                             .checker = std::string(kDefaultSceneChecker)});
+  run.obstaclesSupport = static_cast<double>(run.obstacles.detector->model()->supportCount());
+  run.obstacleTruth =  // of `test`, by the model's oracle
+      o.selfCollision ? labelConfigurations(*run.obstacles.oracle, run.test, 1) : run.truth;
+  if (models.selfModel) {
+    run.split = pipeline::splitModel(run.obstacles.detector->model(), models.selfModel);
+    const std::vector<std::uint8_t> predicted = run.split->inCollisionBatch(run.test);
+    run.splitQuality = confusionOf(run.truth, [&](std::size_t i) { return predicted[i] != 0; });
   }
+  return run;
+}
 
-  Rng rng(o.seed * 7919 + p);
+/// Every method's plan of query `query` of problem `p` (0: the request; the others join two
+/// configurations free under FCL drawn from `rng`), as rows, the default method's first.
+std::vector<PlanRow> planQuery(ProblemRun& run, const Problem& problem, std::size_t p,
+                               std::size_t query, const MotionBenchOptions& o,
+                               const RobotModels& models, Rng& rng) {
+  const JointLimits limits = run.robot.limits();
   const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
+  const auto freeConfiguration = [&] {
+    return sampleFree(
+        *run.fcl, [&] { return uniformIn(limits, rng); }, "configuration");
+  };
+  const Eigen::VectorXd from = query == 0 ? run.start : freeConfiguration();
+  const Eigen::VectorXd to = query == 0 ? run.goal : freeConfiguration();
+  double learnSeconds = 0;
+  if (o.learnFromVerification && query > 0) {  // what the last query's plan taught it
+    learnSeconds = std::chrono::duration<double>(run.paper->learnObservations().total).count();
+    run.calibrated = run.paper->calibratedModel();
+    run.paperSupport = static_cast<double>(run.calibrated.model->supportCount());
+    // Each row scores the model it used.
+    run.paperQuality = evaluate(*run.calibrated.model, run.test, run.truth);
+  }
+  const std::vector<std::pair<std::string, std::string>> queryColumns{
+      {"family", problem.family},
+      {"problem", problem.id},
+      {"query", std::to_string(query)},
+      {"group", run.request.group.empty() ? "-" : run.request.group},
+      {"note", query == 0 ? run.note : ""}};
+  const std::size_t turn = p * o.queriesPerScene + query;
+  const std::vector<MethodPlan> plans = planWithEachChecker(
+      run.calibrated, nullptr, run.fcl, limits, from, to, options, o.seed, turn);
+  // Measured on the request only: its distances cost about a second per path on a mesh robot.
+  AlongFclPath along;
+  if (query == 0) {
+    const auto exact = std::find_if(plans.begin(), plans.end(),
+                                    [](const MethodPlan& m) { return m.method == "FCL"; });
+    if (exact != plans.end()) {
+      along = alongFclPath(exact->plan, *run.obstacles.detector->model(), *run.audit, o.resolution);
+    }
+  }
+  std::vector<PlanRow> rows;
+  const auto addRow = [&](const MethodPlan& each, double modelSupport,
+                          const ConfusionCounts& modelQuality, double trainS, double learnS) {
+    rows.push_back({queryColumns,
+                    "RRTConnect",
+                    each.method,
+                    outcomeOf(each, *run.audit, o.resolution),
+                    {{"support", modelSupport},
+                     {"accuracy", modelQuality.accuracy()},
+                     {"tpr", modelQuality.tpr()},
+                     {"train_s", trainS},
+                     {"self_train_s", models.selfTrainSeconds},
+                     {"learn_s", learnS},
+                     {"fcl_path_near_walls", along.nearWalls},
+                     {"fcl_path_called_colliding", along.calledColliding}}});
+  };
+  for (const MethodPlan& each : plans) {
+    if (o.learnFromVerification && each.method == "Fastron") {
+      run.paper->addObservations(answersMissedBy(*run.calibrated.model, each.plan.exactAnswers));
+    }
+    MethodPlan named = each;  // the paper's recipe, beside the default method
+    if (each.method != "FCL") named.method = each.method + " (paper)";
+    addRow(named, run.paperSupport, run.paperQuality, run.paperTrain, learnSeconds);
+  }
+  const double obstaclesTrain = run.obstacles.trainSeconds;
+  if (run.split) {
+    seedPlanners(o.seed, turn);
+    addRow({"Fastron split",
+            pipeline::planOnSplitModel(run.split, run.fcl, limits, from, to, options), 0},
+           static_cast<double>(run.obstacles.detector->model()->supportCount()), run.splitQuality,
+           obstaclesTrain, 0);
+  }
+  {  // planned last (it learns, and keeps what it learns for the scene's next queries), listed
+     // first. Scored as it plans this query: on its oracle's labels.
+    const std::shared_ptr<const Model> model = run.obstacles.detector->model();
+    const ConfusionCounts modelQuality = evaluate(*model, run.test, run.obstacleTruth);
+    seedPlanners(o.seed, turn);
+    addRow({kDefaultMethod,
+            pipeline::planOnSceneModel(run.obstacles, run.fcl, limits, from, to, options), 0},
+           static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
+  }
+  std::rotate(rows.rbegin(), rows.rbegin() + 1, rows.rend());  // the default method first
+  return rows;
+}
+
+void runProblem(const Problem& problem, std::size_t p, const RobotDescription& description,
+                const MotionBenchOptions& o, const Progress& progress, RobotModels& models,
+                PlanRows& results) {
+  ProblemRun run = prepareProblem(problem, p, description, o, progress, models, results);
+  Rng rng(o.seed * 7919 + p);
   for (std::size_t query = 0; query < o.queriesPerScene; ++query) {
-    // Query 0 is the request; the others join two configurations free under FCL.
-    const auto freeConfiguration = [&] {
-      return sampleFree(
-          *fcl, [&] { return uniformIn(limits, rng); }, "configuration");
-    };
-    const Eigen::VectorXd from = query == 0 ? start : freeConfiguration();
-    const Eigen::VectorXd to = query == 0 ? goal : freeConfiguration();
-    double learnSeconds = 0;
-    if (o.learnFromVerification && query > 0) {  // what the last query's plan taught it
-      learnSeconds = std::chrono::duration<double>(proxy.learnObservations().total).count();
-      calibrated = proxy.calibratedModel();
-      support = static_cast<double>(calibrated.model->supportCount());
-      quality = evaluate(*calibrated.model, test, truth);  // each row scores the model it used
-    }
-    const std::vector<std::pair<std::string, std::string>> queryColumns{
-        {"family", problem.family},
-        {"problem", problem.id},
-        {"query", std::to_string(query)},
-        {"group", request.group.empty() ? "-" : request.group},
-        {"note", query == 0 ? note : ""}};
-    const std::size_t turn = p * o.queriesPerScene + query;
-    const std::vector<MethodPlan> plans =
-        planWithEachChecker(calibrated, nullptr, fcl, limits, from, to, options, o.seed, turn);
-    // Measured on the request only: its distances cost about a second per path on a mesh robot.
-    AlongFclPath along;
-    if (query == 0) {
-      const auto exact = std::find_if(plans.begin(), plans.end(),
-                                      [](const MethodPlan& m) { return m.method == "FCL"; });
-      if (exact != plans.end()) {
-        along = alongFclPath(exact->plan, *obstacles.model(), *audit, o.resolution);
-      }
-    }
-    std::vector<PlanRow> rows;  // the default method's first
-    const auto addRow = [&](const MethodPlan& each, double modelSupport,
-                            const ConfusionCounts& modelQuality, double trainS, double learnS) {
-      rows.push_back({queryColumns,
-                      "RRTConnect",
-                      each.method,
-                      outcomeOf(each, *audit, o.resolution),
-                      {{"support", modelSupport},
-                       {"accuracy", modelQuality.accuracy()},
-                       {"tpr", modelQuality.tpr()},
-                       {"train_s", trainS},
-                       {"self_train_s", selfTrainSeconds},
-                       {"learn_s", learnS},
-                       {"fcl_path_near_walls", along.nearWalls},
-                       {"fcl_path_called_colliding", along.calledColliding}}});
-    };
-    for (const MethodPlan& each : plans) {
-      if (o.learnFromVerification && each.method == "Fastron") {
-        proxy.addObservations(answersMissedBy(*calibrated.model, each.plan.exactAnswers));
-      }
-      MethodPlan named = each;  // the paper's recipe, beside the default method
-      if (each.method != "FCL") named.method = each.method + " (paper)";
-      addRow(named, support, quality, trainSeconds, learnSeconds);
-    }
-    if (split) {
-      seedPlanners(o.seed, turn);
-      addRow(
-          {"Fastron split", pipeline::planOnSplitModel(split, fcl, limits, from, to, options), 0},
-          obstaclesSupport, splitQuality, obstaclesTrain, 0);
-    }
-    {  // planned last (it learns, and keeps what it learns for the scene's next queries), listed
-       // first. Scored as it plans this query: on its oracle's labels.
-      const std::shared_ptr<const Model> model = obstacles.model();
-      const ConfusionCounts modelQuality = evaluate(*model, test, obstacleTruth);
-      seedPlanners(o.seed, turn);
-      addRow({kDefaultMethod,
-              pipeline::planOnSceneModel(sceneModel, fcl, limits, from, to, options), 0},
-             static_cast<double>(model->supportCount()), modelQuality, obstaclesTrain, 0);
-    }
-    results.rows.push_back(std::move(rows.back()));
-    rows.pop_back();
-    for (PlanRow& row : rows) results.rows.push_back(std::move(row));
+    for (PlanRow& row : planQuery(run, problem, p, query, o, models, rng))
+      results.rows.push_back(std::move(row));
   }
 }
 
@@ -389,7 +422,8 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   return results;
 }
 
-std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
+/// The report's opening: the robot, the models' training, the planner, the methods.
+std::string reportPreamble(const MotionBenchOptions& o) {
   std::ostringstream md;
   const PlannerOptions planner = plannerOptions(o, PlannerType::RrtConnect);
   md << "# MoveIt benchmark problems (" << o.problems.string() << ")\n\n"
@@ -434,7 +468,12 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
                "their \"collides\", verified and repaired."
              : "")
      << "\n";
+  return md.str();
+}
 
+/// The planning groups, the warnings, the problems run and the ones skipped, with why.
+std::string runSummary(const PlanRows& r) {
+  std::ostringstream md;
   std::vector<std::string> groups;
   for (const PlanRow& row : r.rows) {
     const std::string& group = row.queryValue("group");
@@ -466,118 +505,133 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
       md << "| " << q.query[0].second << " | " << q.query[1].second << " | " << why << " |\n";
     }
   }
+  return md.str();
+}
 
-  using experiments::RowFilter;
-  // The median (or mean) of `value` over the rows matching `where`.
-  const auto statistic = [&](const RowFilter& where, auto value, bool median) {
+using experiments::RowFilter;
+using RowValue = std::function<double(const PlanRow&)>;
+
+/// The median (or mean) of `value` over the rows matching `where`.
+double statistic(const PlanRows& r, const RowFilter& where, const RowValue& value, bool median) {
+  std::vector<double> values;
+  for (const PlanRow& row : r.rows) {
+    if (!where || where(row)) values.push_back(value(row));
+  }
+  const Summary s = summarize(values);
+  return median ? s.median : s.mean;
+}
+
+RowValue figure(const char* name) {
+  return [name](const PlanRow& row) { return row.figure(name); };
+}
+
+/// The rows of `method` matching `where` that hold a scene's training, once: its first query's.
+RowFilter firstQueryOf(const RowFilter& where, const char* method) {
+  return [where, method](const PlanRow& row) {
+    return (!where || where(row)) && row.method == method && row.queryValue("query") == "0";
+  };
+}
+
+/// A method's model over the scenes: medians of training time and |S|, means of accuracy and TPR
+/// (each scene's first query, as trained).
+std::string modelLine(const PlanRows& r, const RowFilter& where, const char* method,
+                      const std::string& labels) {
+  const RowFilter first = firstQueryOf(where, method);
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "- %s: trained in a median %s, |S| median %.0f, accuracy %.3f and TPR %.3f "
+                "(means over scenes; %s).\n",
+                method, durationText(statistic(r, first, figure("train_s"), true)).c_str(),
+                statistic(r, first, figure("support"), true),
+                statistic(r, first, figure("accuracy"), false),
+                statistic(r, first, figure("tpr"), false), labels.c_str());
+  return std::string(line);
+}
+
+/// "Models per scene": each method's models, as trained.
+std::string modelsPerScene(const PlanRows& r, const MotionBenchOptions& o, const RowFilter& where) {
+  std::ostringstream out;
+  char sample[160];
+  std::snprintf(sample, sizeof sample, "against FCL on %zu fresh uniform configurations per scene",
+                testPoints(o));
+  out << "\nModels per scene:\n"
+      << modelLine(
+             r, where, kDefaultMethod,
+             o.selfCollision ? "on the obstacles' labels, FCL without self-collision" : sample)
+      << modelLine(r, where, "Fastron (paper)", sample);
+  if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf(where, "Fastron split"))) {
+    out << modelLine(r, where, "Fastron split",
+                     "with the self-collision model, against FCL with self-collision")
+        << "  (the robot's self-collision model: learned once for the robot and kept in the "
+           "cache, not counted per scene; "
+        <<
+        [&] {
+          const double s =
+              statistic(r, firstQueryOf(where, "Fastron split"), figure("self_train_s"), true);
+          return s > 0 ? "trained in " + durationText(s) : std::string("read from it");
+        }()
+        << ")\n";
+  }
+  return out.str();
+}
+
+/// Along FCL's own paths of the requests, and the default method's learning rounds.
+std::string alongFclPaths(const PlanRows& r, const MotionBenchOptions& o, const RowFilter& where) {
+  std::ostringstream out;
+  const PlannerOptions planner = plannerOptions(o, PlannerType::RrtConnect);
+  // Along FCL's paths of the requests (NaN where FCL found none).
+  const auto along = [&](const char* name) {
     std::vector<double> values;
     for (const PlanRow& row : r.rows) {
-      if (!where || where(row)) values.push_back(value(row));
-    }
-    const Summary s = summarize(values);
-    return median ? s.median : s.mean;
-  };
-  const auto figure = [](const char* name) {
-    return [name](const PlanRow& row) { return row.figure(name); };
-  };
-  // Per family, and over all: medians and means of the total time per valid plan, training per
-  // scene, and Fastron's end-to-end time (total + training / queries per scene).
-  // Per family, and over all: the plan table, speed-ups without and with training, the models.
-  const auto summary = [&](const RowFilter& where) {
-    std::ostringstream out;
-    out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"})
-        << endToEndSpeedups(r, where, 1);
-    if (o.queriesPerScene > 1) out << endToEndSpeedups(r, where, o.queriesPerScene);
-    out << "\nWhere the time goes (medians over solved plans):\n\n"
-        << timeBreakdown(r, where, {"RRTConnect"});
-    // A scene's training, once: the rows of its first query.
-    const auto firstQueryOf = [&](const char* method) -> RowFilter {
-      return [&, method](const PlanRow& row) {
-        return (!where || where(row)) && row.method == method && row.queryValue("query") == "0";
-      };
-    };
-    // A method's model over the scenes: medians of training time and |S|, means of accuracy and
-    // TPR (each scene's first query, as trained).
-    const auto modelLine = [&](const char* method, const char* labels) {
-      const RowFilter first = firstQueryOf(method);
-      char line[400];
-      std::snprintf(line, sizeof line,
-                    "- %s: trained in a median %s, |S| median %.0f, accuracy %.3f and TPR %.3f "
-                    "(means over scenes; %s).\n",
-                    method, durationText(statistic(first, figure("train_s"), true)).c_str(),
-                    statistic(first, figure("support"), true),
-                    statistic(first, figure("accuracy"), false),
-                    statistic(first, figure("tpr"), false), labels);
-      return std::string(line);
-    };
-    char sample[160];
-    std::snprintf(sample, sizeof sample,
-                  "against FCL on %zu fresh uniform configurations per scene", testPoints(o));
-    out << "\nModels per scene:\n"
-        << modelLine(kDefaultMethod, o.selfCollision
-                                         ? "on the obstacles' labels, FCL without self-collision"
-                                         : sample)
-        << modelLine("Fastron (paper)", sample);
-    if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf("Fastron split"))) {
-      out << modelLine("Fastron split",
-                       "with the self-collision model, against FCL with self-collision")
-          << "  (the robot's self-collision model: learned once for the robot and kept in the "
-             "cache, not counted per scene; "
-          <<
-          [&] {
-            const double s = statistic(firstQueryOf("Fastron split"), figure("self_train_s"), true);
-            return s > 0 ? "trained in " + durationText(s) : std::string("read from it");
-          }()
-          << ")\n";
-    }
-    // Along FCL's paths of the requests (NaN where FCL found none).
-    const auto along = [&](const char* name) {
-      std::vector<double> values;
-      for (const PlanRow& row : r.rows) {
-        if (firstQueryOf("FCL")(row) && !std::isnan(row.figure(name))) {
-          values.push_back(row.figure(name));
-        }
+      if (firstQueryOf(where, "FCL")(row) && !std::isnan(row.figure(name))) {
+        values.push_back(row.figure(name));
       }
-      return values.empty() ? std::numeric_limits<double>::quiet_NaN() : summarize(values).median;
-    };
-    char line[400];
-    std::snprintf(line, sizeof line,
-                  "\nAlong FCL's own path of each request (its states every %g rad, all free): a "
-                  "median %.0f%% of them within %.0f cm of an obstacle, and the default method's "
-                  "model calls a median %.0f%% of them colliding.\n",
-                  o.resolution, 100 * along("fcl_path_near_walls"), 100 * kNearWalls,
-                  100 * along("fcl_path_called_colliding"));
-    out << line;
-    const auto relearned = [](const PlanRow& row) {
-      return static_cast<double>(row.outcome.relearned);
-    };
-    if (planner.learningRounds > 0) {
-      std::snprintf(line, sizeof line,
-                    "When verification finds its path colliding, %s learns the answers it got "
-                    "wrong and plans again, up to %u times (mean %.2f times a query).\n",
-                    kDefaultMethod, planner.learningRounds,
-                    statistic(
-                        [&](const PlanRow& row) {
-                          return (!where || where(row)) && row.method == kDefaultMethod;
-                        },
-                        relearned, false));
-      out << line;
     }
-    return out.str();
+    return values.empty() ? std::numeric_limits<double>::quiet_NaN() : summarize(values).median;
   };
-  std::vector<std::string> families;
-  for (const PlanRow& row : r.rows) {
-    const std::string& family = row.queryValue("family");
-    if (std::find(families.begin(), families.end(), family) == families.end()) {
-      families.push_back(family);
-    }
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "\nAlong FCL's own path of each request (its states every %g rad, all free): a "
+                "median %.0f%% of them within %.0f cm of an obstacle, and the default method's "
+                "model calls a median %.0f%% of them colliding.\n",
+                o.resolution, 100 * along("fcl_path_near_walls"), 100 * kNearWalls,
+                100 * along("fcl_path_called_colliding"));
+  out << line;
+  const auto relearned = [](const PlanRow& row) {
+    return static_cast<double>(row.outcome.relearned);
+  };
+  if (planner.learningRounds > 0) {
+    std::snprintf(line, sizeof line,
+                  "When verification finds its path colliding, %s learns the answers it got "
+                  "wrong and plans again, up to %u times (mean %.2f times a query).\n",
+                  kDefaultMethod, planner.learningRounds,
+                  statistic(
+                      r,
+                      [&](const PlanRow& row) {
+                        return (!where || where(row)) && row.method == kDefaultMethod;
+                      },
+                      relearned, false));
+    out << line;
   }
-  for (const std::string& family : families) {
-    md << "\n## " << family << "\n\n"
-       << summary([&](const PlanRow& row) { return row.queryValue("family") == family; });
-  }
-  md << "\n## All families\n\n" << summary({});
+  return out.str();
+}
 
+/// Per family, and over all: the plan table, speed-ups without and with training, where the time
+/// goes, the models, and what FCL's paths say.
+std::string familySummary(const PlanRows& r, const MotionBenchOptions& o, const RowFilter& where) {
+  std::ostringstream out;
+  out << planTable(r, where, {"RRTConnect"}) << speedups(r, where, {"RRTConnect"})
+      << endToEndSpeedups(r, where, 1);
+  if (o.queriesPerScene > 1) out << endToEndSpeedups(r, where, o.queriesPerScene);
+  out << "\nWhere the time goes (medians over solved plans):\n\n"
+      << timeBreakdown(r, where, {"RRTConnect"}) << modelsPerScene(r, o, where)
+      << alongFclPaths(r, o, where);
+  return out.str();
+}
+
+/// "The requests": every method's plan of each request.
+std::string requestsTable(const PlanRows& r) {
+  std::ostringstream md;
   md << "\n## The requests\n\n"
      << "| Family | Problem | Method | Status | Plan | Verify | Repair | Total | Path length | "
         "Collides (FCL) | Training | Note |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -600,6 +654,25 @@ std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
        << (row.method != "FCL" ? ms(row.figure("train_s")) : "—") << " | " << row.queryValue("note")
        << " |\n";
   }
+  return md.str();
+}
+
+std::string motionBenchReport(const PlanRows& r, const MotionBenchOptions& o) {
+  std::ostringstream md;
+  md << reportPreamble(o) << runSummary(r);
+  std::vector<std::string> families;
+  for (const PlanRow& row : r.rows) {
+    const std::string& family = row.queryValue("family");
+    if (std::find(families.begin(), families.end(), family) == families.end()) {
+      families.push_back(family);
+    }
+  }
+  for (const std::string& family : families) {
+    md << "\n## " << family << "\n\n"
+       << familySummary(r, o,
+                        [&](const PlanRow& row) { return row.queryValue("family") == family; });
+  }
+  md << "\n## All families\n\n" << familySummary(r, o, {}) << requestsTable(r);
   return md.str();
 }
 

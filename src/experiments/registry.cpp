@@ -65,8 +65,8 @@ ExperimentOutput runStaticSweepOf(const std::string& parameter, const Experiment
                   [&](const Table& t) { return staticSweepReport(t, parameter, o); });
 }
 
-std::vector<Experiment> makeRegistry() {
-  std::vector<Experiment> all;
+/// The experiments of Sec. IV-A: static worlds, their sweeps, the learned C-space.
+void addStaticExperiments(std::vector<Experiment>& all) {
   all.push_back({"static",
                  "Fastron against ISVM, SSVM and LIBSVM in static 2- and 4-DOF worlds",
                  {},
@@ -101,6 +101,10 @@ std::vector<Experiment> makeRegistry() {
                                  {"cubes.csv", std::move(r.cubes)}};
                    return out;
                  }});
+}
+
+/// The experiments of Sec. IV-B: moving boxes and the query time over obstacles.
+void addChangingExperiments(std::vector<Experiment>& all) {
   all.push_back({"changing",
                  "Baxter among moving boxes: accuracy and update time per step",
                  {"features", "gamma", "beta", "al-variance", "active-samples", "warm-start",
@@ -134,6 +138,10 @@ std::vector<Experiment> makeRegistry() {
                    return reported(runObstacleSweep(o, progress),
                                    [&](const Table& t) { return sweepReport(t, o); });
                  }});
+}
+
+/// The planning experiments of Secs. IV-C and V, and MotionBenchMaker problems.
+void addPlanningExperiments(std::vector<Experiment>& all) {
   all.push_back({"plan", "Baxter planning with each OMPL planner on each checker (Table IV)",
                  kPlanningSettings, [](const ExperimentSettings& s, const Progress& progress) {
                    PlanningOptions o;
@@ -193,6 +201,13 @@ std::vector<Experiment> makeRegistry() {
                    const PlanRows plans = runMotionBench(o, progress);
                    return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
                  }});
+}
+
+std::vector<Experiment> makeRegistry() {
+  std::vector<Experiment> all;
+  addStaticExperiments(all);
+  addChangingExperiments(all);
+  addPlanningExperiments(all);
   return all;
 }
 

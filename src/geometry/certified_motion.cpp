@@ -183,6 +183,77 @@ struct Stretch {
   std::vector<std::uint32_t> active;
 };
 
+/// The looks of one motion at its states: each places the robot at a state, bounds the pairs
+/// still open and, when told to decide, asks the exact checker about the pairs no bound keeps
+/// apart.
+class MotionLooks {
+ public:
+  MotionLooks(const ClearanceModel& model, const ExactPairCheck& exact, const double* from,
+              const double* to, std::size_t dim, std::size_t segments)
+      : model_(model),
+        exact_(exact),
+        from_(from),
+        to_(to),
+        dim_(dim),
+        segments_(segments),
+        balls_(model),
+        q_(dim),
+        perStep_(model.pairs.size()) {
+    Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
+    for (std::size_t j = 0; j < dim; ++j)
+      stride[static_cast<Eigen::Index>(j)] =
+          std::abs(to[j] - from[j]) / static_cast<double>(segments);
+    for (std::size_t p = 0; p < perStep_.size(); ++p)
+      perStep_[p] = model.pairs[p].levers.dot(stride);
+  }
+
+  /// How much one step of the motion can bring pair p closer.
+  double perStep(std::size_t p) const { return perStep_[p]; }
+  std::size_t statesPlaced() const { return placed_; }
+
+  /// Places state i; writes each active pair's bound (0 where none proves it apart); with
+  /// `decide`, asks the exact checker about those pairs and returns true at a contact. A bound
+  /// that proves a pair apart over `steps` steps on its own is precise enough; a pair without one
+  /// at both ends of the stretch (`close`) goes to the exact checker without a bound: its bound
+  /// was not positive there, and a bound costs as much as the check on the mesh Panda's pairs
+  /// that sit millimetres apart.
+  template <class Close>
+  bool look(std::size_t i, const std::vector<std::uint32_t>& active, std::vector<double>& bounds,
+            bool decide, double steps, const Close& close) {
+    motionState(from_, to_, dim_, i, segments_, q_.data());
+    exact_.place(q_.data(), poses_);
+    balls_.placed(poses_);
+    ++placed_;
+    for (const std::uint32_t p : active) {
+      const ClearancePair& pair = model_.pairs[p];
+      const double bound =
+          close(p) ? 0 : balls_.lowerBound(pair, steps * perStep_[p] + kMargin) - kMargin;
+      bounds[p] = bound > 0 ? bound : 0;
+      if (bound > 0) continue;
+      if (pair.askDistance && exact_.distance && steps >= kDistanceSteps) {
+        const double distance = exact_.distance(pair);
+        if (distance > kDistanceFloor) {
+          bounds[p] = distance - kMargin;
+          continue;
+        }
+      }
+      if (decide && exact_.touches(pair)) return true;
+    }
+    return false;
+  }
+
+ private:
+  const ClearanceModel& model_;
+  const ExactPairCheck& exact_;
+  const double *from_, *to_;
+  std::size_t dim_, segments_;
+  PlacedBalls balls_;
+  std::vector<Eigen::Isometry3d> poses_;
+  std::vector<double> q_;
+  std::vector<double> perStep_;
+  std::size_t placed_ = 0;
+};
+
 }  // namespace
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
@@ -191,44 +262,12 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   CertifiedMotion answer;
   if (segments == 0) return answer;
   const std::size_t pairs = model.pairs.size();
-  PlacedBalls balls(model);
-  std::vector<Eigen::Isometry3d> poses;
-  std::vector<double> q(dim);
-  // How much one step of the motion can bring each pair closer.
-  std::vector<double> perStep(pairs);
-  Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
-  for (std::size_t j = 0; j < dim; ++j)
-    stride[static_cast<Eigen::Index>(j)] =
-        std::abs(to[j] - from[j]) / static_cast<double>(segments);
-  for (std::size_t p = 0; p < pairs; ++p) perStep[p] = model.pairs[p].levers.dot(stride);
-  // Places state i; writes each active pair's bound (0 where none proves it apart); with
-  // `decide`, asks the exact checker about those pairs and returns true at a contact. A bound
-  // that proves a pair apart over `steps` steps on its own is precise enough; a pair without one
-  // at both ends of the stretch (`close`) goes to the exact checker without a bound: its bound
-  // was not positive there, and a bound costs as much as the check on the mesh Panda's pairs
-  // that sit millimetres apart.
+  MotionLooks looks(model, exact, from, to, dim, segments);
   const auto look = [&](std::size_t i, const std::vector<std::uint32_t>& active,
                         std::vector<double>& bounds, bool decide, double steps, const auto& close) {
-    motionState(from, to, dim, i, segments, q.data());
-    exact.place(q.data(), poses);
-    balls.placed(poses);
-    ++answer.statesPlaced;
-    for (const std::uint32_t p : active) {
-      const ClearancePair& pair = model.pairs[p];
-      const double bound =
-          close(p) ? 0 : balls.lowerBound(pair, steps * perStep[p] + kMargin) - kMargin;
-      bounds[p] = bound > 0 ? bound : 0;
-      if (bound > 0) continue;
-      if (pair.askDistance && exact.distance && steps >= kDistanceSteps) {
-        const double distance = exact.distance(pair);
-        if (distance > kDistanceFloor) {
-          bounds[p] = distance - kMargin;
-          continue;
-        }
-      }
-      if (decide && exact.touches(pair)) return true;
-    }
-    return false;
+    const bool touches = looks.look(i, active, bounds, decide, steps, close);
+    answer.statesPlaced = looks.statesPlaced();
+    return touches;
   };
   const auto never = [](std::uint32_t) { return false; };
   const double all = static_cast<double>(segments);
@@ -266,7 +305,7 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     std::vector<std::uint32_t> open;
     const double steps = static_cast<double>(s.hi - s.lo);
     for (const std::uint32_t p : s.active) {
-      if (!((*s.atLo)[p] + (*s.atHi)[p] > steps * perStep[p])) open.push_back(p);
+      if (!((*s.atLo)[p] + (*s.atHi)[p] > steps * looks.perStep(p))) open.push_back(p);
     }
     if (open.empty()) continue;
     const std::size_t mid = s.lo + (s.hi - s.lo) / 2;
