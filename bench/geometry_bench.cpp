@@ -12,6 +12,8 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/point_kinematics.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 
 namespace fastron {

@@ -22,7 +22,7 @@
 #include "fastron/core/model_file.h"
 #include "fastron/core/simd.h"
 #include "fastron/experiments/common.h"
-#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/planning/motion.h"
 #include "fastron/proxy/labelling.h"
 #include "plotting.h"

@@ -19,7 +19,7 @@
 #include "fastron/core/model_checker.h"
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/common.h"
-#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"

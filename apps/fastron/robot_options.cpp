@@ -5,6 +5,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 
 namespace fastron::cli {

@@ -15,7 +15,7 @@
 #include "fastron/core/metrics.h"
 #include "fastron/core/model_file.h"
 #include "fastron/core/trainer.h"
-#include "fastron/geometry/control_points.h"
+
 #include "fastron/pipeline/held_out_model.h"
 #include "fastron/proxy/held_out_training.h"
 #include "fastron/proxy/proxy_collision_detector.h"

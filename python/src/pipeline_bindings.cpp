@@ -6,6 +6,7 @@
 #include "bindings.h"
 #include "detector_holder.h"
 #include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/pipeline/held_out_model.h"
 #include "fastron/pipeline/scene_model.h"
 

@@ -149,7 +149,9 @@ void IncrementalSvm::leaveMargin(std::size_t position) {
 }
 
 // Grows alpha_c from 0 in the largest steps that keep every other point's KKT conditions, until
-// c itself reaches the margin (g_c = 0) or the bound C.
+// c itself reaches the margin (g_c = 0) or the bound C. Kept whole, as Cauwenberghs and Poggio's
+// adiabatic increment reads: each step's bookkeeping (the sets, R, the step size) only makes
+// sense beside the others.
 void IncrementalSvm::learn(std::size_t c) {
   const std::size_t n = x_.size();
   if (g_[c] >= 0) return;  // already classified with margin: a reserve vector

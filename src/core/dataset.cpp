@@ -62,9 +62,20 @@ Dataset parseCsv(std::string_view csv, const std::string& source) {
   return data;
 }
 
-Dataset parseNpy(std::string_view bytes, const std::string& source) {
-  const std::string& file = source;
+namespace {
 
+/// What a .npy header says of the array after it.
+struct NpyLayout {
+  std::size_t dataStart = 0;  ///< offset of the first element
+  std::string descr;          ///< "<f8", "<f4", "<i8" or "<i4"
+  std::size_t itemSize = 0;
+  bool fortran = false;
+  std::size_t rows = 0, columns = 0;
+};
+
+/// The layout of a .npy file of a 2-D array of at least 2 columns, whose data are all present;
+/// throws FileError naming `file` and what is wrong.
+NpyLayout parseNpyHeader(std::string_view bytes, const std::string& file) {
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) {
     throw FileError(file + ": not a .npy file (bad magic bytes)");
   }
@@ -102,7 +113,8 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
   const std::string_view descrText = valueOf("descr");
   const char quote = descrText.starts_with('"') ? '"' : '\'';
   const std::string_view descr = enclosed(descrText, quote, quote, "descr");
-  const bool fortran = valueOf("fortran_order").starts_with("True");
+  NpyLayout layout;
+  layout.fortran = valueOf("fortran_order").starts_with("True");
   const std::string_view shapeText = enclosed(valueOf("shape"), '(', ')', "shape");
   std::vector<std::size_t> shape;
   for (const auto field : splitCsvFields(shapeText)) {
@@ -119,7 +131,7 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
                     std::string(shapeText) + ")");
   }
 
-  std::size_t itemSize = 0;
+  std::size_t& itemSize = layout.itemSize;
   if (descr == "<f8" || descr == "<i8")
     itemSize = 8;
   else if (descr == "<f4" || descr == "<i4")
@@ -129,6 +141,9 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
                     "' (use <f8, <f4, <i8 or <i4)");
 
   const std::size_t rows = shape[0], columns = shape[1];
+  layout.rows = rows;
+  layout.columns = columns;
+  layout.descr = std::string(descr);
   const std::size_t dataStart = headerStart + headerLength;
   const std::size_t available = (bytes.size() - dataStart) / itemSize;  // whole elements present
   if (columns > available || rows > available / columns) {
@@ -136,36 +151,47 @@ Dataset parseNpy(std::string_view bytes, const std::string& source) {
                     " bytes for shape (" + std::to_string(rows) + ", " + std::to_string(columns) +
                     "))");
   }
-  auto element = [&](std::size_t r, std::size_t c) -> double {
-    const std::size_t index = fortran ? c * rows + r : r * columns + c;
-    const char* p = bytes.data() + dataStart + index * itemSize;
-    if (descr == "<f8") {
-      double v;
-      std::memcpy(&v, p, 8);
-      return v;
-    }
-    if (descr == "<f4") {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    if (descr == "<i8") {
-      std::int64_t v;
-      std::memcpy(&v, p, 8);
-      return static_cast<double>(v);
-    }
-    std::int32_t v;
+  layout.dataStart = dataStart;
+  return layout;
+}
+
+/// Element (r, c) of the array `layout` describes, as a double.
+double npyElement(std::string_view bytes, const NpyLayout& layout, std::size_t r, std::size_t c) {
+  const std::size_t index = layout.fortran ? c * layout.rows + r : r * layout.columns + c;
+  const char* p = bytes.data() + layout.dataStart + index * layout.itemSize;
+  if (layout.descr == "<f8") {
+    double v;
+    std::memcpy(&v, p, 8);
+    return v;
+  }
+  if (layout.descr == "<f4") {
+    float v;
     std::memcpy(&v, p, 4);
     return v;
-  };
+  }
+  if (layout.descr == "<i8") {
+    std::int64_t v;
+    std::memcpy(&v, p, 8);
+    return static_cast<double>(v);
+  }
+  std::int32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
 
+}  // namespace
+
+Dataset parseNpy(std::string_view bytes, const std::string& source) {
+  const std::string& file = source;
+  const NpyLayout layout = parseNpyHeader(bytes, file);
+  const std::size_t rows = layout.rows, columns = layout.columns;
   std::vector<double> values;
   values.reserve(rows * (columns - 1));
   Labels labels;
   labels.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     for (std::size_t c = 0; c < columns; ++c) {
-      const double v = element(r, c);
+      const double v = npyElement(bytes, layout, r, c);
       const std::string where =
           file + ": row " + std::to_string(r) + ", column " + std::to_string(c);
       if (!std::isfinite(v)) throw FileError(where + ": value is not finite");

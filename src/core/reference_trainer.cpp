@@ -15,6 +15,8 @@ std::size_t misclassified(const std::vector<double>& f, const Labels& y) {
 
 }  // namespace
 
+// Kept whole on purpose: the scalar baseline is Algorithm 1 as the paper writes it, one loop per
+// line, so that the optimised Trainer::update is measured against the plainest reading.
 ReferenceTraining trainReference(const Eigen::MatrixXd& x, const Labels& y,
                                  const TrainParams& params) {
   validate(params);

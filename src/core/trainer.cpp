@@ -297,6 +297,8 @@ std::size_t Trainer::rowsToShareUpdate(SimdPath path) {
   return path == SimdPath::Avx512 ? 4096 : 2048;
 }
 
+// One function, longer than the others: it is Algorithm 1 step by step (the comments name the
+// paper's equations and lines), so that a reader can hold it beside the paper.
 UpdateReport Trainer::update(unsigned threads) {
   const auto start = std::chrono::steady_clock::now();
   UpdateReport report;

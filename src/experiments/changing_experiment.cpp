@@ -9,7 +9,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/support_reduction.h"
-#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"

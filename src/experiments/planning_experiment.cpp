@@ -5,7 +5,7 @@
 #include "baxter_cases.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
-#include "fastron/geometry/control_points.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"
 #include "plan_rows.h"

@@ -4,8 +4,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <thread>
 
-#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"

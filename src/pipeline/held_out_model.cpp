@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/scene_checkers.h"
 
 namespace fastron::pipeline {

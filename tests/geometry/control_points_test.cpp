@@ -2,6 +2,8 @@
 // model files that record them, Claim 1 in feature space, and task space against joint space.
 
 #include "fastron/geometry/control_points.h"
+#include "fastron/geometry/point_kinematics.h"
+#include "fastron/geometry/robot_features.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

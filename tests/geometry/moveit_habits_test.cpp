@@ -9,8 +9,8 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
-#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/point_kinematics.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/geometry/srdf.h"

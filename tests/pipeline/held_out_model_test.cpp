@@ -7,6 +7,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"

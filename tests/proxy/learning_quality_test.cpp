@@ -7,8 +7,8 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
-#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "fastron/core/active_learning.h"
-#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
+#include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/proxy_collision_detector.h"

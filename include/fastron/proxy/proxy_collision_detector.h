@@ -121,7 +121,7 @@ class ProxyCollisionDetector {
  public:
   /// `oracle` labels configurations (it must be safe to call from several threads unless
   /// params.labelThreads == 1) and its dof() must equal features.configurationDim(). The models
-  /// learn on `features` (e.g. a robot's task-space features, see geometry/control_points.h).
+  /// learn on `features` (e.g. a robot's task-space features, see geometry/robot_features.h).
   ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle, FeatureMap features,
                          ProxyParams params = {});
   /// Joint-space features: the joint values scaled by `limits` (the paper's input).

@@ -1,5 +1,5 @@
 #pragma once
-// The float chain of RobotPointKinematics (control_points.h) as plain data, for the batched
+// The float chain of RobotPointKinematics (point_kinematics.h) as plain data, for the batched
 // kinematics compiled once per SIMD path (src/geometry/lane_kinematics_impl.h). Kept apart, with
 // no include but <cstddef>, so that those files see no inline function from outside.
 

@@ -1,0 +1,294 @@
+#include "fastron/geometry/point_kinematics.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "../core/cephes_sin_cos.h"
+#include "fastron/core/error.h"
+#include "fastron/geometry/kinematics.h"
+#include "lane_kinematics.h"
+#include "sin_cos.h"
+
+namespace fastron {
+namespace {
+
+/// Rotation taking the z axis onto the unit vector `axis`.
+Eigen::Matrix3d alignZWith(const Eigen::Vector3d& axis) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+}
+
+void hashBytes(std::uint64_t& h, const void* data, std::size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+}
+void hashString(std::uint64_t& h, const std::string& s) {
+  hashBytes(h, s.data(), s.size());
+  hashBytes(h, "\0", 1);
+}
+void hashDoubles(std::uint64_t& h, const double* v, std::size_t n) {
+  hashBytes(h, v, n * sizeof(double));
+}
+
+/// A Frame (RobotPointKinematics' column-major rigid transform) from a rotation and a translation.
+template <class Frame>
+Frame toFrame(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation) {
+  using T = typename decltype(Frame::m)::value_type;
+  Frame f;
+  f.m.fill(T(0));
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) f(i, j) = static_cast<T>(rotation(i, j));
+    f(i, 3) = static_cast<T>(translation[i]);
+  }
+  return f;
+}
+
+template <class To, std::size_t N, class From>
+std::array<To, N> castArray(const std::array<From, N>& a) {
+  std::array<To, N> out;
+  for (std::size_t i = 0; i < N; ++i) out[i] = static_cast<To>(a[i]);
+  return out;
+}
+
+/// Configurations handed to the lanes at once (a multiple of every path's register width).
+constexpr std::size_t kConfigurationLanes = 16;
+constexpr std::size_t kOneByOne = 2;  // batches this short are placed one configuration at a time
+
+/// cos and sin of `count` angles, one by one (sin_cos.h): scalar code overlaps the chain of frames
+/// (a SIMD sine and cosine of all angles first made it wait: 9-19 ns slower). Float features use
+/// the Cephes polynomials of the lanes' sinCos, so the single chain and the batch compute the same
+/// sines; double features (training, the exact score) those of the exact checkers' forward
+/// kinematics. Baxter's 4 points on 20000 uniform configurations (a loop over FeatureMap::map)
+/// took 95 ns with the C library's sinf and cosf and 65 ns with these; one configuration
+/// repeated, as BM_ControlPoints does, took 61 and 65 ns and hid the difference.
+template <class T>
+void cosSin(const T* angles, std::size_t count, T* cosines, T* sines) {
+  for (std::size_t k = 0; k < count; ++k) detail::sinCos(angles[k], sines[k], cosines[k]);
+}
+
+}  // namespace
+
+std::uint64_t kinematicsChecksum(const Robot& robot) {
+  std::uint64_t h = 14695981039346656037ULL;
+  hashString(h, robot.name());
+  for (const Link& link : robot.links()) hashString(h, link.name);
+  for (std::size_t j = 0; j < robot.joints().size(); ++j) {
+    const Joint& joint = robot.joints()[j];
+    hashString(h, joint.name);
+    const std::array<int, 3> ints{static_cast<int>(joint.type), joint.parent, joint.child};
+    hashBytes(h, ints.data(), sizeof(ints));
+    hashDoubles(h, joint.origin.matrix().data(), 16);
+    hashDoubles(h, joint.axis.data(), 3);
+    const double held = robot.heldPosition(static_cast<int>(j));
+    hashDoubles(h, &held, 1);
+  }
+  for (const int a : robot.actuatedJoints()) hashBytes(h, &a, sizeof(a));
+  for (const MimicJoint& m :
+       robot.mimicJoints()) {  // none on robots without mimics: old hashes hold
+    hashBytes(h, &m.joint, sizeof(m.joint));
+    hashBytes(h, &m.source, sizeof(m.source));
+    hashDoubles(h, &m.multiplier, 1);
+    hashDoubles(h, &m.offset, 1);
+  }
+  return h;
+}
+
+RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<ControlPoint> points)
+    : dof_(robot.dof()) {
+  if (points.empty())
+    throw InvalidArgument("robot '" + robot.name() + "': no control points given");
+  const auto& joints = robot.joints();
+  const auto& actuated = robot.actuatedJoints();
+  // Each link's frame as (step, constant transform from that step's frame): fixed and held
+  // joints are folded into the transform; an actuated joint starts a new step whose frame is the
+  // child's frame turned so that the joint axis is its z axis.
+  const std::size_t linkCount = robot.links().size();
+  std::vector<int> stepOf(linkCount, -1);
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> inStep(
+      linkCount, Eigen::Isometry3d::Identity());
+  std::vector<Step<double>> all;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const Joint& joint = joints[j];
+    const auto parent = static_cast<std::size_t>(joint.parent);
+    const auto child = static_cast<std::size_t>(joint.child);
+    // The configuration coordinate that turns the joint: its own, or its source's for a mimic.
+    const auto mimic =
+        std::find_if(robot.mimicJoints().begin(), robot.mimicJoints().end(),
+                     [&](const MimicJoint& m) { return m.joint == static_cast<int>(j); });
+    const bool mimics = mimic != robot.mimicJoints().end();
+    const int driver = mimics ? mimic->source : static_cast<int>(j);
+    const auto position = std::find(actuated.begin(), actuated.end(), driver);
+    if (position == actuated.end()) {
+      stepOf[child] = stepOf[parent];
+      inStep[child] =
+          inStep[parent] * jointTransform(joint, robot.heldPosition(static_cast<int>(j)));
+      continue;
+    }
+    const Eigen::Matrix3d align = alignZWith(joint.axis);
+    const Eigen::Isometry3d fixed = inStep[parent] * joint.origin;
+    Step<double> step;
+    step.parent = stepOf[parent];
+    step.joint = static_cast<int>(position - actuated.begin());
+    if (mimics) {
+      step.scale = mimic->multiplier;
+      step.offset = mimic->offset;
+    }
+    step.prismatic = joint.type == JointType::Prismatic;
+    step.fixed = toFrame<Frame<double>>(fixed.linear() * align, fixed.translation());
+    stepOf[child] = static_cast<int>(all.size());
+    inStep[child].setIdentity();
+    inStep[child].linear() = align.transpose();
+    all.push_back(step);
+  }
+
+  // Keep the steps some point hangs off, directly or through its parents, in order.
+  std::vector<char> used(all.size(), 0);
+  for (const ControlPoint& p : points) {
+    for (int s = stepOf[static_cast<std::size_t>(robot.linkIndex(p.link))]; s >= 0;
+         s = all[static_cast<std::size_t>(s)].parent) {
+      used[static_cast<std::size_t>(s)] = 1;
+    }
+  }
+  std::vector<int> newIndex(all.size(), -1);
+  for (std::size_t s = 0; s < all.size(); ++s) {
+    if (!used[s]) continue;
+    Step<double> step = all[s];
+    if (step.parent >= 0) step.parent = newIndex[static_cast<std::size_t>(step.parent)];
+    newIndex[s] = static_cast<int>(chain_.steps.size());
+    chain_.steps.push_back(step);
+  }
+  if (chain_.steps.size() > kMaxKinematicSteps) {
+    throw InvalidArgument("robot '" + robot.name() + "': " + std::to_string(chain_.steps.size()) +
+                          " actuated joints lead to the control points, at most " +
+                          std::to_string(kMaxKinematicSteps) + " are supported");
+  }
+  for (const ControlPoint& p : points) {
+    const auto link = static_cast<std::size_t>(robot.linkIndex(p.link));
+    const int step = stepOf[link] < 0 ? -1 : newIndex[static_cast<std::size_t>(stepOf[link])];
+    const Eigen::Vector3d local = inStep[link] * p.offset;
+    chain_.points.push_back({step, {local.x(), local.y(), local.z()}});
+  }
+  for (const auto& step : chain_.steps) {
+    chainF_.steps.push_back({step.parent,
+                             step.joint,
+                             static_cast<float>(step.scale),
+                             static_cast<float>(step.offset),
+                             step.prismatic,
+                             {castArray<float>(step.fixed.m)}});
+  }
+  for (const auto& point : chain_.points) {
+    chainF_.points.push_back({point.step, castArray<float>(point.local)});
+  }
+  for (const auto& step : chainF_.steps) {
+    detail::LaneStep& lane = laneSteps_.emplace_back();
+    lane.parent = step.parent;
+    lane.joint = step.joint;
+    lane.scale = step.scale;
+    lane.offset = step.offset;
+    lane.prismatic = step.prismatic ? 1 : 0;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) lane.fixed[4 * i + j] = step.fixed(i, j);
+    }
+  }
+  for (const auto& point : chainF_.points) {
+    detail::LanePoint& lane = lanePoints_.emplace_back();
+    lane.step = point.step;
+    for (std::size_t i = 0; i < 3; ++i) lane.local[i] = point.local[i];
+  }
+
+  description_.robot = robot.name();
+  description_.joints = robot.actuatedJointNames();
+  description_.points = std::move(points);
+  description_.checksum = kinematicsChecksum(robot);
+}
+
+template <>
+const RobotPointKinematics::Chain<double>& RobotPointKinematics::chain<double>() const {
+  return chain_;
+}
+template <>
+const RobotPointKinematics::Chain<float>& RobotPointKinematics::chain<float>() const {
+  return chainF_;
+}
+
+template <class T>
+void RobotPointKinematics::place(const double* q, T* out) const {
+  using Column = Eigen::Array<T, 4, 1>;
+  using Columns = std::array<Column, 4>;  // x, y and z axes, then the origin
+  const Chain<T>& c = chain<T>();
+  const std::size_t n = c.steps.size();
+  // NOLINTBEGIN(cppcoreguidelines-pro-type-member-init): filled before they are read
+  std::array<T, kMaxKinematicSteps> values, cosines, sines;
+  std::array<Columns, kMaxKinematicSteps> frames;
+  // NOLINTEND(cppcoreguidelines-pro-type-member-init)
+  for (std::size_t s = 0; s < n; ++s)
+    values[s] = c.steps[s].scale * static_cast<T>(q[c.steps[s].joint]) + c.steps[s].offset;
+  cosSin(values.data(), n, cosines.data(), sines.data());
+  for (std::size_t s = 0; s < n; ++s) {
+    const Step<T>& step = c.steps[s];
+    // The joint's motion is applied to the step's constant transform, not to the product with
+    // the parent's frame: it does not wait for the parent, so the only work on the chain of
+    // dependent products is one 3x4 product per step, column times broadcast scalar (with the
+    // scalar sine and cosine, 1.7 times faster than the 12-scalar row-major frames that turned
+    // the product: BM_ControlPoints).
+    Columns g;
+    for (int k = 0; k < 4; ++k) g[k] = Eigen::Map<const Column>(step.fixed.m.data() + 4 * k);
+    if (step.prismatic) {
+      g[3] += values[s] * g[2];
+    } else {  // fixed * Rz(value): only the x and y axes turn
+      const T co = cosines[s], si = sines[s];
+      const Column x = g[0];
+      g[0] = co * x + si * g[1];
+      g[1] = co * g[1] - si * x;
+    }
+    Columns& f = frames[s];
+    if (step.parent < 0) {
+      f = g;
+      continue;
+    }
+    const Columns& a = frames[static_cast<std::size_t>(step.parent)];
+    for (int k = 0; k < 4; ++k) f[k] = a[0] * g[k][0] + a[1] * g[k][1] + a[2] * g[k][2];
+    f[3] += a[3];
+  }
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    const Point<T>& p = c.points[k];
+    T* position = out + 3 * k;
+    if (p.step < 0) {
+      std::copy_n(p.local.begin(), 3, position);
+      continue;
+    }
+    const Columns& f = frames[static_cast<std::size_t>(p.step)];
+    const Column world = f[0] * p.local[0] + f[1] * p.local[1] + f[2] * p.local[2] + f[3];
+    std::copy_n(world.data(), 3, position);
+  }
+}
+
+void RobotPointKinematics::positionsBatch(const double* q, std::size_t n, float* out) const {
+  const std::size_t coordinates = 3 * pointCount();
+  for (std::size_t b = 0; b < n; b += kConfigurationLanes) {
+    const std::size_t count = std::min(kConfigurationLanes, n - b);
+    // A pass costs about the same however many lanes are used (AVX-512: 183 ns for four, 229 ns
+    // for sixteen); one configuration is about 90 ns on the single chain (BM_ControlPoints,
+    // BM_ControlPointsBatch): up to two go one by one.
+    if (count <= kOneByOne) {
+      for (std::size_t k = b; k < b + count; ++k) place(q + k * dof_, out + k * coordinates);
+    } else {
+      const detail::LaneChain chain{laneSteps_.data(), laneSteps_.size(), lanePoints_.data(),
+                                    lanePoints_.size(), dof_};
+      detail::activePlaceLanes()(chain, q + b * dof_, count, out + b * coordinates);
+    }
+  }
+}
+
+void RobotPointKinematics::positions(const double* q, double* out) const {
+  place(q, out);
+}
+void RobotPointKinematics::positions(const double* q, float* out) const {
+  place(q, out);
+}
+
+}  // namespace fastron
