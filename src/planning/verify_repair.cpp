@@ -136,6 +136,44 @@ PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path
   return result;
 }
 
+/// The waypoints that replace the colliding stretch between waypoints i and j of `old` (after
+/// old[i], up to old[j]), or nothing when no bridge is found in the time given. The bridge joins
+/// the free states next to the stretch's first and last collisions, not its waypoints: a
+/// simplified path's edges are long, and a plan between their ends replans what was free of the
+/// motion too. It is short, so it gets options.stretchShare of the time and shortcuts without
+/// smoothing (on the mesh Panda, smoothing took two thirds of a repair and the final paths were as
+/// long without it). It is planned on `relaxed` when given, unless that finds the stretch's first
+/// collision free (the robot against itself, when it checks the obstacles alone): its bridge
+/// would keep that collision for the next round to bridge again.
+std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std::size_t j,
+                                       const std::shared_ptr<const CollisionChecker>& relaxed,
+                                       const std::shared_ptr<const CollisionChecker>& exact,
+                                       const JointLimits& limits, const PlannerOptions& options) {
+  const FirstCollisionToward entry =
+      firstCollisionToward(exact, old[i], old[i + 1], options.resolution);
+  const Eigen::VectorXd& from = entry.lastFree;
+  const Eigen::VectorXd to =
+      firstCollisionToward(exact, old[j], old[j - 1], options.resolution).lastFree;
+  const bool relaxedSeesIt = relaxed && !freeUnder(relaxed, entry.colliding);
+  const std::shared_ptr<const CollisionChecker>& bridgeChecker = relaxedSeesIt ? relaxed : exact;
+  PlannerOptions stretchOptions = options;
+  stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
+  stretchOptions.simplification = PathSimplification::Shortcuts;
+  // Searched near its ends first: with the whole joint range the planner's samples and long
+  // default edges wander far from a graze, and each exact edge check costs milliseconds on a mesh
+  // robot (box family: repairs of 0.09-0.29 s, as long as FCL's whole plans); then in the whole
+  // range, for an obstacle whose way round lies farther out.
+  PlanResult bridge = planMotion(bridgeChecker, aroundEnds(limits, from, to, kBridgeMargin), from,
+                                 to, stretchOptions);
+  if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
+  if (!bridge.solved()) return std::nullopt;
+  JointPath waypoints;
+  if (!from.isApprox(old[i])) waypoints.push_back(from);
+  waypoints.insert(waypoints.end(), bridge.path.begin() + 1, bridge.path.end());
+  if (!to.isApprox(old[j])) waypoints.push_back(old[j]);
+  return waypoints;
+}
+
 /// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it), and
 /// whose first round plans its bridges on `relaxed` when given: a checker that never says
 /// "collides" where `exact` finds the robot free, so a bridge is at worst wrong, and the next
@@ -189,39 +227,15 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
         repairedKnownFree.push_back(true);
         continue;
       }
-      // Excise up to the next valid waypoint and bridge the gap on the exact checker.
+      // Excise up to the next valid waypoint and bridge the gap (a waypoint the approximate plan
+      // left in a pocket of free space may have no short way out: then the whole motion is
+      // planned again on the exact checker).
       std::size_t j = i + 1;
       while (contains(check.invalidWaypoints, j)) ++j;
       ++result.invalidStretches;
-      // The bridge joins the free states next to the stretch's first and last collisions, not
-      // its waypoints: a simplified path's edges are long, and a plan between their ends
-      // replans what was free of the motion too. It is short, so it gets options.stretchShare of
-      // the time and shortcuts without smoothing (on the mesh Panda, smoothing took two thirds of
-      // a repair and the final paths were as long without it); a waypoint the approximate plan
-      // left in a pocket of free space may have no short way out, and then the whole motion is
-      // planned again on the exact checker.
-      const FirstCollisionToward entry =
-          firstCollisionToward(exact, old[i], old[i + 1], options.resolution);
-      const Eigen::VectorXd& from = entry.lastFree;
-      const Eigen::VectorXd to =
-          firstCollisionToward(exact, old[j], old[j - 1], options.resolution).lastFree;
-      // The first round bridges on the relaxed checker, unless it finds the stretch's first
-      // collision free (the robot against itself, when it checks the obstacles alone): its
-      // bridge would keep that collision for the next round to bridge again.
-      const bool relaxedSeesIt = round == 0 && relaxed && !freeUnder(relaxed, entry.colliding);
-      const std::shared_ptr<const CollisionChecker>& bridgeChecker =
-          relaxedSeesIt ? relaxed : exact;
-      PlannerOptions stretchOptions = options;
-      stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
-      stretchOptions.simplification = PathSimplification::Shortcuts;
-      // Searched near its ends first: with the whole joint range the planner's samples and long
-      // default edges wander far from a graze, and each exact edge check costs milliseconds on
-      // a mesh robot (box family: repairs of 0.09-0.29 s, as long as FCL's whole plans); then in
-      // the whole range, for an obstacle whose way round lies farther out.
-      PlanResult bridge = planMotion(bridgeChecker, aroundEnds(limits, from, to, kBridgeMargin),
-                                     from, to, stretchOptions);
-      if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
-      if (!bridge.solved()) {
+      const std::optional<JointPath> bridge =
+          bridgeStretch(old, i, j, round == 0 ? relaxed : nullptr, exact, limits, options);
+      if (!bridge) {
         const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);
         if (!whole.solved()) {
           result.repairTime += Clock::now() - began;
@@ -236,9 +250,7 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
         result.wholePathReplanned = true;
         break;
       }
-      if (!from.isApprox(old[i])) addNew(from);
-      std::for_each(bridge.path.begin() + 1, bridge.path.end(), addNew);
-      if (!to.isApprox(old[j])) addNew(old[j]);
+      std::for_each(bridge->begin(), bridge->end(), addNew);
       i = j;
     }
     result.path = std::move(repaired);
@@ -414,6 +426,58 @@ VerifiedPlan planVerified(const CalibratedModel& model,
   return result;
 }
 
+/// With options.oracleRelaxesExact, the proxy's oracle, which answers where verification catches
+/// a wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
+/// recorded: its answers are not the exact checker's). Wrapped to count its answers for one plan.
+std::shared_ptr<const CountedChecker> relaxedOracle(
+    const ProxyCollisionDetector& proxy, const std::shared_ptr<const CollisionChecker>& exact,
+    const PlannerOptions& options) {
+  if (!options.oracleRelaxesExact || proxy.oracle() == exact) return nullptr;
+  return std::make_shared<const CountedChecker>(proxy.oracle());
+}
+
+/// What the rounds of planVerifiedLearning on the model spent and learned, before the plan that
+/// ended them.
+struct LearningRounds {
+  std::chrono::nanoseconds planTime{0}, simplifyTime{0}, verifyTime{0}, learnTime{0};
+  std::size_t relearned = 0;
+  bool substituteEnds = false;
+  std::vector<PlanAttempt> attempts;  // on the model, before those of the final plan
+  Dataset answers;                    // the exact answers of the rounds that learned
+};
+
+/// Adds the rounds' times, attempts and answers to the plan that ended them, and the answers and
+/// checks the recorder holds.
+void addRounds(VerifiedPlan& result, LearningRounds rounds, RecordingChecker& recorder) {
+  result.planTime += rounds.planTime + rounds.learnTime;
+  result.simplifyTime += rounds.simplifyTime;
+  result.learnTime = rounds.learnTime;
+  result.verifyTime += rounds.verifyTime;
+  result.relearned = rounds.relearned;
+  result.substituteEnds = result.substituteEnds || rounds.substituteEnds;
+  result.attempts.insert(result.attempts.begin(), rounds.attempts.begin(), rounds.attempts.end());
+  append(rounds.answers, recorder.take());
+  result.exactAnswers = std::move(rounds.answers);
+  result.exactChecks = recorder.callCount();
+}
+
+/// When the model closes the way. Near walls it says "collides" with confidence where the robot
+/// is free (outside any calibrated band), so a hybrid plans next that trusts only its "free" and
+/// asks about every "collides" (the relaxed oracle when there is one): in the generated cage
+/// family 74-83% of those answers were "free". Then `recorder` (the exact checker) plans the whole
+/// motion; the path is verified and repaired.
+VerifiedPlan planOnOptimisticHybrid(const std::shared_ptr<const Model>& model,
+                                    const std::shared_ptr<RecordingChecker>& recorder,
+                                    const std::shared_ptr<const CollisionChecker>& relaxed,
+                                    const JointLimits& limits, const Eigen::VectorXd& start,
+                                    const Eigen::VectorXd& goal, const PlannerOptions& options) {
+  const std::vector<CollisionSource> optimistic{
+      std::make_shared<HybridChecker>(model, relaxed ? relaxed : recorder, kAskEveryCollision)};
+  PlannerOptions hybridOptions = options;
+  hybridOptions.range = optimisticHybridRange(options, limits);
+  return planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed);
+}
+
 VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
                                   const std::shared_ptr<const CollisionChecker>& exact,
                                   const JointLimits& limits, const Eigen::VectorXd& start,
@@ -421,24 +485,13 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   checkExact(exact, limits);
   validate(options);
   const auto recorder = std::make_shared<RecordingChecker>(exact);
-  Dataset answers;  // of the rounds that learned
-  std::chrono::nanoseconds planTime{0}, simplifyTime{0}, verifyTime{0}, learnTime{0};
-  std::size_t relearned = 0;
-  bool substituteEnds = false;
-  std::vector<PlanAttempt> attempts;  // on the model, before those of `result`
+  LearningRounds rounds;
   VerifiedPlan result;
   JointPath lastPath;  // the last path on the model that verification found colliding
   PathCheck lastCheck;
   PlannerOptions roundOptions = options;
   roundOptions.approximateShare = std::min(options.approximateShare, options.modelShare);
-  // With options.oracleRelaxesExact the proxy's oracle answers where verification catches a
-  // wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
-  // recorded: its answers are not the exact checker's).
-  // Wrapped to count its answers for this plan alone.
-  const std::shared_ptr<const CollisionChecker> relaxed =
-      options.oracleRelaxesExact && proxy.oracle() != exact
-          ? std::make_shared<const CountedChecker>(proxy.oracle())
-          : nullptr;
+  const std::shared_ptr<const CountedChecker> relaxed = relaxedOracle(proxy, exact, options);
   // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
     VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options, relaxed);
@@ -449,10 +502,10 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     const std::shared_ptr<const Model> model = proxy.model();
     const ApproximatePlan attempt =
         planApproximately(model, recorder, limits, start, goal, roundOptions);
-    planTime += attempt.plan.time;
-    simplifyTime += attempt.plan.simplifyTime;
-    substituteEnds = substituteEnds || attempt.substituteEnds;
-    attempts.push_back(attemptOf(sourceName(model), attempt.plan, attempt.substituteEnds));
+    rounds.planTime += attempt.plan.time;
+    rounds.simplifyTime += attempt.plan.simplifyTime;
+    rounds.substituteEnds = rounds.substituteEnds || attempt.substituteEnds;
+    rounds.attempts.push_back(attemptOf(sourceName(model), attempt.plan, attempt.substituteEnds));
     if (!attempt.plan.solved() && round > 0) {
       // What the model learned closed its way: repair the last path instead, as planVerified
       // would have.
@@ -460,16 +513,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       break;
     }
     if (!attempt.plan.solved()) {
-      // The model closes the way. Near walls it says "collides" with confidence where the robot
-      // is free (outside any calibrated band), so a hybrid plans next that trusts only its "free"
-      // and asks about every "collides" (the relaxed oracle when there is one): in the generated
-      // cage family 74-83% of those answers were "free". Then `exact` plans the whole motion.
-      const std::vector<CollisionSource> optimistic{
-          std::make_shared<HybridChecker>(model, relaxed ? relaxed : recorder, kAskEveryCollision)};
-      PlannerOptions hybridOptions = options;
-      hybridOptions.range = optimisticHybridRange(options, limits);
-      result =
-          planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed);
+      result = planOnOptimisticHybrid(model, recorder, relaxed, limits, start, goal, options);
       break;
     }
     if (round == options.learningRounds) {
@@ -478,7 +522,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     }
     const auto verifyBegan = Clock::now();
     const PathCheck check = checkPathParallel(*recorder, attempt.plan.path, options.resolution);
-    verifyTime += Clock::now() - verifyBegan;
+    rounds.verifyTime += Clock::now() - verifyBegan;
     if (check.valid()) {
       result.status = PlanStatus::Solved;
       result.path = attempt.plan.path;
@@ -496,7 +540,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     const auto learnBegan = Clock::now();
     const Dataset recorded = recorder->take();
     const Dataset missed = answersMissedBy(*model, recorded);
-    append(answers, recorded);
+    append(rounds.answers, recorded);
     if (missed.size() == 0) {
       // Verification's states all answered as the model does (the planner looked at others):
       // learning would change nothing, so the path is repaired.
@@ -505,21 +549,12 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     }
     proxy.addObservations(missed);
     proxy.learnObservations();
-    learnTime += Clock::now() - learnBegan;
-    ++relearned;
+    rounds.learnTime += Clock::now() - learnBegan;
+    ++rounds.relearned;
     lastPath = attempt.plan.path;
     lastCheck = check;
   }
-  result.planTime += planTime + learnTime;
-  result.simplifyTime += simplifyTime;
-  result.learnTime = learnTime;
-  result.verifyTime += verifyTime;
-  result.relearned = relearned;
-  result.substituteEnds = result.substituteEnds || substituteEnds;
-  result.attempts.insert(result.attempts.begin(), attempts.begin(), attempts.end());
-  append(answers, recorder->take());
-  result.exactAnswers = std::move(answers);
-  result.exactChecks = recorder->callCount();
+  addRounds(result, std::move(rounds), *recorder);
   result.relaxedChecks = relaxed ? relaxed->callCount() : 0;
   return result;
 }
