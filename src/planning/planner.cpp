@@ -241,6 +241,41 @@ double modelStep(const PlannerOptions& options) {
                                      : kModelStepsPerStep * options.resolution;
 }
 
+namespace {
+
+/// Simplifies `path` within options.simplifyTime, as options.simplification says.
+void simplifyPath(const ob::SpaceInformationPtr& si, og::PathGeometric& path,
+                  const PlannerOptions& options) {
+  og::PathSimplifier simplifier(si);
+  const auto timeLeft = ob::timedPlannerTerminationCondition(options.simplifyTime);
+  // One simplification of `path`; false when it ends with an edge through an obstacle.
+  const auto simplify = [&] {
+    if (options.simplification == PathSimplification::Full)
+      return simplifier.simplify(path, timeLeft);
+    // As simplify's first round, without the smoothing: passes until one gains nothing or the
+    // time is up (the first always runs, as simplify's first round does). A shortcut may start
+    // at a point between two checked states of an edge, unchecked itself (a corner the edge
+    // grazes): checkAndRepair moves such states out, as simplify does after its passes.
+    for (int pass = 0; pass < 5 && simplifier.shortcutPath(path) && !timeLeft(); ++pass) {
+    }
+    for (int pass = 0; pass < 5 && simplifier.reduceVertices(path) && !timeLeft(); ++pass) {
+    }
+    simplifier.collapseCloseVertices(path);
+    return path.checkAndRepair(ompl::magic::MAX_VALID_SAMPLE_ATTEMPTS).second;
+  };
+  // checkAndRepair (which simplify ends with too) may fail to move a state out and leave an
+  // edge through an obstacle: about 1 in 1000 plans around the wall of the tests
+  // (ASimplificationThatEndsInvalidKeepsThePlannersPath). The planner's path, every edge of it
+  // checked, is simplified again (shortcuts are random) while time is left, else returned.
+  const og::PathGeometric planned(path);
+  for (int attempt = 0; !simplify(); ++attempt) {
+    path = planned;
+    if (attempt == 2 || timeLeft()) break;
+  }
+}
+
+}  // namespace
+
 PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
                       const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
                       const PlannerOptions& options) {
@@ -293,32 +328,7 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   auto& path = *problem->getSolutionPath()->as<og::PathGeometric>();
   if (options.simplifyTime > 0) {
     const auto simplifyBegan = std::chrono::steady_clock::now();
-    og::PathSimplifier simplifier(si);
-    const auto timeLeft = ob::timedPlannerTerminationCondition(options.simplifyTime);
-    // One simplification of `path`; false when it ends with an edge through an obstacle.
-    const auto simplify = [&] {
-      if (options.simplification == PathSimplification::Full)
-        return simplifier.simplify(path, timeLeft);
-      // As simplify's first round, without the smoothing: passes until one gains nothing or the
-      // time is up (the first always runs, as simplify's first round does). A shortcut may start
-      // at a point between two checked states of an edge, unchecked itself (a corner the edge
-      // grazes): checkAndRepair moves such states out, as simplify does after its passes.
-      for (int pass = 0; pass < 5 && simplifier.shortcutPath(path) && !timeLeft(); ++pass) {
-      }
-      for (int pass = 0; pass < 5 && simplifier.reduceVertices(path) && !timeLeft(); ++pass) {
-      }
-      simplifier.collapseCloseVertices(path);
-      return path.checkAndRepair(ompl::magic::MAX_VALID_SAMPLE_ATTEMPTS).second;
-    };
-    // checkAndRepair (which simplify ends with too) may fail to move a state out and leave an
-    // edge through an obstacle: about 1 in 1000 plans around the wall of the tests
-    // (ASimplificationThatEndsInvalidKeepsThePlannersPath). The planner's path, every edge of it
-    // checked, is simplified again (shortcuts are random) while time is left, else returned.
-    const og::PathGeometric planned(path);
-    for (int attempt = 0; !simplify(); ++attempt) {
-      path = planned;
-      if (attempt == 2 || timeLeft()) break;
-    }
+    simplifyPath(si, path, options);
     result.simplifyTime = std::chrono::steady_clock::now() - simplifyBegan;
   }
   const auto dim = static_cast<Eigen::Index>(limits.dim());
