@@ -25,19 +25,16 @@ int indexByName(const std::vector<T>& items, std::string_view name, const char* 
 
 }  // namespace
 
-Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joints,
-             std::vector<LinkShape> shapes)
-    : name_(std::move(name)), links_(std::move(links)), shapes_(std::move(shapes)) {
-  const std::string where = "robot '" + name_ + "'";
-  if (links_.empty()) throw InvalidArgument(where + " has no links");
+namespace {
+
+/// Checks each joint (names, links, limits, axis, origin) and settles what it leaves open (a
+/// continuous joint's range, a unit axis); returns each link's parent joint (-1: none). Throws
+/// InvalidArgument naming the robot (`where`) and the joint.
+std::vector<int> checkJoints(const std::string& where, const std::vector<Link>& links,
+                             std::vector<Joint>& joints) {
   std::unordered_set<std::string> names;
-  for (const Link& l : links_) {
-    if (!names.insert(l.name).second)
-      throw InvalidArgument(where + ": two links named '" + l.name + "'");
-  }
-  names.clear();
-  const int linkCount = static_cast<int>(links_.size());
-  std::vector<int> parentJointOf(links_.size(), -1);
+  const int linkCount = static_cast<int>(links.size());
+  std::vector<int> parentJointOf(links.size(), -1);
   for (std::size_t j = 0; j < joints.size(); ++j) {
     Joint& joint = joints[j];
     const std::string at = where + ", joint '" + joint.name + "'";
@@ -48,7 +45,7 @@ Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joint
       throw InvalidArgument(at + ": parent or child link does not exist");
     }
     if (parentJointOf[static_cast<std::size_t>(joint.child)] >= 0) {
-      throw InvalidArgument(at + ": link '" + links_[static_cast<std::size_t>(joint.child)].name +
+      throw InvalidArgument(at + ": link '" + links[static_cast<std::size_t>(joint.child)].name +
                             "' already has a parent joint");
     }
     parentJointOf[static_cast<std::size_t>(joint.child)] = static_cast<int>(j);
@@ -68,7 +65,16 @@ Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joint
     }
     if (!joint.origin.matrix().allFinite()) throw InvalidArgument(at + ": origin is not finite");
   }
+  return parentJointOf;
+}
 
+}  // namespace
+
+/// The joints in breadth-first order from the single root (parents before children), each link's
+/// parent joint set. Throws InvalidArgument on several roots or a cycle.
+void Robot::orderJoints(const std::string& where, const std::vector<int>& parentJointOf,
+                        const std::vector<Joint>& joints) {
+  const int linkCount = static_cast<int>(links_.size());
   // One root; order the joints breadth-first from it so parents come before children.
   std::vector<int> roots;
   for (int l = 0; l < linkCount; ++l) {
@@ -98,7 +104,22 @@ Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joint
     links_[static_cast<std::size_t>(joints_[j].child)].parentJoint = static_cast<int>(j);
   }
   links_[static_cast<std::size_t>(root_)].parentJoint = -1;
+}
 
+Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joints,
+             std::vector<LinkShape> shapes)
+    : name_(std::move(name)), links_(std::move(links)), shapes_(std::move(shapes)) {
+  const std::string where = "robot '" + name_ + "'";
+  if (links_.empty()) throw InvalidArgument(where + " has no links");
+  std::unordered_set<std::string> names;
+  for (const Link& l : links_) {
+    if (!names.insert(l.name).second)
+      throw InvalidArgument(where + ": two links named '" + l.name + "'");
+  }
+  names.clear();
+  const std::vector<int> parentJointOf = checkJoints(where, links_, joints);
+  orderJoints(where, parentJointOf, joints);
+  const int linkCount = static_cast<int>(links_.size());
   for (const LinkShape& s : shapes_) {
     if (s.link < 0 || s.link >= linkCount)
       throw InvalidArgument(where + ": a shape's link does not exist");

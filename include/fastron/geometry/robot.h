@@ -125,6 +125,10 @@ class Robot {
   AllowedCollisionMatrix allowed_;
 
   void resolveMimics();
+  /// Stores `joints` in breadth-first order from the single root link and sets each link's parent
+  /// joint; throws InvalidArgument naming the robot (`where`) on several roots or a cycle.
+  void orderJoints(const std::string& where, const std::vector<int>& parentJointOf,
+                   const std::vector<Joint>& joints);
 };
 
 }  // namespace fastron
