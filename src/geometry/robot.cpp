@@ -116,7 +116,6 @@ Robot::Robot(std::string name, std::vector<Link> links, std::vector<Joint> joint
     if (!names.insert(l.name).second)
       throw InvalidArgument(where + ": two links named '" + l.name + "'");
   }
-  names.clear();
   const std::vector<int> parentJointOf = checkJoints(where, links_, joints);
   orderJoints(where, parentJointOf, joints);
   const int linkCount = static_cast<int>(links_.size());

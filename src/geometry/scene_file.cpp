@@ -185,6 +185,92 @@ void readRobotState(const Reader& r, const YAML::Node& state, Scene& scene) {
       r.vector3(r.required(t, "translation", what), what + " translation");
 }
 
+using ObjectParts = std::vector<std::pair<Shape, Eigen::Isometry3d>>;
+
+/// A MoveIt collision object's primitives (box, sphere, cylinder) with their world poses.
+void readMoveItPrimitives(const Reader& r, const YAML::Node& object, const std::string& what,
+                          const Eigen::Isometry3d& objectPose, ObjectParts& parts) {
+  const YAML::Node primitives = object["primitives"];
+  const YAML::Node poses = object["primitive_poses"];
+  if (primitives) {
+    r.list(primitives, what + " primitives");
+    if (!poses) r.fail(object, what + ": one primitive_pose per primitive is needed");
+    if (r.list(poses, what + " primitive_poses").size() != primitives.size())
+      r.fail(poses, what + ": one primitive_pose per primitive is needed");
+    for (std::size_t i = 0; i < primitives.size(); ++i) {
+      const YAML::Node p = primitives[i];
+      const std::string type =
+          r.text(r.required(p, "type", what + " primitive"), what + " primitive type");
+      const YAML::Node dims = r.required(p, "dimensions", what + " primitive");
+      Shape shape = Sphere{1};
+      if (type == "box") {
+        shape = Box{r.vector3(dims, what + " box dimensions")};
+      } else if (type == "sphere") {
+        shape = Sphere{r.numbers(dims, 1, what + " sphere dimensions [radius]")[0]};
+      } else if (type == "cylinder") {
+        const auto d = r.numbers(dims, 2, what + " cylinder dimensions [height, radius]");
+        shape = Cylinder{d[1], d[0]};
+      } else {
+        r.fail(p["type"],
+               what + ": primitive type '" + type + "' is not supported (box, sphere, cylinder)");
+      }
+      parts.emplace_back(shape, objectPose * r.pose(poses[i], what + " primitive_pose"));
+    }
+  }
+}
+
+/// A MoveIt collision object's meshes (vertices and triangles inline) with their world poses.
+void readMoveItMeshes(const Reader& r, const YAML::Node& object, const std::string& what,
+                      const std::string& id, const std::string& source,
+                      const Eigen::Isometry3d& objectPose, ObjectParts& parts) {
+  if (const YAML::Node meshes = object["meshes"]) {
+    r.list(meshes, what + " meshes");
+    const YAML::Node meshPoses = object["mesh_poses"];
+    if (!meshPoses) r.fail(object, what + ": one mesh_pose per mesh is needed");
+    if (r.list(meshPoses, what + " mesh_poses").size() != meshes.size())
+      r.fail(meshPoses, what + ": one mesh_pose per mesh is needed");
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+      auto mesh = std::make_shared<TriangleMesh>();
+      mesh->source = source + " (" + id + ")";
+      for (const auto& v :
+           r.list(r.required(meshes[i], "vertices", what + " mesh"), what + " mesh vertices"))
+        mesh->vertices.push_back(r.vector3(v, what + " vertex"));
+      for (const auto& t :
+           r.list(r.required(meshes[i], "triangles", what + " mesh"), what + " mesh triangles")) {
+        const auto idx =
+            r.numbers(t["vertex_indices"] ? t["vertex_indices"] : t, 3, what + " triangle");
+        for (const double k : idx) {
+          if (k < 0 || k >= static_cast<double>(mesh->vertices.size()))
+            r.fail(t, what + ": triangle vertex index out of range");
+        }
+        mesh->triangles.emplace_back(static_cast<int>(idx[0]), static_cast<int>(idx[1]),
+                                     static_cast<int>(idx[2]));
+      }
+      parts.emplace_back(Mesh{mesh}, objectPose * r.pose(meshPoses[i], what + " mesh_pose"));
+    }
+  }
+}
+
+/// A MoveIt allowed_collision_matrix: the pairs whose entry is true may touch.
+void readMoveItAllowedPairs(const Reader& r, const YAML::Node& acm, Scene& scene) {
+  const YAML::Node names = r.list(r.required(acm, "entry_names", "allowed_collision_matrix"),
+                                  "allowed_collision_matrix entry_names");
+  const YAML::Node values = r.list(r.required(acm, "entry_values", "allowed_collision_matrix"),
+                                   "allowed_collision_matrix entry_values");
+  if (values.size() != names.size())
+    r.fail(values, "allowed_collision_matrix: one row of entry_values per entry name");
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (!values[i].IsSequence() || values[i].size() != names.size())
+      r.fail(values[i],
+             "allowed_collision_matrix: row " + std::to_string(i) + " has the wrong length");
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      if (r.flag(values[i][j], "allowed_collision_matrix entry"))
+        scene.allowedCollisions.allow(r.text(names[i], "allowed_collision_matrix entry name"),
+                                      r.text(names[j], "allowed_collision_matrix entry name"));
+    }
+  }
+}
+
 Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
@@ -199,60 +285,9 @@ Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
     const std::string what = "collision object '" + id + "'";
     const Eigen::Isometry3d objectPose =
         object["pose"] ? r.pose(object["pose"], what + " pose") : Eigen::Isometry3d::Identity();
-    std::vector<std::pair<Shape, Eigen::Isometry3d>> parts;
-    const YAML::Node primitives = object["primitives"];
-    const YAML::Node poses = object["primitive_poses"];
-    if (primitives) {
-      r.list(primitives, what + " primitives");
-      if (!poses) r.fail(object, what + ": one primitive_pose per primitive is needed");
-      if (r.list(poses, what + " primitive_poses").size() != primitives.size())
-        r.fail(poses, what + ": one primitive_pose per primitive is needed");
-      for (std::size_t i = 0; i < primitives.size(); ++i) {
-        const YAML::Node p = primitives[i];
-        const std::string type =
-            r.text(r.required(p, "type", what + " primitive"), what + " primitive type");
-        const YAML::Node dims = r.required(p, "dimensions", what + " primitive");
-        Shape shape = Sphere{1};
-        if (type == "box") {
-          shape = Box{r.vector3(dims, what + " box dimensions")};
-        } else if (type == "sphere") {
-          shape = Sphere{r.numbers(dims, 1, what + " sphere dimensions [radius]")[0]};
-        } else if (type == "cylinder") {
-          const auto d = r.numbers(dims, 2, what + " cylinder dimensions [height, radius]");
-          shape = Cylinder{d[1], d[0]};
-        } else {
-          r.fail(p["type"],
-                 what + ": primitive type '" + type + "' is not supported (box, sphere, cylinder)");
-        }
-        parts.emplace_back(shape, objectPose * r.pose(poses[i], what + " primitive_pose"));
-      }
-    }
-    if (const YAML::Node meshes = object["meshes"]) {
-      r.list(meshes, what + " meshes");
-      const YAML::Node meshPoses = object["mesh_poses"];
-      if (!meshPoses) r.fail(object, what + ": one mesh_pose per mesh is needed");
-      if (r.list(meshPoses, what + " mesh_poses").size() != meshes.size())
-        r.fail(meshPoses, what + ": one mesh_pose per mesh is needed");
-      for (std::size_t i = 0; i < meshes.size(); ++i) {
-        auto mesh = std::make_shared<TriangleMesh>();
-        mesh->source = source + " (" + id + ")";
-        for (const auto& v :
-             r.list(r.required(meshes[i], "vertices", what + " mesh"), what + " mesh vertices"))
-          mesh->vertices.push_back(r.vector3(v, what + " vertex"));
-        for (const auto& t :
-             r.list(r.required(meshes[i], "triangles", what + " mesh"), what + " mesh triangles")) {
-          const auto idx =
-              r.numbers(t["vertex_indices"] ? t["vertex_indices"] : t, 3, what + " triangle");
-          for (const double k : idx) {
-            if (k < 0 || k >= static_cast<double>(mesh->vertices.size()))
-              r.fail(t, what + ": triangle vertex index out of range");
-          }
-          mesh->triangles.emplace_back(static_cast<int>(idx[0]), static_cast<int>(idx[1]),
-                                       static_cast<int>(idx[2]));
-        }
-        parts.emplace_back(Mesh{mesh}, objectPose * r.pose(meshPoses[i], what + " mesh_pose"));
-      }
-    }
+    ObjectParts parts;
+    readMoveItPrimitives(r, object, what, objectPose, parts);
+    readMoveItMeshes(r, object, what, id, source, objectPose, parts);
     if (parts.empty()) r.fail(object, what + " has no primitives or meshes");
     for (std::size_t i = 0; i < parts.size(); ++i) {
       try {
@@ -264,24 +299,8 @@ Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
     }
   }
   if (const YAML::Node state = root["robot_state"]) readRobotState(r, state, scene);
-  if (const YAML::Node acm = root["allowed_collision_matrix"]) {
-    const YAML::Node names = r.list(r.required(acm, "entry_names", "allowed_collision_matrix"),
-                                    "allowed_collision_matrix entry_names");
-    const YAML::Node values = r.list(r.required(acm, "entry_values", "allowed_collision_matrix"),
-                                     "allowed_collision_matrix entry_values");
-    if (values.size() != names.size())
-      r.fail(values, "allowed_collision_matrix: one row of entry_values per entry name");
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (!values[i].IsSequence() || values[i].size() != names.size())
-        r.fail(values[i],
-               "allowed_collision_matrix: row " + std::to_string(i) + " has the wrong length");
-      for (std::size_t j = 0; j < names.size(); ++j) {
-        if (r.flag(values[i][j], "allowed_collision_matrix entry"))
-          scene.allowedCollisions.allow(r.text(names[i], "allowed_collision_matrix entry name"),
-                                        r.text(names[j], "allowed_collision_matrix entry name"));
-      }
-    }
-  }
+  if (const YAML::Node acm = root["allowed_collision_matrix"])
+    readMoveItAllowedPairs(r, acm, scene);
   return scene;
 }
 
