@@ -233,6 +233,66 @@ void mergeCapsules(std::vector<LinkShape>& shapes) {
   shapes = std::move(merged);
 }
 
+/// A collision element's shape: a box, sphere or cylinder, or a mesh loaded from its file.
+Shape collisionShape(const urdf::Geometry& geometry, const UrdfOptions& options,
+                     const std::filesystem::path& baseDirectory, const std::string& where) {
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& b = static_cast<const urdf::Box&>(geometry);
+      return Box{Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z)};
+    }
+    case urdf::Geometry::SPHERE:
+      return Sphere{static_cast<const urdf::Sphere&>(geometry).radius};
+    case urdf::Geometry::CYLINDER: {
+      const auto& cy = static_cast<const urdf::Cylinder&>(geometry);
+      return Cylinder{cy.radius, cy.length};
+    }
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(geometry);
+      const auto path = resolveMesh(m.filename, options, baseDirectory, where);
+      return Mesh{loadMesh(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z))};
+    }
+  }
+  throw FileError(where + ": unknown collision geometry");
+}
+
+/// A urdfdom joint as ours; throws FileError naming `source` and the joint for a type we do not
+/// model (floating, planar) or a revolute or prismatic joint without limits.
+Joint toJoint(const std::string& name, const urdf::Joint& j,
+              const std::map<std::string, int>& linkIndex, const std::string& source) {
+  Joint joint;
+  joint.name = name;
+  joint.parent = linkIndex.at(j.parent_link_name);
+  joint.child = linkIndex.at(j.child_link_name);
+  joint.origin = toIsometry(j.parent_to_joint_origin_transform);
+  joint.axis = Eigen::Vector3d(j.axis.x, j.axis.y, j.axis.z);
+  switch (j.type) {
+    case urdf::Joint::REVOLUTE:
+      joint.type = JointType::Revolute;
+      break;
+    case urdf::Joint::CONTINUOUS:
+      joint.type = JointType::Continuous;
+      break;
+    case urdf::Joint::PRISMATIC:
+      joint.type = JointType::Prismatic;
+      break;
+    case urdf::Joint::FIXED:
+      joint.type = JointType::Fixed;
+      break;
+    default:
+      throw FileError(source + ": joint '" + name + "': unsupported joint type");
+  }
+  if (joint.type == JointType::Revolute || joint.type == JointType::Prismatic) {
+    if (!j.limits) throw FileError(source + ": joint '" + name + "' has no <limit>");
+    joint.lower = j.limits->lower;
+    joint.upper = j.limits->upper;
+  }
+  if (j.mimic) {
+    joint.mimic = Mimic{j.mimic->joint_name, j.mimic->multiplier, j.mimic->offset};
+  }
+  return joint;
+}
+
 }  // namespace
 
 Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOptions& options,
@@ -270,66 +330,15 @@ Robot parseUrdf(const std::string& xml, const std::string& source, const UrdfOpt
     }
     for (const auto& c : l->collision_array) {
       const std::string where = source + ": link '" + l->name + "'";
-      LinkShape s{linkIndex[l->name], toIsometry(c->origin), Sphere{1}};
-      switch (c->geometry->type) {
-        case urdf::Geometry::BOX: {
-          const auto& b = static_cast<const urdf::Box&>(*c->geometry);
-          s.shape = Box{Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z)};
-          break;
-        }
-        case urdf::Geometry::SPHERE:
-          s.shape = Sphere{static_cast<const urdf::Sphere&>(*c->geometry).radius};
-          break;
-        case urdf::Geometry::CYLINDER: {
-          const auto& cy = static_cast<const urdf::Cylinder&>(*c->geometry);
-          s.shape = Cylinder{cy.radius, cy.length};
-          break;
-        }
-        case urdf::Geometry::MESH: {
-          const auto& m = static_cast<const urdf::Mesh&>(*c->geometry);
-          const auto path = resolveMesh(m.filename, options, baseDirectory, where);
-          s.shape = Mesh{loadMesh(path, Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z))};
-          break;
-        }
-      }
-      shapes.push_back(std::move(s));
+      shapes.push_back({linkIndex[l->name], toIsometry(c->origin),
+                        collisionShape(*c->geometry, options, baseDirectory, where)});
     }
   }
   if (options.mergeCapsules) mergeCapsules(shapes);
 
   std::vector<Joint> joints;
   for (const auto& [name, j] : model->joints_) {
-    Joint joint;
-    joint.name = name;
-    joint.parent = linkIndex.at(j->parent_link_name);
-    joint.child = linkIndex.at(j->child_link_name);
-    joint.origin = toIsometry(j->parent_to_joint_origin_transform);
-    joint.axis = Eigen::Vector3d(j->axis.x, j->axis.y, j->axis.z);
-    switch (j->type) {
-      case urdf::Joint::REVOLUTE:
-        joint.type = JointType::Revolute;
-        break;
-      case urdf::Joint::CONTINUOUS:
-        joint.type = JointType::Continuous;
-        break;
-      case urdf::Joint::PRISMATIC:
-        joint.type = JointType::Prismatic;
-        break;
-      case urdf::Joint::FIXED:
-        joint.type = JointType::Fixed;
-        break;
-      default:
-        throw FileError(source + ": joint '" + name + "': unsupported joint type");
-    }
-    if (joint.type == JointType::Revolute || joint.type == JointType::Prismatic) {
-      if (!j->limits) throw FileError(source + ": joint '" + name + "' has no <limit>");
-      joint.lower = j->limits->lower;
-      joint.upper = j->limits->upper;
-    }
-    if (j->mimic) {
-      joint.mimic = Mimic{j->mimic->joint_name, j->mimic->multiplier, j->mimic->offset};
-    }
-    joints.push_back(std::move(joint));
+    joints.push_back(toJoint(name, *j, linkIndex, source));
   }
   try {
     return Robot(model->getName(), std::move(links), std::move(joints), std::move(shapes));
