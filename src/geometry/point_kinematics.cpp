@@ -172,6 +172,14 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     const Eigen::Vector3d local = inStep[link] * p.offset;
     chain_.points.push_back({step, {local.x(), local.y(), local.z()}});
   }
+  buildFloatChains();
+  description_.robot = robot.name();
+  description_.joints = robot.actuatedJointNames();
+  description_.points = std::move(points);
+  description_.checksum = kinematicsChecksum(robot);
+}
+
+void RobotPointKinematics::buildFloatChains() {
   for (const auto& step : chain_.steps) {
     chainF_.steps.push_back({step.parent,
                              step.joint,
@@ -199,11 +207,6 @@ RobotPointKinematics::RobotPointKinematics(const Robot& robot, std::vector<Contr
     lane.step = point.step;
     for (std::size_t i = 0; i < 3; ++i) lane.local[i] = point.local[i];
   }
-
-  description_.robot = robot.name();
-  description_.joints = robot.actuatedJointNames();
-  description_.points = std::move(points);
-  description_.checksum = kinematicsChecksum(robot);
 }
 
 template <>

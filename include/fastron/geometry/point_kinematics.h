@@ -75,6 +75,8 @@ class RobotPointKinematics final : public PointKinematics {
   const Chain<T>& chain() const;
   template <class T>
   void place(const double* q, T* out) const;
+  /// The float chain and the lanes' plain copy of it, from the double chain.
+  void buildFloatChains();
 
   std::size_t dof_ = 0;
   Chain<double> chain_;
