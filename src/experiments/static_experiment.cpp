@@ -78,6 +78,81 @@ struct MethodResult {
 
 }  // namespace
 
+/// One trial of the static experiment: Fastron, ISVM, SSVM and LIBSVM trained in the trial's
+/// world, and the exact checkers, each scored on the trial's test set.
+std::vector<MethodResult> runStaticTrial(const Setup& s, const Trial& t, const StaticOptions& o,
+                                         Rng& rng, int dof, std::size_t trial,
+                                         const Progress& progress) {
+  const JointLimits limits = t.robot.limits();
+  const auto gjk = makeSceneChecker("gjk", t.robot, t.scene);
+  std::vector<MethodResult> results;
+
+  // The training set of Fastron, SSVM and LIBSVM: N uniform configurations labelled by FCL.
+  auto start = Clock::now();
+  const Configurations q = uniformConfigurations(limits, s.n, rng);
+  const Labels y = labelConfigurations(*t.fcl, q);
+  const double labelSeconds = since(start);
+
+  auto evaluate = [&](const std::string& name, Classifier& c, double trainSeconds) {
+    results.push_back({name, confusion(t, [&](const double* x) { return c.predict(x); }),
+                       static_cast<double>(c.supportCount()),
+                       meanSecondsPerCall(t.test, [&](const double* x) { return c.predict(x); }),
+                       trainSeconds});
+  };
+  auto trained = [&](Classifier& c) {
+    const auto begin = Clock::now();
+    c.train(q, y);
+    return labelSeconds + since(begin);
+  };
+
+  if (progress)
+    progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) + "/" +
+             std::to_string(o.trials) + ": Fastron");
+  FastronClassifier fastron(limits, {.kernel = {KernelType::RationalQuadratic, s.gamma},
+                                     .beta = o.beta,
+                                     .maxIterations = 1'000'000,
+                                     .maxSupportPoints = s.n});
+  evaluate("Fastron", fastron, trained(fastron));
+
+  if (progress)
+    progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) +
+             ": ISVM");
+  IsvmClassifier isvm(limits, {KernelType::Gaussian, s.gamma},
+                      {.C = 10,
+                       .initialPoints = s.n / 10,
+                       .maxAdded = s.n - s.n / 10,
+                       .batch = s.n / 20,
+                       .seed = rng()});
+  start = Clock::now();
+  isvm.trainActively([&](const Configurations& a) { return labelConfigurations(*t.fcl, a); });
+  evaluate("ISVM", isvm, since(start));
+
+  if (progress)
+    progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) +
+             ": SSVM");
+  SsvmClassifier ssvm(limits, {KernelType::RationalQuadratic, s.gamma}, {.C = 10});
+  evaluate("SSVM", ssvm, trained(ssvm));
+  results.back().qpStopped = ssvm.report().stoppedByQp;
+
+  LibsvmClassifier libsvm(limits, s.gamma, 10);
+  evaluate("LIBSVM", libsvm, trained(libsvm));
+
+  const std::size_t d = limits.dim();
+  results.push_back({"FK+GJK",
+                     confusion(t,
+                               [&](const double* x) {
+                                 return gjk->inCollision({x, d});
+                               }),
+                     std::nan(""), meanSecondsPerCheck(t.test, *gjk), std::nan("")});
+  results.push_back({"FK+FCL",
+                     confusion(t,
+                               [&](const double* x) {
+                                 return t.fcl->inCollision({x, d});
+                               }),
+                     std::nan(""), meanSecondsPerCheck(t.test, *t.fcl), std::nan("")});
+  return results;
+}
+
 Table runStatic(const StaticOptions& o, const Progress& progress) {
   Table table{{"dof", "trial", "method", "accuracy", "tpr", "tnr", "support", "query_s", "train_s",
                "obstacles", "cobs_fraction", "qp_stopped"},
@@ -87,75 +162,7 @@ Table runStatic(const StaticOptions& o, const Progress& progress) {
     for (std::size_t trial = 0; trial < o.trials; ++trial) {
       Rng rng(o.seed * 1000 + static_cast<std::uint64_t>(dof) * 100 + trial);
       Trial t(s, o.quick, rng);
-      const JointLimits limits = t.robot.limits();
-      const auto gjk = makeSceneChecker("gjk", t.robot, t.scene);
-      std::vector<MethodResult> results;
-
-      // The training set of Fastron, SSVM and LIBSVM: N uniform configurations labelled by FCL.
-      auto start = Clock::now();
-      const Configurations q = uniformConfigurations(limits, s.n, rng);
-      const Labels y = labelConfigurations(*t.fcl, q);
-      const double labelSeconds = since(start);
-
-      auto evaluate = [&](const std::string& name, Classifier& c, double trainSeconds) {
-        results.push_back(
-            {name, confusion(t, [&](const double* x) { return c.predict(x); }),
-             static_cast<double>(c.supportCount()),
-             meanSecondsPerCall(t.test, [&](const double* x) { return c.predict(x); }),
-             trainSeconds});
-      };
-      auto trained = [&](Classifier& c) {
-        const auto begin = Clock::now();
-        c.train(q, y);
-        return labelSeconds + since(begin);
-      };
-
-      if (progress)
-        progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) +
-                 "/" + std::to_string(o.trials) + ": Fastron");
-      FastronClassifier fastron(limits, {.kernel = {KernelType::RationalQuadratic, s.gamma},
-                                         .beta = o.beta,
-                                         .maxIterations = 1'000'000,
-                                         .maxSupportPoints = s.n});
-      evaluate("Fastron", fastron, trained(fastron));
-
-      if (progress)
-        progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) +
-                 ": ISVM");
-      IsvmClassifier isvm(limits, {KernelType::Gaussian, s.gamma},
-                          {.C = 10,
-                           .initialPoints = s.n / 10,
-                           .maxAdded = s.n - s.n / 10,
-                           .batch = s.n / 20,
-                           .seed = rng()});
-      start = Clock::now();
-      isvm.trainActively([&](const Configurations& a) { return labelConfigurations(*t.fcl, a); });
-      evaluate("ISVM", isvm, since(start));
-
-      if (progress)
-        progress("static " + std::to_string(dof) + "-DOF, trial " + std::to_string(trial + 1) +
-                 ": SSVM");
-      SsvmClassifier ssvm(limits, {KernelType::RationalQuadratic, s.gamma}, {.C = 10});
-      evaluate("SSVM", ssvm, trained(ssvm));
-      results.back().qpStopped = ssvm.report().stoppedByQp;
-
-      LibsvmClassifier libsvm(limits, s.gamma, 10);
-      evaluate("LIBSVM", libsvm, trained(libsvm));
-
-      const std::size_t d = limits.dim();
-      results.push_back({"FK+GJK",
-                         confusion(t,
-                                   [&](const double* x) {
-                                     return gjk->inCollision({x, d});
-                                   }),
-                         std::nan(""), meanSecondsPerCheck(t.test, *gjk), std::nan("")});
-      results.push_back({"FK+FCL",
-                         confusion(t,
-                                   [&](const double* x) {
-                                     return t.fcl->inCollision({x, d});
-                                   }),
-                         std::nan(""), meanSecondsPerCheck(t.test, *t.fcl), std::nan("")});
-
+      const std::vector<MethodResult> results = runStaticTrial(s, t, o, rng, dof, trial, progress);
       for (const MethodResult& r : results) {
         table.add({std::to_string(dof), std::to_string(trial), r.method, cell(r.counts.accuracy()),
                    cell(r.counts.tpr()), cell(r.counts.tnr()), cell(r.support),

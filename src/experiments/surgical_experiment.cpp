@@ -14,6 +14,55 @@
 
 namespace fastron::experiments {
 
+namespace {
+
+/// PSM3's two ends. Home: the instrument withdrawn; target: its tip between the two instruments,
+/// above the tissue. Both free in `scene` under `fcl`.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> homeAndTarget(const Robot& psm, const Scene& scene,
+                                                          const CollisionChecker& fcl,
+                                                          std::uint64_t seed) {
+  const JointLimits limits = psm.limits();
+  const int tip = psm.linkIndex("tool_wrist_link");
+  KinematicsData data = makeKinematicsData(psm);
+  Rng rng(seed);
+  const Eigen::Vector3d targetPoint(-0.12, 0.0, 0.34);
+  const Eigen::VectorXd home = sampleFree(
+      fcl,
+      [&] {
+        Eigen::VectorXd q = uniformIn(limits, rng);
+        q[2] = 0.02;  // insertion
+        return q;
+      },
+      "home configuration");
+  const Eigen::VectorXd target = sampleReaching(
+      [&](const Eigen::VectorXd& q) {
+        forwardKinematics(psm, q.data(), data, scene.robotBase);
+        return (data.linkPoses[static_cast<std::size_t>(tip)].translation() - targetPoint).norm() <
+                   0.015 &&
+               freeUnder(fcl, q);
+      },
+      limits, rng, "the target point, collision-free");
+  return {home, target};
+}
+
+/// Moves `current` along `path` (which starts at it) by `stepLength` joint units, or to its end.
+void followForOneTick(const JointPath& path, Eigen::VectorXd& current, double stepLength) {
+  double left = stepLength;
+  for (std::size_t k = 1; k < path.size() && left > 0; ++k) {
+    const Eigen::VectorXd delta = path[k] - current;
+    const double length = delta.norm();
+    if (length <= left) {
+      current = path[k];
+      left -= length;
+    } else {
+      current += delta * (left / length);
+      left = 0;
+    }
+  }
+}
+
+}  // namespace
+
 PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
   PlanRows results;
   const Robot psm = loadRobot("psm");
@@ -36,28 +85,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
   if (progress) progress("surgical: training the model");
   proxy.initialize(o.quick ? 1000 : 3000);
 
-  // Home: the instrument withdrawn; target: its tip between the two instruments, above the tissue.
-  const int tip = psm.linkIndex("tool_wrist_link");
-  KinematicsData data = makeKinematicsData(psm);
-  Rng rng(o.seed);
-  const Eigen::Vector3d targetPoint(-0.12, 0.0, 0.34);
-  const Eigen::VectorXd home = sampleFree(
-      *fcl,
-      [&] {
-        Eigen::VectorXd q = uniformIn(limits, rng);
-        q[2] = 0.02;  // insertion
-        return q;
-      },
-      "home configuration");
-  const Eigen::VectorXd target = sampleReaching(
-      [&](const Eigen::VectorXd& q) {
-        forwardKinematics(psm, q.data(), data, scene.robotBase);
-        return (data.linkPoses[static_cast<std::size_t>(tip)].translation() - targetPoint).norm() <
-                   0.015 &&
-               freeUnder(*fcl, q);
-      },
-      limits, rng, "the target point, collision-free");
-
+  const auto [home, target] = homeAndTarget(psm, scene, *fcl, o.seed);
   proxy.startBackground([&](const StepReport&) { updates.fetch_add(1); });
   Eigen::VectorXd current = home;
   bool towardTarget = true;
@@ -88,18 +116,7 @@ PlanRows runSurgical(const SurgicalOptions& o, const Progress& progress) {
     // PSM3 follows the Fastron plan for one tick; at the goal it turns back.
     const VerifiedPlan& followed = plans.front().plan;
     if (!followed.solved()) continue;
-    double left = stepLength;
-    for (std::size_t k = 1; k < followed.path.size() && left > 0; ++k) {
-      const Eigen::VectorXd delta = followed.path[k] - current;
-      const double length = delta.norm();
-      if (length <= left) {
-        current = followed.path[k];
-        left -= length;
-      } else {
-        current += delta * (left / length);
-        left = 0;
-      }
-    }
+    followForOneTick(followed.path, current, stepLength);
     if ((current - goal).norm() < 1e-9) towardTarget = !towardTarget;
   }
   proxy.stopBackground();
