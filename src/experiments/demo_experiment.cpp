@@ -28,6 +28,70 @@ ProxyParams demoProxyParams(const DemoOptions& o) {
 
 }  // namespace
 
+namespace {
+
+/// The background updates counted and timed, from the proxy's thread.
+class UpdateTally {
+ public:
+  void add(const StepReport& report) {
+    const std::lock_guard lock(mutex_);
+    ++count_;
+    seconds_ += inSeconds(report.total);
+  }
+  std::size_t count() const {
+    const std::lock_guard lock(mutex_);
+    return count_;
+  }
+  double meanSeconds() const {
+    const std::lock_guard lock(mutex_);
+    return count_ > 0 ? seconds_ / static_cast<double>(count_) : std::nan("");
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::size_t count_ = 0;
+  double seconds_ = 0;
+};
+
+/// `n` uniform configurations labelled by `exact` on the calling thread.
+Dataset labelledUniform(const JointLimits& limits, std::size_t n, Rng& rng,
+                        const CollisionChecker& exact) {
+  Dataset data;
+  data.points = uniformConfigurations(limits, n, rng);
+  data.labels = labelConfigurations(exact, data.points, 1);
+  return data;
+}
+
+/// A tick's figures beside each plan: the model's |S|, its scores, the updates so far.
+std::vector<std::pair<std::string, double>> tickFigures(const Model& model,
+                                                        const ConfusionCounts& counts,
+                                                        std::size_t updates) {
+  return {{"support", static_cast<double>(model.supportCount())},
+          {"accuracy", counts.accuracy()},
+          {"tpr", counts.tpr()},
+          {"tnr", counts.tnr()},
+          {"updates", static_cast<double>(updates)}};
+}
+
+/// " Fastron 1.2 ms" (or " FCL 48.0 ms (failed)") for the progress line.
+std::string planSummary(const std::string& method, const VerifiedPlan& plan) {
+  char part[64];
+  std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
+                inSeconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
+  return part;
+}
+
+/// The last model's query time and the exact checkers', on the test points kept.
+void addQueryTimes(DemoResults& results, const CollisionChecker& gjk, const CollisionChecker& fcl) {
+  const Model& model = *results.model;
+  results.fastronQuerySeconds = meanSecondsPerCall(
+      results.test.points, [&](const double* q) { return model.inCollision(q); }, 0.05);
+  results.gjkQuerySeconds = meanSecondsPerCheck(results.test.points, gjk, 0.05);
+  results.fclQuerySeconds = meanSecondsPerCheck(results.test.points, fcl, 0.05);
+}
+
+}  // namespace
+
 DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   const auto c = caseFor("7dof-3boxes");
   const Robot robot = baxterWithJoints(c.joints);
@@ -37,10 +101,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   auto gjk = makeSceneChecker("gjk", robot, scene);
   const auto audit = makeSceneChecker("fcl", robot, scene);
   const ProxyParams params = demoProxyParams(o);
-  // Before the proxy: its thread updates these until it is joined.
-  std::mutex updateMutex;
-  std::size_t updates = 0;
-  double updateSeconds = 0;
+  UpdateTally tally;  // before the proxy: its thread updates it until joined
   ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features), params);
   if (progress)
     progress("training the first model on " + std::to_string(o.initialPoints) +
@@ -50,14 +111,9 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   DemoResults results;
   // One update per tick: the boxes move once per tick, and updates on an unchanged world would
   // only grow the support set (and the query time).
-  proxy.startBackground(
-      [&](const StepReport& report) {
-        const std::lock_guard lock(updateMutex);
-        ++updates;
-        updateSeconds += inSeconds(report.total);
-      },
-      std::chrono::duration_cast<std::chrono::nanoseconds>(
-          std::chrono::duration<double>(o.tickSeconds)));
+  proxy.startBackground([&](const StepReport& report) { tally.add(report); },
+                        std::chrono::duration_cast<std::chrono::nanoseconds>(
+                            std::chrono::duration<double>(o.tickSeconds)));
   Rng rng(o.seed);
   const auto began = std::chrono::steady_clock::now();
   for (std::size_t tick = 1; tick <= o.ticks; ++tick) {
@@ -70,9 +126,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     audit->setScene(scene);
     const CalibratedModel calibrated = proxy.calibratedModel();
     const auto& model = calibrated.model;
-    Dataset test;
-    test.points = uniformConfigurations(limits, o.testPoints, rng);
-    test.labels = labelConfigurations(*audit, test.points, 1);
+    Dataset test = labelledUniform(limits, o.testPoints, rng, *audit);
     const ConfusionCounts counts = evaluate(*model, test.points, test.labels);
     // The boxes can block one side of the workspace for a while: then this tick plans nothing.
     const auto ends = tryOppositeEnds(limits, *fcl, rng, 20000);
@@ -88,11 +142,7 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
     }
     const auto& [start, goal] = *ends;
     const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
-    std::size_t updatesSoFar = 0;
-    {
-      const std::lock_guard lock(updateMutex);
-      updatesSoFar = updates;
-    }
+    const std::size_t updatesSoFar = tally.count();
     std::string line = "tick " + std::to_string(tick) + "/" + std::to_string(o.ticks) + ": |S| " +
                        std::to_string(model->supportCount()) + ", accuracy " +
                        cell(counts.accuracy()).substr(0, 5) + ", plans";
@@ -106,28 +156,17 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
                                     "RRTConnect",
                                     method,
                                     outcomeOf(each, *audit, o.resolution),
-                                    {{"support", static_cast<double>(model->supportCount())},
-                                     {"accuracy", counts.accuracy()},
-                                     {"tpr", counts.tpr()},
-                                     {"tnr", counts.tnr()},
-                                     {"updates", static_cast<double>(updatesSoFar)}}});
-      char part[64];
-      std::snprintf(part, sizeof part, " %s %.1f ms%s", method.c_str(),
-                    inSeconds(plan.totalTime()) * 1e3, plan.solved() ? "" : " (failed)");
-      line += part;
+                                    tickFigures(*model, counts, updatesSoFar)});
+      line += planSummary(method, plan);
     }
     if (progress && (tick % 10 == 0 || tick == 1)) progress(line);
   }
   proxy.stopBackground();
   results.elapsedSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-  results.updates = updates;
-  results.meanUpdateSeconds = updates ? updateSeconds / static_cast<double>(updates) : std::nan("");
-  const Model& model = *results.model;
-  results.fastronQuerySeconds = meanSecondsPerCall(
-      results.test.points, [&](const double* q) { return model.inCollision(q); }, 0.05);
-  results.gjkQuerySeconds = meanSecondsPerCheck(results.test.points, *gjk, 0.05);
-  results.fclQuerySeconds = meanSecondsPerCheck(results.test.points, *fcl, 0.05);
+  results.updates = tally.count();
+  results.meanUpdateSeconds = tally.meanSeconds();
+  addQueryTimes(results, *gjk, *fcl);
   return results;
 }
 
