@@ -18,6 +18,63 @@
 
 namespace fastron::experiments {
 
+namespace {
+
+/// The models' settings of a case: the options' kernel, bias and active learning over the case's
+/// own. The paper's pipeline has no uncertainty band: its update times are compared without the
+/// calibration points (the planning experiments keep them for the Hybrid method).
+ProxyParams changingParams(const Case& c, std::uint64_t seed, const ChangingOptions& o) {
+  ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
+  if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
+  if (o.beta > 0) params.train.beta = o.beta;
+  if (o.kernelBlock) params.train.kernel.block = *o.kernelBlock;
+  if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
+  params.activeLearning.variance = o.variance;
+  if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
+  if (o.warmStart) params = withWarmStart(params);
+  return params;
+}
+
+/// One row: `at` (case, trial, step), the method, its scores and query time, and the parts of
+/// the update it follows (NaN for an exact checker, which has none).
+void addChangingRow(Table& table, const std::vector<std::string>& at, const std::string& method,
+                    const ConfusionCounts& counts, double support, double query,
+                    const StepReport* update) {
+  const auto secondsOf = [&](auto part) {
+    return update ? cell(std::chrono::duration<double>(part(*update)).count()) : cell(std::nan(""));
+  };
+  table.add({at[0], at[1], at[2], method, cell(counts.accuracy()), cell(counts.tpr()),
+             cell(counts.tnr()), cell(support), cell(query),
+             secondsOf([](const StepReport& r) { return r.total; }),
+             secondsOf([](const StepReport& r) { return r.sampleTime; }),
+             secondsOf([](const StepReport& r) { return r.labelTime; }),
+             secondsOf([](const StepReport& r) { return r.update.elapsed; })});
+}
+
+/// The rows of the reductions of support_reduction.h (pruned, merged) of `model`, each timed as
+/// part of the update `report` it follows; `modelRow(method, model, report)` adds a row.
+template <class ModelRow>
+void addReducedRows(const ChangingOptions& o, const Model& model, const StepReport& report,
+                    const JointLimits& limits, Rng& reductionRng, const ModelRow& modelRow) {
+  const auto reducedRow = [&](const std::string& method, auto reduce) {
+    StepReport timed = report;
+    const auto began = std::chrono::steady_clock::now();
+    const std::shared_ptr<const Model> reduced = reduce(model);
+    timed.total += std::chrono::steady_clock::now() - began;
+    modelRow(method, *reduced, &timed);
+  };
+  if (o.pruneSamples > 0) {
+    const Configurations heldOut = uniformConfigurations(limits, o.pruneSamples, reductionRng);
+    reducedRow("Fastron (FCL, pruned)", [&](const Model& m) { return pruneSupport(m, heldOut); });
+  }
+  if (o.mergeRadius > 0) {
+    reducedRow("Fastron (FCL, merged)",
+               [&](const Model& m) { return mergeSupport(m, o.mergeRadius); });
+  }
+}
+
+}  // namespace
+
 Table runChanging(const ChangingOptions& o, const Progress& progress) {
   // update_s = sample_s + label_s + train_s (Algorithm 1) + the rest (the new points' features,
   // and their F from the weights a warm start keeps; publishing the model). No band here.
@@ -36,16 +93,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
       Scene scene = sceneForTrial(c.scene, seed);
       auto fcl = makeSceneChecker("fcl", robot, scene);
       auto gjk = makeSceneChecker("gjk", robot, scene);
-      // The paper's pipeline has no uncertainty band: its update times are compared without the
-      // calibration points (the planning experiments keep them for the Hybrid method).
-      ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
-      if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
-      if (o.beta > 0) params.train.beta = o.beta;
-      if (o.kernelBlock) params.train.kernel.block = *o.kernelBlock;
-      if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
-      params.activeLearning.variance = o.variance;
-      if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
-      if (o.warmStart) params = withWarmStart(params);
+      const ProxyParams params = changingParams(c, seed, o);
       ProxyCollisionDetector fromFcl(fcl, features, params), fromGjk(gjk, features, params),
           inJoints(fcl, limits,
                    pipeline::withoutBand(proxyParams(c, seed, FeatureKind::JointScaling)));
@@ -67,18 +115,10 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         const StepReport rj = jointRow ? inJoints.step() : StepReport{};
         const Configurations test = uniformConfigurations(limits, tests, rng);
         const Labels truth = labelConfigurations(*fcl, test);
-        auto row = [&](const std::string& method, const ConfusionCounts& counts, double support,
-                       double query, const StepReport* update) {
-          const auto secondsOf = [&](auto part) {
-            return update ? cell(std::chrono::duration<double>(part(*update)).count())
-                          : cell(std::nan(""));
-          };
-          table.add({name, std::to_string(trial), std::to_string(step), method,
-                     cell(counts.accuracy()), cell(counts.tpr()), cell(counts.tnr()), cell(support),
-                     cell(query), secondsOf([](const StepReport& r) { return r.total; }),
-                     secondsOf([](const StepReport& r) { return r.sampleTime; }),
-                     secondsOf([](const StepReport& r) { return r.labelTime; }),
-                     secondsOf([](const StepReport& r) { return r.update.elapsed; })});
+        const std::vector<std::string> at{name, std::to_string(trial), std::to_string(step)};
+        const auto row = [&](const std::string& method, const ConfusionCounts& counts,
+                             double support, double query, const StepReport* update) {
+          addChangingRow(table, at, method, counts, support, query, update);
         };
         std::vector<std::tuple<const char*, const ProxyCollisionDetector*, const StepReport*>>
             proxies{{"Fastron (FCL)", &fromFcl, &rf}, {"Fastron (GJK)", &fromGjk, &rg}};
@@ -97,24 +137,7 @@ Table runChanging(const ChangingOptions& o, const Progress& progress) {
         for (const auto& [method, proxy, report] : proxies) {
           modelRow(method, *proxy->model(), report);
         }
-        // The reductions of support_reduction.h, timed as part of the update they follow.
-        const auto reducedRow = [&](const std::string& method, auto reduce) {
-          StepReport report = rf;
-          const auto began = std::chrono::steady_clock::now();
-          const std::shared_ptr<const Model> reduced = reduce(*fromFcl.model());
-          report.total += std::chrono::steady_clock::now() - began;
-          modelRow(method, *reduced, &report);
-        };
-        if (o.pruneSamples > 0) {
-          const Configurations heldOut =
-              uniformConfigurations(limits, o.pruneSamples, reductionRng);
-          reducedRow("Fastron (FCL, pruned)",
-                     [&](const Model& m) { return pruneSupport(m, heldOut); });
-        }
-        if (o.mergeRadius > 0) {
-          reducedRow("Fastron (FCL, merged)",
-                     [&](const Model& m) { return mergeSupport(m, o.mergeRadius); });
-        }
+        addReducedRows(o, *fromFcl.model(), rf, limits, reductionRng, modelRow);
         const Labels gjkLabels = labelConfigurations(*gjk, test);
         row("FK+GJK", confusionOf(truth, [&](std::size_t i) { return gjkLabels[i] > 0; }),
             std::nan(""), meanSecondsPerCheck(test, *gjk, 0.01), nullptr);
