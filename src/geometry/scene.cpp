@@ -10,7 +10,7 @@
 namespace fastron {
 namespace {
 
-void validateMotion(const Motion& motion, const std::string& where) {
+void validateMotion(const ObstacleMotion& motion, const std::string& where) {
   if (const auto* w = std::get_if<RandomWalk>(&motion)) {
     if (!std::isfinite(w->minStep) || !std::isfinite(w->maxStep) || w->minStep < 0 ||
         w->maxStep < w->minStep) {

@@ -51,7 +51,7 @@ Shape readShape(const Reader& r, const YAML::Node& o, const std::string& what,
   return shape;
 }
 
-Motion readMotion(const Reader& r, const YAML::Node& m, const std::string& what) {
+ObstacleMotion readMotion(const Reader& r, const YAML::Node& m, const std::string& what) {
   const std::string type = r.text(r.required(m, "type", what), what + " type");
   if (type == "random_walk") {
     r.onlyKeys(m, {"type", "step", "bounds", "seed"}, what);

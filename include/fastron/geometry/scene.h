@@ -39,13 +39,14 @@ struct ScriptedPoses {
   std::vector<Eigen::Isometry3d> poses;
 };
 
-using Motion = std::variant<RandomWalk, CircularPath, ScriptedPoses>;
+/// How an obstacle moves as the scene steps (a robot's motion is planning/motion.h's).
+using ObstacleMotion = std::variant<RandomWalk, CircularPath, ScriptedPoses>;
 
 struct Obstacle {
   std::string name;
   Shape shape;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  std::optional<Motion> motion;
+  std::optional<ObstacleMotion> motion;
 };
 
 /// Joint positions by name (a MoveIt joint_state, or joint_constraints).
