@@ -10,7 +10,8 @@
 #include <iostream>
 #include <string_view>
 
-#include "fastron/experiments/common.h"  // Progress, durationText()
+#include "fastron/experiments/progress.h"
+#include "fastron/experiments/statistics.h"  // Progress, durationText()
 
 namespace fastron::cli {
 

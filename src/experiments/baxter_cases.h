@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
-#include "fastron/experiments/common.h"
+
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene.h"

@@ -9,6 +9,8 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/core/support_reduction.h"
+#include "fastron/experiments/statistics.h"
+#include "fastron/experiments/timing.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"

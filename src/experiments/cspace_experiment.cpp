@@ -7,6 +7,7 @@
 #include "fastron/baselines/incremental_svm.h"
 #include "fastron/baselines/sparse_svm.h"
 #include "fastron/core/active_learning.h"
+#include "fastron/experiments/random_scenes.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"

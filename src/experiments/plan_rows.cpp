@@ -9,6 +9,7 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/hybrid_checker.h"
+#include "fastron/experiments/statistics.h"
 #include "fastron/planning/motion.h"
 
 namespace fastron::experiments {

@@ -15,7 +15,7 @@
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/error.h"
 #include "fastron/core/joint_limits.h"
-#include "fastron/experiments/common.h"
+
 #include "fastron/experiments/plan_results.h"
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"

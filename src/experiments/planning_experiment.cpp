@@ -5,6 +5,8 @@
 #include "baxter_cases.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
+#include "fastron/experiments/report_text.h"
+#include "fastron/experiments/statistics.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"

@@ -11,6 +11,8 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
+#include "fastron/experiments/random_scenes.h"
+#include "fastron/experiments/timing.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/proxy/labelling.h"

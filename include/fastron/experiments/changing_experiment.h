@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "fastron/experiments/common.h"
+#include "fastron/core/feature_map.h"
+#include "fastron/experiments/progress.h"
+#include "fastron/experiments/table.h"
 
 namespace fastron::experiments {
 

@@ -2,7 +2,8 @@
 // The paper's Fig. 7: for random 2-DOF environments, the exact C-space (FCL) beside the C-spaces
 // that Fastron, ISVM and SSVM learn, with their support points.
 
-#include "fastron/experiments/common.h"
+#include "fastron/experiments/progress.h"
+#include "fastron/experiments/table.h"
 
 namespace fastron::experiments {
 

@@ -9,8 +9,8 @@
 #include "fastron/core/model.h"
 #include "fastron/core/uncertainty_band.h"
 
-#include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
+#include "fastron/experiments/progress.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron::experiments {

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "fastron/experiments/common.h"
+#include "fastron/experiments/table.h"
 
 namespace fastron::experiments {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "fastron/experiments/common.h"
 #include "fastron/experiments/plan_results.h"
+#include "fastron/experiments/progress.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron::experiments {

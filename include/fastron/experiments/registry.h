@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "fastron/core/feature_map.h"
-#include "fastron/experiments/common.h"
+#include "fastron/experiments/progress.h"
+#include "fastron/experiments/table.h"
 
 namespace fastron::experiments {
 

@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "fastron/experiments/common.h"
+#include "fastron/experiments/progress.h"
+#include "fastron/experiments/table.h"
 
 namespace fastron::experiments {
 
