@@ -8,7 +8,7 @@
 #include <cstddef>
 
 #include "fastron/core/kernel.h"
-#include "simd_dispatch.h"
+#include "internal/simd_dispatch.h"
 
 namespace fastron::detail {
 

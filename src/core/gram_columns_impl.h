@@ -12,7 +12,7 @@
 #include <cstddef>
 
 #include "gram_columns.h"
-#include "simd_lanes.h"
+#include "internal/simd_lanes.h"
 
 namespace fastron::detail {
 namespace {

@@ -13,7 +13,7 @@
 #include <cstddef>
 
 #include "kernel_sums.h"
-#include "simd_lanes.h"
+#include "internal/simd_lanes.h"
 
 namespace fastron::detail {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "fastron/core/error.h"
-#include "simd_dispatch.h"
+#include "internal/simd_dispatch.h"
 
 namespace fastron {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "../core/simd_dispatch.h"
+#include "internal/simd_dispatch.h"
 #include "fastron/geometry/detail/lane_chain.h"
 
 namespace fastron::detail {

@@ -13,7 +13,7 @@
 
 #include <cstddef>
 
-#include "../core/simd_lanes.h"
+#include "internal/simd_lanes.h"
 #include "lane_kinematics.h"
 
 namespace fastron::detail {

@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "../core/cephes_sin_cos.h"
+#include "internal/cephes_sin_cos.h"
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
 #include "lane_kinematics.h"

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "../core/cephes_sin_cos.h"
+#include "internal/cephes_sin_cos.h"
 
 namespace fastron::detail {
 

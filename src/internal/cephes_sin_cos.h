@@ -1,7 +1,7 @@
 #pragma once
 // The polynomial core of Cephes' sinf and cosf, for a float or a vector of floats (GCC's vector
 // extension): the one copy of the constants behind the batched lanes' sinCos (simd_lanes.h) and
-// the single float chain of the task-space features (geometry/control_points.cpp), so that both
+// the single float chain of the task-space features (geometry/point_kinematics.cpp), so that both
 // compute the same sines; and that of Cephes' sin and cos for one double (geometry/sin_cos.h).
 // Internal linkage, and nothing called from outside: code compiled once per SimdPath includes it
 // (simd_lanes.h says why that matters).

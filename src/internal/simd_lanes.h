@@ -1,5 +1,5 @@
-// Vectors of floats and doubles for the code compiled once per SimdPath (kernel_sums_impl.h,
-// gram_columns_impl.h, geometry/lane_kinematics_impl.h): the including file defines
+// Vectors of floats and doubles for the code compiled once per SimdPath (core/kernel_sums_impl.h,
+// core/gram_columns_impl.h, geometry/lane_kinematics_impl.h): the including file defines
 // FASTRON_SIMD_WIDTH, the floats per register of its instruction set (4, 8 or 16), and includes
 // this file once.
 //
@@ -18,7 +18,7 @@
 #include <cstddef>
 #include <utility>
 
-#include "cephes_sin_cos.h"
+#include "internal/cephes_sin_cos.h"
 #if defined(__x86_64__)
 #include <immintrin.h>  // its functions are inline-only (GCC) or static (Clang): nothing shared
 #endif
