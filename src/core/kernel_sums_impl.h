@@ -12,8 +12,8 @@
 
 #include <cstddef>
 
-#include "kernel_sums.h"
 #include "internal/simd_lanes.h"
+#include "kernel_sums.h"
 
 namespace fastron::detail {
 namespace {

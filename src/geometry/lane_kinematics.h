@@ -5,8 +5,8 @@
 
 #include <cstddef>
 
-#include "internal/simd_dispatch.h"
 #include "fastron/geometry/detail/lane_chain.h"
+#include "internal/simd_dispatch.h"
 
 namespace fastron::detail {
 

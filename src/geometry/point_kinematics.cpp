@@ -5,9 +5,9 @@
 #include <array>
 #include <cmath>
 
-#include "internal/cephes_sin_cos.h"
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
+#include "internal/cephes_sin_cos.h"
 #include "lane_kinematics.h"
 #include "sin_cos.h"
 
