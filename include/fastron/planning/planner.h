@@ -45,74 +45,57 @@ std::string simplificationName(PathSimplification simplification);
 PathSimplification parsePathSimplification(std::string_view name);
 
 struct PlannerOptions {
+  // The planner's own settings.
   PlannerType type = PlannerType::RrtConnect;
   double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
   double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
   /// The same step when planning on a Fastron model or a checker that answers from one
-  /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A model's score is smooth and
-  /// its "collides" regions are about a kernel width across, so checking its edges as finely as
-  /// the exact checker's costs time and changes few answers; a path planned on a model is verified
-  /// at `resolution` with the exact checker, so final paths keep that guarantee.
+  /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A path planned on a model is
+  /// verified at `resolution` with the exact checker, so final paths keep that guarantee.
   double modelResolution = 0;
   double timeLimit = 10;  ///< seconds per planning query
-  /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (vertex reduction,
-  /// shortcutting, B-spline smoothing; every change checked with the same collision source as the
-  /// plan), as MoveIt does by default; 0 keeps the planner's path as found (the paper's setting).
+  /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (every change checked
+  /// with the same collision source as the plan), as MoveIt does; 0 keeps the planner's path as
+  /// found (the paper's setting).
   double simplifyTime = 0.1;
   /// How simplifyTime shortens the path. Repairs plan their bridges with Shortcuts whatever this
-  /// says: a bridge is short, and smoothing it took two thirds of a repair on the mesh Panda.
+  /// says.
   PathSimplification simplification = PathSimplification::Full;
+  /// RRT-Connect on a Fastron model (a CollisionSource holding the Model; never on a checker,
+  /// hybrids included): the plan stops, as a timeout, when after this many iterations its start or
+  /// goal tree still holds only its root (an end the model closed a pocket around). 0: never.
+  std::size_t enclosedAfter = 256;
+
+  // The settings of the recipes around the planner: verify and repair (planVerified,
+  // verifyAndRepair) and learning within a query (planVerifiedLearning). Why each default:
+  // docs/planning.md, "The settings of verify and repair, and why".
   /// planVerified: the share of timeLimit that planning on the approximate source, and then on
   /// its hybrid, may each take before the motion is planned on the exact checker instead
-  /// (planVerifiedLearning: its hybrid's share). A model that closes a passage finds no path
-  /// however long it searches; this bounds what that costs.
+  /// (planVerifiedLearning: its hybrid's share).
   double approximateShare = 0.1;
   /// planVerifiedLearning: the share of timeLimit that its first plan on the model alone may take
-  /// before a hybrid that asks the exact checker about every "collides" plans instead (for
-  /// approximateShare). A model that closes a passage wastes all of this share; 95% of the first
-  /// plans on obstacle models that succeeded in `bench motion-bench` took under 52 ms, and the
-  /// generated cage family measured 1.6-2.6x FCL with 0.5% against 0.9-1.4x with 1%.
+  /// before a hybrid that asks the exact checker about every "collides" plans instead.
   double modelShare = 0.005;
   /// planVerified, planVerifiedLearning: the share of timeLimit (at most the plan's own share) that
   /// a plan on an approximate source between substitute ends may take, when the source called the
-  /// start or the goal colliding and the exact checker finds it free. Such an end lies in the
-  /// model's conservative shell around an obstacle, where the model closes the way more often; a
-  /// plan that succeeds there usually does so fast (on the four MotionBenchMaker families, 0-12 ms
-  /// on bookshelf_tall and table_pick), so the hybrid or the exact checker takes over sooner.
+  /// start or the goal colliding and the exact checker finds it free.
   double substituteShare = 0.002;
-  /// verifyAndRepair: the share of timeLimit that replanning one invalid stretch on the exact
-  /// checker may take before the whole motion is planned on it instead. A stretch is short; one
-  /// that is not bridged quickly starts at a waypoint in a pocket of free space, and searching on
-  /// costs more than the whole plan: with a quarter of the limit (the earlier rule), two repaired
-  /// stretches of `bench plan` took 2.0 and 2.5 s where FCL plans a whole motion in 3-8 ms.
+  /// verifyAndRepair: the share of timeLimit that replanning one invalid stretch may take before
+  /// the whole motion is planned on the exact checker instead.
   double stretchShare = 0.02;
   /// planVerifiedLearning: how many times a model whose path verification finds colliding learns
-  /// the exact answers it got wrong and plans again, before its last path is repaired. 0 repairs
-  /// at once: since FCL's mesh checks got 1.3-6 times faster a repair costs less than a re-plan
-  /// on the corrected model (docs/planning.md, "Learning within a query, or not").
+  /// the exact answers it got wrong and plans again, before its last path is repaired (0: repair
+  /// at once).
   unsigned learningRounds = 0;
-  /// RRT-Connect on a Fastron model (a CollisionSource holding the Model; never on a checker,
-  /// hybrids included): the plan stops, as a timeout, when after this many iterations its start or
-  /// goal tree still holds only its root. Every motion of the planner's range from that end then
-  /// met the model's "collides": the end sits in a pocket the model closed around it (a grasp's
-  /// goal inside a box), and searching on until the time box ends finds nothing (docs/planning.md,
-  /// "An end the model encloses"). 0: never.
-  std::size_t enclosedAfter = 256;
   /// planVerifiedLearning: the proxy's oracle never says "collides" where the exact checker finds
   /// the robot free (FCL without self-collision under a model of the obstacles alone, when
   /// `exact` adds self-collision), so it may answer where verification catches a wrong "free"
   /// later: the optimistic hybrid asks it about the model's "collides", and the first repair
-  /// round plans its bridges on it (those of stretches whose first collision it sees). Such an
-  /// oracle is cheaper (on the mesh Panda a free answer costs a third of one with self-collision);
-  /// verification, and the bridges of a second round, still ask the exact checker. Any other oracle
-  /// could close what the exact checker leaves open.
+  /// round plans its bridges on it. Any other oracle could close what the exact checker leaves
+  /// open.
   bool oracleRelaxesExact = false;
   /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
-  /// 0: half the planner's range (optimisticHybridRange). The hybrid plans when the model found
-  /// no path, most often because an end sits in a pocket the model closed (a goal inside a
-  /// cage), and RRT-Connect adds a motion only when it is free over its whole length: shorter
-  /// motions leave a pocket sooner (docs/log/2026-11-28-a-shorter-range-for-the-hybrid.md, "A
-  /// shorter range for the hybrid").
+  /// 0: half the planner's range (optimisticHybridRange).
   double hybridRange = 0;
 };
 
