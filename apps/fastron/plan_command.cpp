@@ -19,6 +19,7 @@
 #include "fastron/core/model_checker.h"
 #include "fastron/core/model_file.h"
 #include "fastron/experiments/statistics.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/scene_model.h"

@@ -12,6 +12,7 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"

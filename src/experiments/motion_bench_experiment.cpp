@@ -14,6 +14,7 @@
 #include "fastron/experiments/report_text.h"
 #include "fastron/experiments/statistics.h"
 #include "fastron/experiments/timing.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fastron/geometry/point_kinematics.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/moveit_request.h"
 #include "overloaded.h"
 
 namespace fastron {

@@ -147,4 +147,19 @@ auto namingYamlErrors(const std::string& source, Read read) {
   }
 }
 
+/// A MoveIt joint_state map (`name` and `position` lists of one length) inside `what`.
+inline NamedPositions jointState(const Reader& r, const YAML::Node& state,
+                                 const std::string& what) {
+  const std::string at = what + ".joint_state";
+  const YAML::Node names = r.list(r.required(state, "name", at), at + ".name");
+  const YAML::Node positions = r.list(r.required(state, "position", at), at + ".position");
+  if (names.size() != positions.size()) r.fail(state, at + ": one position per name is needed");
+  NamedPositions read;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    read.names.push_back(r.text(names[i], what + " joint name"));
+    read.positions.push_back(r.number(positions[i], what + " position of " + read.names.back()));
+  }
+  return read;
+}
+
 }  // namespace fastron::detail

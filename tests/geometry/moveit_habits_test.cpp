@@ -10,6 +10,7 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fastron/geometry/point_kinematics.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fastron/core/export.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scene_file.h"
 
