@@ -1,9 +1,10 @@
 #pragma once
 // Planning problems generated in MotionBenchMaker's file format (a MoveIt scene and request per
-// problem, scene_file.h): the robot reaches into a cage, or into an open box, whose pose varies
-// from problem to problem, as that benchmark's `cage` and `box` families do. The geometry is this
-// project's own, after the shapes of those families; start and goal are found by sampling, not by
-// inverse kinematics, so the problems are of the benchmark's kind but not its problems.
+// problem, scene_file.h and moveit_request.h): the robot reaches into a cage, or into an open box,
+// whose pose varies from problem to problem, as that benchmark's `cage` and `box` families do. The
+// geometry is this project's own, after the shapes of those families; start and goal are found by
+// sampling, not by inverse kinematics, so the problems are of the benchmark's kind but not its
+// problems.
 
 #include <cstdint>
 #include <filesystem>

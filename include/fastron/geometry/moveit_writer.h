@@ -1,6 +1,7 @@
 #pragma once
-// Writing MoveIt PlanningScene and MotionPlanRequest YAML, the format scene_file.h reads: planning
-// problems made here can be planned by `fastron bench motion-bench` and by MoveIt itself.
+// Writing MoveIt PlanningScene and MotionPlanRequest YAML, the format scene_file.h and
+// moveit_request.h read: planning problems made here can be planned by `fastron bench
+// motion-bench` and by MoveIt itself.
 
 #include <string>
 
