@@ -57,7 +57,7 @@ struct PlanOptions {
   // pipeline::SceneModelOptions' defaults: bench motion-bench measured them (docs/planning.md).
   std::size_t samples = pipeline::SceneModelOptions{}.samples,
               updates = pipeline::SceneModelOptions{}.updates;
-  unsigned learningRounds = PlannerOptions{}.learningRounds;
+  unsigned learningRounds = PlannerOptions{}.verify.learningRounds;
   std::optional<double> gamma, beta;
   double resolution = 0.03, modelResolution = 0, timeLimit = 10, simplifyTime = 0.1, range = 0;
   std::uint64_t seed = 1;
@@ -196,7 +196,7 @@ VerifiedPlan planByMethod(const PlanOptions& o, const PlanQuery& q, const Scene&
   // N it learns what verification found it got wrong and plans again before repairing.
   pipeline::SceneModel model = trainObstacleModel(o, q.robot, scene);
   PlannerOptions learning = options;
-  learning.learningRounds = o.learningRounds;
+  learning.verify.learningRounds = o.learningRounds;
   return pipeline::planOnSceneModel(model, exact, limits, q.start, q.goal, learning);
 }
 

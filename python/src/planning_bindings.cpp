@@ -33,7 +33,7 @@ PlannerOptions plannerOptions(const std::string& planner, double range, double r
   return options;
 }
 
-/// plan_verified's settings of the pipeline beyond the plan itself (PlannerOptions' shares and
+/// plan_verified's settings of the pipeline beyond the plan itself (VerifyRepairOptions' shares and
 /// planVerifiedLearning's), as Python passes them.
 struct PipelineSettings {
   double approximateShare, substituteShare, stretchShare;
@@ -47,11 +47,11 @@ struct PipelineSettings {
 /// Sets `settings` on `options`; throws InvalidArgument naming a setting that only a detector's
 /// static-scene plan reads when it was given for another.
 void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
-  options.approximateShare = settings.approximateShare;
-  options.substituteShare = settings.substituteShare;
-  options.stretchShare = settings.stretchShare;
+  options.verify.approximateShare = settings.approximateShare;
+  options.verify.substituteShare = settings.substituteShare;
+  options.verify.stretchShare = settings.stretchShare;
   options.enclosedAfter = settings.enclosedAfter;
-  options.learningRounds = settings.learningRounds;
+  options.verify.learningRounds = settings.learningRounds;
   for (const auto& [given, name] :
        {std::pair{settings.modelShare.has_value(), "model_share"},
         std::pair{settings.hybridRange.has_value(), "hybrid_range"},
@@ -62,9 +62,9 @@ void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
                             "(static_scene=True)");
     }
   }
-  if (settings.modelShare) options.modelShare = *settings.modelShare;
-  if (settings.hybridRange) options.hybridRange = *settings.hybridRange;
-  options.oracleRelaxesExact = settings.oracleRelaxesExact;
+  if (settings.modelShare) options.verify.modelShare = *settings.modelShare;
+  if (settings.hybridRange) options.verify.hybridRange = *settings.hybridRange;
+  options.verify.oracleRelaxesExact = settings.oracleRelaxesExact;
   validate(options);
 }
 
@@ -284,10 +284,10 @@ void bindPlanVerified(py::module_& m) {
       py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
       py::arg("simplify_time") = 0.1, py::arg("simplification") = "full",
       py::arg("learning_rounds") = 0u, py::arg("static_scene") = false,
-      py::arg("approximate_share") = PlannerOptions{}.approximateShare,
+      py::arg("approximate_share") = PlannerOptions{}.verify.approximateShare,
       py::arg("model_share") = py::none(),
-      py::arg("substitute_share") = PlannerOptions{}.substituteShare,
-      py::arg("stretch_share") = PlannerOptions{}.stretchShare,
+      py::arg("substitute_share") = PlannerOptions{}.verify.substituteShare,
+      py::arg("stretch_share") = PlannerOptions{}.verify.stretchShare,
       py::arg("enclosed_after") = PlannerOptions{}.enclosedAfter,
       py::arg("hybrid_range") = py::none(), py::arg("oracle_relaxes_exact") = false,
       "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "

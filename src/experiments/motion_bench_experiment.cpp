@@ -459,11 +459,13 @@ std::string reportPreamble(const MotionBenchOptions& o) {
      << (o.selfCollision ? "alone (self-collisions left to verification, and learned from it)"
                          : "(FCL's labels)")
      << "; when it finds no path within "
-     << durationText(std::min(planner.approximateShare, planner.modelShare) * planner.timeLimit)
+     << durationText(std::min(planner.verify.approximateShare, planner.verify.modelShare) *
+                     planner.timeLimit)
      << ", a hybrid asking FCL" << (o.selfCollision ? " without self-collision" : "")
      << " about each \"collides\" plans with half the planner's range; its path is verified and "
         "repaired with FCL"
-     << (planner.learningRounds > 0 ? ", learning what verification finds it got wrong first" : "")
+     << (planner.verify.learningRounds > 0 ? ", learning what verification finds it got wrong first"
+                                           : "")
      << ". Fastron (paper) and Hybrid (paper): the paper's recipe, a model of everything FCL "
         "checks with a calibrated band (Hybrid asks FCL inside it), verified and repaired with "
         "FCL."
@@ -605,11 +607,11 @@ std::string alongFclPaths(const PlanRows& r, const MotionBenchOptions& o, const 
   const auto relearned = [](const PlanRow& row) {
     return static_cast<double>(row.outcome.relearned);
   };
-  if (planner.learningRounds > 0) {
+  if (planner.verify.learningRounds > 0) {
     std::snprintf(line, sizeof line,
                   "When verification finds its path colliding, %s learns the answers it got "
                   "wrong and plans again, up to %u times (mean %.2f times a query).\n",
-                  kDefaultMethod, planner.learningRounds,
+                  kDefaultMethod, planner.verify.learningRounds,
                   statistic(
                       r,
                       [&](const PlanRow& row) {

@@ -28,7 +28,7 @@ VerifiedPlan planOnSceneModel(SceneModel& model,
                               const std::shared_ptr<const CollisionChecker>& exact,
                               const JointLimits& limits, const Eigen::VectorXd& start,
                               const Eigen::VectorXd& goal, PlannerOptions options) {
-  options.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `exact`
+  options.verify.oracleRelaxesExact = true;  // FCL without self-collision: a relaxation of `exact`
   return planVerifiedLearning(*model.detector, exact, limits, start, goal, options);
 }
 

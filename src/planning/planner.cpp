@@ -73,9 +73,9 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("planner range must be 0 (OMPL's default) or positive, got " +
                           std::to_string(options.range));
   }
-  if (!(options.hybridRange >= 0) || !std::isfinite(options.hybridRange)) {
+  if (!(options.verify.hybridRange >= 0) || !std::isfinite(options.verify.hybridRange)) {
     throw InvalidArgument("hybridRange must be 0 (half the planner's range) or positive, got " +
-                          std::to_string(options.hybridRange));
+                          std::to_string(options.verify.hybridRange));
   }
   if (!(options.resolution > 0) || !std::isfinite(options.resolution)) {
     throw InvalidArgument("motion resolution must be positive, got " +
@@ -90,21 +90,21 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("planning time limit must be positive, got " +
                           std::to_string(options.timeLimit));
   }
-  if (!(options.stretchShare > 0) || !(options.stretchShare <= 1)) {
+  if (!(options.verify.stretchShare > 0) || !(options.verify.stretchShare <= 1)) {
     throw InvalidArgument("stretchShare must be in (0, 1], got " +
-                          std::to_string(options.stretchShare));
+                          std::to_string(options.verify.stretchShare));
   }
-  if (!(options.approximateShare > 0) || !(options.approximateShare <= 1)) {
+  if (!(options.verify.approximateShare > 0) || !(options.verify.approximateShare <= 1)) {
     throw InvalidArgument("approximateShare must be in (0, 1], got " +
-                          std::to_string(options.approximateShare));
+                          std::to_string(options.verify.approximateShare));
   }
-  if (!(options.modelShare > 0) || !(options.modelShare <= 1)) {
+  if (!(options.verify.modelShare > 0) || !(options.verify.modelShare <= 1)) {
     throw InvalidArgument("modelShare must be in (0, 1], got " +
-                          std::to_string(options.modelShare));
+                          std::to_string(options.verify.modelShare));
   }
-  if (!(options.substituteShare > 0) || !(options.substituteShare <= 1)) {
+  if (!(options.verify.substituteShare > 0) || !(options.verify.substituteShare <= 1)) {
     throw InvalidArgument("substituteShare must be in (0, 1], got " +
-                          std::to_string(options.substituteShare));
+                          std::to_string(options.verify.substituteShare));
   }
   if (!(options.simplifyTime >= 0) || !std::isfinite(options.simplifyTime)) {
     throw InvalidArgument("path simplification time must be 0 (off) or positive, got " +
@@ -227,7 +227,7 @@ double edgeResolution(const CollisionSource& source, const PlannerOptions& optio
 }
 
 double optimisticHybridRange(const PlannerOptions& options, const JointLimits& limits) {
-  if (options.hybridRange > 0) return options.hybridRange;
+  if (options.verify.hybridRange > 0) return options.verify.hybridRange;
   // OMPL's default: this fraction of the space's maximum extent, for a real vector space the
   // diagonal of its bounds.
   const double range = options.range > 0 ? options.range

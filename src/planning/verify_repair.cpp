@@ -140,10 +140,10 @@ PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path
 /// old[i], up to old[j]), or nothing when no bridge is found in the time given. The bridge joins
 /// the free states next to the stretch's first and last collisions, not its waypoints: a
 /// simplified path's edges are long, and a plan between their ends replans what was free of the
-/// motion too. It is short, so it gets options.stretchShare of the time and shortcuts without
-/// smoothing (on the mesh Panda, smoothing took two thirds of a repair and the final paths were as
-/// long without it). It is planned on `relaxed` when given, unless that finds the stretch's first
-/// collision free (the robot against itself, when it checks the obstacles alone): its bridge
+/// motion too. It is short, so it gets options.verify.stretchShare of the time and shortcuts
+/// without smoothing (on the mesh Panda, smoothing took two thirds of a repair and the final paths
+/// were as long without it). It is planned on `relaxed` when given, unless that finds the stretch's
+/// first collision free (the robot against itself, when it checks the obstacles alone): its bridge
 /// would keep that collision for the next round to bridge again.
 std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std::size_t j,
                                        const std::shared_ptr<const CollisionChecker>& relaxed,
@@ -157,7 +157,7 @@ std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std:
   const bool relaxedSeesIt = relaxed && !freeUnder(relaxed, entry.colliding);
   const std::shared_ptr<const CollisionChecker>& bridgeChecker = relaxedSeesIt ? relaxed : exact;
   PlannerOptions stretchOptions = options;
-  stretchOptions.timeLimit = options.timeLimit * options.stretchShare;
+  stretchOptions.timeLimit = options.timeLimit * options.verify.stretchShare;
   stretchOptions.simplification = PathSimplification::Shortcuts;
   // Searched near its ends first: with the whole joint range the planner's samples and long
   // default edges wander far from a graze, and each exact edge check costs milliseconds on a mesh
@@ -274,7 +274,7 @@ VerifiedPlan verifyAndRepair(const JointPath& path,
 
 namespace {
 
-/// A plan on an approximate source within options.approximateShare of the time limit.
+/// A plan on an approximate source within options.verify.approximateShare of the time limit.
 struct ApproximatePlan {
   PlanResult plan;
   bool substituteEnds = false;
@@ -290,7 +290,7 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
                                   const JointLimits& limits, const Eigen::VectorXd& start,
                                   const Eigen::VectorXd& goal, const PlannerOptions& options) {
   PlannerOptions approximateOptions = options;
-  approximateOptions.timeLimit = options.timeLimit * options.approximateShare;
+  approximateOptions.timeLimit = options.timeLimit * options.verify.approximateShare;
   ApproximatePlan result{planMotion(approximate, limits, start, goal, approximateOptions)};
   PlanResult& plan = result.plan;
   if ((plan.status == PlanStatus::InvalidStart || plan.status == PlanStatus::InvalidGoal) &&
@@ -303,8 +303,8 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
     if (startNear && goalNear) {
       const auto spent = plan.time;
       const auto asked = plan.checks;
-      approximateOptions.timeLimit =
-          std::min(approximateOptions.timeLimit, options.timeLimit * options.substituteShare);
+      approximateOptions.timeLimit = std::min(approximateOptions.timeLimit,
+                                              options.timeLimit * options.verify.substituteShare);
       plan = planMotion(approximate, limits, *startNear, *goalNear, approximateOptions);
       plan.time += spent;
       plan.checks += asked;
@@ -426,13 +426,13 @@ VerifiedPlan planVerified(const CalibratedModel& model,
   return result;
 }
 
-/// With options.oracleRelaxesExact, the proxy's oracle, which answers where verification catches
-/// a wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
+/// With options.verify.oracleRelaxesExact, the proxy's oracle, which answers where verification
+/// catches a wrong "free" later: the hybrid's "collides" and the first repair round's bridges (not
 /// recorded: its answers are not the exact checker's). Wrapped to count its answers for one plan.
 std::shared_ptr<const CountedChecker> relaxedOracle(
     const ProxyCollisionDetector& proxy, const std::shared_ptr<const CollisionChecker>& exact,
     const PlannerOptions& options) {
-  if (!options.oracleRelaxesExact || proxy.oracle() == exact) return nullptr;
+  if (!options.verify.oracleRelaxesExact || proxy.oracle() == exact) return nullptr;
   return std::make_shared<const CountedChecker>(proxy.oracle());
 }
 
@@ -490,7 +490,8 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   JointPath lastPath;  // the last path on the model that verification found colliding
   PathCheck lastCheck;
   PlannerOptions roundOptions = options;
-  roundOptions.approximateShare = std::min(options.approximateShare, options.modelShare);
+  roundOptions.verify.approximateShare =
+      std::min(options.verify.approximateShare, options.verify.modelShare);
   const std::shared_ptr<const CountedChecker> relaxed = relaxedOracle(proxy, exact, options);
   // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
@@ -516,7 +517,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       result = planOnOptimisticHybrid(model, recorder, relaxed, limits, start, goal, options);
       break;
     }
-    if (round == options.learningRounds) {
+    if (round == options.verify.learningRounds) {
       result = repair(attempt.plan.path, std::nullopt);
       break;
     }
@@ -535,7 +536,8 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       // than repairing the last path.
       const double box =
           std::max(0.05, 4 * std::chrono::duration<double>(attempt.plan.time).count());
-      roundOptions.approximateShare = std::min(options.approximateShare, box / options.timeLimit);
+      roundOptions.verify.approximateShare =
+          std::min(options.verify.approximateShare, box / options.timeLimit);
     }
     const auto learnBegan = Clock::now();
     const Dataset recorded = recorder->take();

@@ -541,14 +541,14 @@ TEST_F(Planning, AModelLearnsFromVerificationAndPlansAgain) {
   const auto first = proxy.calibratedModel();
   ASSERT_FALSE(first.model->inCollision(vec({0, -0.8}).data())) << "the model must miss the half";
 
-  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5, .learningRounds = 3};
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5, .verify = {.learningRounds = 3}};
   exact->resetCallCount();
   const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_TRUE(
       pathIsFree(plan.path, 0.01, [](const Eigen::VectorXd& x) { return inWall(x.data()); }));
   EXPECT_GE(plan.relearned, 1u) << "the first model's path crosses the missed half";
-  EXPECT_LE(plan.relearned, options.learningRounds);
+  EXPECT_LE(plan.relearned, options.verify.learningRounds);
   EXPECT_EQ(proxy.calibratedModel().version, first.version + plan.relearned);
   EXPECT_GT(plan.learnTime.count(), 0);
   EXPECT_LE(plan.learnTime, plan.planTime);
@@ -574,9 +574,9 @@ TEST_F(Planning, AModelLearnsFromVerificationAndPlansAgain) {
   // learns nothing.
   ProxyCollisionDetector unlearned(halfWall, limits, learningProxyParams());
   unlearned.initialize(1500);
-  const VerifiedPlan repaired =
-      planVerifiedLearning(unlearned, exact, limits, kStart, kGoal,
-                           PlannerOptions{.resolution = 0.01, .timeLimit = 5, .learningRounds = 0});
+  const VerifiedPlan repaired = planVerifiedLearning(
+      unlearned, exact, limits, kStart, kGoal,
+      PlannerOptions{.resolution = 0.01, .timeLimit = 5, .verify = {.learningRounds = 0}});
   ASSERT_TRUE(repaired.solved()) << repaired.failure;
   EXPECT_EQ(repaired.relearned, 0u);
   EXPECT_GT(repaired.invalidStretches, 0u);
@@ -590,16 +590,17 @@ TEST_F(Planning, HopelessApproximatePlansAreTimeBoxed) {
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
   const JointLimits limits = JointLimits::unitBox(2);
-  const PlannerOptions options{.resolution = 0.01, .timeLimit = 4, .approximateShare = 0.05};
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .verify = {.approximateShare = 0.05}};
   const VerifiedPlan plan = planVerified(closed, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_TRUE(plan.wholePathReplanned);
   EXPECT_LT(plan.planTime, std::chrono::milliseconds(1000)) << "0.2 s of a 4 s limit";
   EXPECT_GE(plan.planTime, std::chrono::milliseconds(150));
-  EXPECT_THROW(validate(PlannerOptions{.approximateShare = 0}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.approximateShare = 1.5}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.stretchShare = 0}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.stretchShare = 1.5}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.approximateShare = 0}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.approximateShare = 1.5}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.stretchShare = 0}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.stretchShare = 1.5}}), InvalidArgument);
 }
 
 // A model that closes the gap: planning falls back from it to the hybrid source, which asks the
@@ -623,7 +624,8 @@ TEST_F(Planning, AModelThatClosesThePassageFallsBackToItsHybridBeforeTheExactChe
   for (Eigen::Index i = 0; i < heldOut.rows(); ++i)
     truth[static_cast<std::size_t>(i)] = inWall(heldOut.row(i).data()) ? 1 : -1;
   model.calibration = calibrateBand(model.model->scoreBatch(heldOut), truth, {.falseAlarmRate = 0});
-  const PlannerOptions options{.resolution = 0.01, .timeLimit = 4, .approximateShare = 0.05};
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 4, .verify = {.approximateShare = 0.05}};
   const VerifiedPlan plan = planVerified(model, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_EQ(plan.plannedOn, "Fastron+wall");
@@ -664,8 +666,9 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
   const std::shared_ptr<const Model> model = proxy.model();
   ASSERT_TRUE(model->inCollision(vec({0, 0.8}).data())) << "the model must close the gap";
 
-  const PlannerOptions options{
-      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  const PlannerOptions options{.resolution = 0.01,
+                               .timeLimit = 4,
+                               .verify = {.approximateShare = 0.25, .modelShare = 0.025}};
   exact->resetCallCount();
   const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
@@ -686,8 +689,8 @@ TEST_F(Planning, ALearningModelThatClosesThePassageFallsBackToAHybridAskingAbout
     inGap += std::abs(x[0]) < 0.1 && x[1] >= 0.5 && model->inCollision(x) ? 1 : 0;
   }
   EXPECT_GT(inGap, 0u) << "the hybrid asked the exact checker in the gap";
-  EXPECT_THROW(validate(PlannerOptions{.modelShare = 0}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.modelShare = 1.5}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.modelShare = 0}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.modelShare = 1.5}}), InvalidArgument);
 }
 
 // With oracleRelaxesExact planVerifiedLearning asked the proxy's oracle (without it, never), and
@@ -714,15 +717,16 @@ TEST_F(Planning, ALearningModelsHybridAsksItsOracleWhenTold) {
   const auto oracle = std::make_shared<FunctionChecker>(
       "oracle", 2, [&](const double* q) { return gapOpen ? inWall(q) : std::abs(q[0]) < 0.1; });
   const JointLimits limits = JointLimits::unitBox(2);
-  PlannerOptions options{
-      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  PlannerOptions options{.resolution = 0.01,
+                         .timeLimit = 4,
+                         .verify = {.approximateShare = 0.25, .modelShare = 0.025}};
   for (const bool asksOracle : {false, true}) {
     gapOpen = false;
     ProxyCollisionDetector proxy(oracle, limits, learningProxyParams());
     proxy.initialize(1500);
     ASSERT_TRUE(proxy.model()->inCollision(vec({0, 0.8}).data())) << "the model closes the gap";
     gapOpen = true;
-    options.oracleRelaxesExact = asksOracle;
+    options.verify.oracleRelaxesExact = asksOracle;
     oracle->resetCallCount();
     exact->resetCallCount();
     const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
@@ -755,8 +759,9 @@ TEST_F(Planning, ALearningModelsFirstRepairsBridgeOnItsOracleWhenTold) {
     return wallBuilt ? inWall(q) : q[0] > 0.7 && q[1] > 0.7;
   });
   const JointLimits limits = JointLimits::unitBox(2);
-  PlannerOptions options{
-      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  PlannerOptions options{.resolution = 0.01,
+                         .timeLimit = 4,
+                         .verify = {.approximateShare = 0.25, .modelShare = 0.025}};
   for (const bool relaxes : {false, true}) {
     SCOPED_TRACE(relaxes ? "bridges on the oracle first" : "bridges on the exact checker");
     wallBuilt = false;
@@ -764,7 +769,7 @@ TEST_F(Planning, ALearningModelsFirstRepairsBridgeOnItsOracleWhenTold) {
     proxy.initialize(1500);
     ASSERT_FALSE(proxy.model()->inCollision(vec({0, -0.8}).data())) << "the model misses the wall";
     wallBuilt = true;
-    options.oracleRelaxesExact = relaxes;
+    options.verify.oracleRelaxesExact = relaxes;
     oracle->resetCallCount();
     exact->resetCallCount();
     const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
@@ -787,11 +792,10 @@ TEST_F(Planning, AStretchTheOracleCannotSeeIsBridgedOnTheExactChecker) {
   const auto exact = std::make_shared<FunctionChecker>("wall and post", 2, inWallOrPost);
   const auto oracle = std::make_shared<FunctionChecker>("post", 2, inPost);
   const JointLimits limits = JointLimits::unitBox(2);
-  const PlannerOptions options{.resolution = 0.01,
-                               .timeLimit = 4,
-                               .approximateShare = 0.25,
-                               .modelShare = 0.025,
-                               .oracleRelaxesExact = true};
+  const PlannerOptions options{
+      .resolution = 0.01,
+      .timeLimit = 4,
+      .verify = {.approximateShare = 0.25, .modelShare = 0.025, .oracleRelaxesExact = true}};
   std::size_t repaired = 0;
   for (std::uint64_t seed = 0; seed < 5; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -825,10 +829,11 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
   ASSERT_GT(ompl.getRange(), 2.5);
   EXPECT_NEAR(optimisticHybridRange(PlannerOptions{}, panda), 0.5 * ompl.getRange(), 1e-12);
   EXPECT_DOUBLE_EQ(optimisticHybridRange(PlannerOptions{.range = 2}, panda), 1);
-  EXPECT_DOUBLE_EQ(optimisticHybridRange(PlannerOptions{.range = 2, .hybridRange = 0.7}, panda),
-                   0.7);
-  EXPECT_THROW(validate(PlannerOptions{.hybridRange = -1}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.hybridRange = std::nan("")}), InvalidArgument);
+  EXPECT_DOUBLE_EQ(
+      optimisticHybridRange(PlannerOptions{.range = 2, .verify = {.hybridRange = 0.7}}, panda),
+      0.7);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.hybridRange = -1}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.hybridRange = std::nan("")}}), InvalidArgument);
 
   // planVerifiedLearning's hybrid plans at that range: this model closes the gap of a thinner
   // wall (so that what it calls free is free, and nothing is repaired), so the hybrid plans, and
@@ -841,13 +846,12 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
   const JointLimits square = JointLimits::unitBox(2);
   ProxyCollisionDetector proxy(closed, square, learningProxyParams());
   proxy.initialize(1500);
-  const PlannerOptions options{.resolution = 0.01,
-                               .modelResolution = 0.01,  // the states verification checks
-                               .timeLimit = 4,
-                               .simplifyTime = 0,
-                               .approximateShare = 0.25,
-                               .modelShare = 0.025,
-                               .hybridRange = 0.1};
+  const PlannerOptions options{
+      .resolution = 0.01,
+      .modelResolution = 0.01,  // the states verification checks
+      .timeLimit = 4,
+      .simplifyTime = 0,
+      .verify = {.approximateShare = 0.25, .modelShare = 0.025, .hybridRange = 0.1}};
   const VerifiedPlan plan = planVerifiedLearning(proxy, exact, square, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   ASSERT_EQ(plan.plannedOn, "Fastron+wall");
@@ -933,8 +937,9 @@ TEST_F(Planning, ALearningModelThatFindsTheEndsCollidingLeavesThemToItsHybrid) {
   proxy.initialize(1500);
   ASSERT_TRUE(proxy.model()->inCollision(kStart.data()));
   ASSERT_TRUE(proxy.model()->inCollision(kGoal.data()));
-  const PlannerOptions options{
-      .resolution = 0.01, .timeLimit = 4, .approximateShare = 0.25, .modelShare = 0.025};
+  const PlannerOptions options{.resolution = 0.01,
+                               .timeLimit = 4,
+                               .verify = {.approximateShare = 0.25, .modelShare = 0.025}};
   const VerifiedPlan plan = planVerifiedLearning(proxy, exact, limits, kStart, kGoal, options);
   ASSERT_TRUE(plan.solved()) << plan.failure;
   EXPECT_EQ(plan.plannedOn, "Fastron+wall");
@@ -954,10 +959,10 @@ TEST_F(Planning, APlanBetweenSubstituteEndsGetsItsOwnShare) {
       });
   const JointLimits limits = JointLimits::unitBox(2);
   const auto planTime = [&](double substituteShare) {
-    const PlannerOptions options{.resolution = 0.01,
-                                 .timeLimit = 4,
-                                 .approximateShare = 0.1,
-                                 .substituteShare = substituteShare};
+    const PlannerOptions options{
+        .resolution = 0.01,
+        .timeLimit = 4,
+        .verify = {.approximateShare = 0.1, .substituteShare = substituteShare}};
     const VerifiedPlan plan =
         planVerified(CollisionSource(std::shared_ptr<const CollisionChecker>(closedAroundGoal)),
                      exact, limits, kStart, kGoal, options);
@@ -972,8 +977,8 @@ TEST_F(Planning, APlanBetweenSubstituteEndsGetsItsOwnShare) {
   EXPECT_LT(planTime(0.01), std::chrono::milliseconds(300))
       << "40 ms, not approximateShare's 0.4 s";
   EXPECT_GE(planTime(1), std::chrono::milliseconds(350)) << "capped by approximateShare's 0.4 s";
-  EXPECT_THROW(validate(PlannerOptions{.substituteShare = 0}), InvalidArgument);
-  EXPECT_THROW(validate(PlannerOptions{.substituteShare = 2}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.substituteShare = 0}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.substituteShare = 2}}), InvalidArgument);
 }
 
 // Seeded planners repeat their plans; another query's seed gives another plan.
@@ -1066,7 +1071,8 @@ TEST_F(Planning, AnOptimisticHybridReopensWhatItsSourceCloses) {
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });
   const JointLimits limits = JointLimits::unitBox(2);
-  const PlannerOptions options{.resolution = 0.01, .timeLimit = 2, .approximateShare = 0.1};
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 2, .verify = {.approximateShare = 0.1}};
   exact->resetCallCount();
   const VerifiedPlan plan =
       planVerifiedOptimistically(closed, exact, limits, kStart, kGoal, options);

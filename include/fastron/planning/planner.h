@@ -44,31 +44,10 @@ std::string simplificationName(PathSimplification simplification);
 /// Reads those names (case-insensitive); throws InvalidArgument naming the value and the choices.
 PathSimplification parsePathSimplification(std::string_view name);
 
-struct PlannerOptions {
-  // The planner's own settings.
-  PlannerType type = PlannerType::RrtConnect;
-  double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
-  double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
-  /// The same step when planning on a Fastron model or a checker that answers from one
-  /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A path planned on a model is
-  /// verified at `resolution` with the exact checker, so final paths keep that guarantee.
-  double modelResolution = 0;
-  double timeLimit = 10;  ///< seconds per planning query
-  /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (every change checked
-  /// with the same collision source as the plan), as MoveIt does; 0 keeps the planner's path as
-  /// found (the paper's setting).
-  double simplifyTime = 0.1;
-  /// How simplifyTime shortens the path. Repairs plan their bridges with Shortcuts whatever this
-  /// says.
-  PathSimplification simplification = PathSimplification::Full;
-  /// RRT-Connect on a Fastron model (a CollisionSource holding the Model; never on a checker,
-  /// hybrids included): the plan stops, as a timeout, when after this many iterations its start or
-  /// goal tree still holds only its root (an end the model closed a pocket around). 0: never.
-  std::size_t enclosedAfter = 256;
-
-  // The settings of the recipes around the planner: verify and repair (planVerified,
-  // verifyAndRepair) and learning within a query (planVerifiedLearning). Why each default:
-  // docs/planning.md, "The settings of verify and repair, and why".
+/// The settings of the recipes around a planner: verify and repair (planVerified,
+/// verifyAndRepair) and learning within a query (planVerifiedLearning). Why each default:
+/// docs/planning.md, "The settings of verify and repair, and why".
+struct VerifyRepairOptions {
   /// planVerified: the share of timeLimit that planning on the approximate source, and then on
   /// its hybrid, may each take before the motion is planned on the exact checker instead
   /// (planVerifiedLearning: its hybrid's share).
@@ -97,6 +76,32 @@ struct PlannerOptions {
   /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
   /// 0: half the planner's range (optimisticHybridRange).
   double hybridRange = 0;
+};
+
+struct PlannerOptions {
+  // The planner's own settings.
+  PlannerType type = PlannerType::RrtConnect;
+  double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
+  double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
+  /// The same step when planning on a Fastron model or a checker that answers from one
+  /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A path planned on a model is
+  /// verified at `resolution` with the exact checker, so final paths keep that guarantee.
+  double modelResolution = 0;
+  double timeLimit = 10;  ///< seconds per planning query
+  /// Seconds at most spent shortening a solution with OMPL's PathSimplifier (every change checked
+  /// with the same collision source as the plan), as MoveIt does; 0 keeps the planner's path as
+  /// found (the paper's setting).
+  double simplifyTime = 0.1;
+  /// How simplifyTime shortens the path. Repairs plan their bridges with Shortcuts whatever this
+  /// says.
+  PathSimplification simplification = PathSimplification::Full;
+  /// RRT-Connect on a Fastron model (a CollisionSource holding the Model; never on a checker,
+  /// hybrids included): the plan stops, as a timeout, when after this many iterations its start or
+  /// goal tree still holds only its root (an end the model closed a pocket around). 0: never.
+  std::size_t enclosedAfter = 256;
+
+  /// How the recipes around the planner share the time limit, repair and learn.
+  VerifyRepairOptions verify;
 };
 
 /// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).

@@ -64,7 +64,7 @@ struct VerifiedPlan {
   /// Configurations the exact checker answered for this plan: planning on it or on a hybrid,
   /// verification, repair, the ends.
   std::uint64_t exactChecks = 0;
-  /// planVerifiedLearning with options.oracleRelaxesExact: configurations its proxy's oracle
+  /// planVerifiedLearning with options.verify.oracleRelaxesExact: configurations its proxy's oracle
   /// answered in place of the exact checker (the optimistic hybrid's, the first repair round's).
   std::uint64_t relaxedChecks = 0;
   bool solved() const { return status == PlanStatus::Solved; }
@@ -75,22 +75,21 @@ struct VerifiedPlan {
 /// core, bisection order); cuts out each invalid stretch (from the last free state before its
 /// first collision to the first free state after its last one, walking the edges at
 /// options.resolution), bridges it with the same planner on `exact` within the box those two
-/// states span grown by 0.3 joint units, then within the joint limits (options.stretchShare of
-/// the time limit each; when both fail, the whole motion with the full time limit), splices the
+/// states span grown by 0.3 joint units, then within the joint limits (options.verify.stretchShare
+/// of the time limit each; when both fail, the whole motion with the full time limit), splices the
 /// pieces and checks the whole path again (up to three rounds). planTime is left 0.
 VerifiedPlan verifyAndRepair(const JointPath& path,
                              const std::shared_ptr<const CollisionChecker>& exact,
                              const JointLimits& limits, const PlannerOptions& options);
 
-/// Plans with `approximate` (e.g. a Fastron model) for at most options.approximateShare of the time
-/// limit, then verifies and repairs with `exact`. When
-/// the approximate checker thinks the start or goal collides but the exact one finds both free, it
-/// plans between configurations near them that the approximate checker finds free and the exact
-/// one reaches from the true ends in a straight line (`substituteEnds`), for at most
-/// options.substituteShare of the time limit. When the approximate plan
-/// fails, the whole motion is planned on the exact checker and counted as repair. Start and goal
-/// must be free under `exact`, else the result is InvalidStart / InvalidGoal. Every exact answer is
-/// returned in `exactAnswers`.
+/// Plans with `approximate` (e.g. a Fastron model) for at most options.verify.approximateShare of
+/// the time limit, then verifies and repairs with `exact`. When the approximate checker thinks the
+/// start or goal collides but the exact one finds both free, it plans between configurations near
+/// them that the approximate checker finds free and the exact one reaches from the true ends in a
+/// straight line (`substituteEnds`), for at most options.verify.substituteShare of the time limit.
+/// When the approximate plan fails, the whole motion is planned on the exact checker and counted as
+/// repair. Start and goal must be free under `exact`, else the result is InvalidStart /
+/// InvalidGoal. Every exact answer is returned in `exactAnswers`.
 VerifiedPlan planVerified(const CollisionSource& approximate,
                           const std::shared_ptr<const CollisionChecker>& exact,
                           const JointLimits& limits, const Eigen::VectorXd& start,
@@ -107,10 +106,10 @@ VerifiedPlan planVerifiedOptimistically(const std::shared_ptr<const CollisionChe
                                         const Eigen::VectorXd& goal, const PlannerOptions& options);
 
 /// No hopeless waits on a model that closes a passage: plans on the model for
-/// options.approximateShare of the time limit; when that finds no path, on a HybridChecker of the
-/// model and `exact` inside the calibrated band (which reopens what the model closed with little
-/// confidence) for another approximateShare; only then on `exact` for the whole limit. The hybrid
-/// step is skipped when the band was never calibrated. Otherwise as planVerified above; the
+/// options.verify.approximateShare of the time limit; when that finds no path, on a HybridChecker
+/// of the model and `exact` inside the calibrated band (which reopens what the model closed with
+/// little confidence) for another approximateShare; only then on `exact` for the whole limit. The
+/// hybrid step is skipped when the band was never calibrated. Otherwise as planVerified above; the
 /// hybrid's exact answers are in `exactAnswers` too. Throws InvalidArgument on a null model.
 VerifiedPlan planVerified(const CalibratedModel& model,
                           const std::shared_ptr<const CollisionChecker>& exact,
@@ -120,17 +119,16 @@ VerifiedPlan planVerified(const CalibratedModel& model,
 /// For a scene that stands still: plans on `proxy`'s latest model as planVerified above, but when
 /// verification finds the model's path colliding, the model first learns the exact answers it
 /// got wrong (answersMissedBy, addObservations, learnObservations: no oracle call) and plans again
-/// on the new model, up to options.learningRounds times; the last path is repaired as above. The
-/// first plan on the model gets options.modelShare of the time limit. When it fails, a
+/// on the new model, up to options.verify.learningRounds times; the last path is repaired as above.
+/// The first plan on the model gets options.verify.modelShare of the time limit. When it fails, a
 /// HybridChecker that trusts the model's "free" and asks `exact` (the proxy's oracle with
-/// options.oracleRelaxesExact) about every "collides" plans for approximateShare (the model closes
-/// passages near walls where the robot is free; a calibrated band does not reach that far,
+/// options.verify.oracleRelaxesExact) about every "collides" plans for approximateShare (the model
+/// closes passages near walls where the robot is free; a calibrated band does not reach that far,
 /// docs/planning.md), its path verified and repaired (the first round's bridges planned on the
-/// oracle with options.oracleRelaxesExact, except a stretch whose first collision the oracle finds
-/// free);
-/// only then does `exact` plan the whole motion. A plan on a corrected model gets at most four
-/// times the first plan's time (at least 50 ms, at most approximateShare) and, when it fails,
-/// the last path is repaired. The proxy keeps what it learned for later queries; every exact
+/// oracle with options.verify.oracleRelaxesExact, except a stretch whose first collision the oracle
+/// finds free); only then does `exact` plan the whole motion. A plan on a corrected model gets at
+/// most four times the first plan's time (at least 50 ms, at most approximateShare) and, when it
+/// fails, the last path is repaired. The proxy keeps what it learned for later queries; every exact
 /// answer of every round is in `exactAnswers` (the oracle's answers are not).
 /// Not while the proxy updates in the background: what it learns must be of the world as it is.
 /// Throws Error before proxy.initialize().
