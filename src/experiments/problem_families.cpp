@@ -7,9 +7,9 @@
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
-#include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/moveit_writer.h"
+#include "fastron/geometry/scene_checkers.h"
 
 namespace fastron::experiments {
 namespace {
@@ -86,8 +86,9 @@ Scene placeStructure(ProblemFamily family, Rng& rng, double lift, Eigen::Vector3
 // A configuration drawn uniformly, free under `checker`, whose tip lies where `wanted` says;
 // false when none is among `samples` draws.
 template <class Wanted>
-bool findConfiguration(const Robot& robot, int tip, const FclChecker& checker, std::size_t samples,
-                       Rng& rng, const Wanted& wanted, std::vector<double>& found) {
+bool findConfiguration(const Robot& robot, int tip, const CollisionChecker& checker,
+                       std::size_t samples, Rng& rng, const Wanted& wanted,
+                       std::vector<double>& found) {
   KinematicsData kinematics = makeKinematicsData(robot);
   constexpr std::size_t kBatch = 4096;
   for (std::size_t drawn = 0; drawn < samples; drawn += kBatch) {
@@ -192,7 +193,10 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
     for (int placement = 0; placement < placements; ++placement) {
       Eigen::Vector3d target;
       problem.scene = placeStructure(options.family, rng, lift, target);
-      const FclChecker checker(robot, problem.scene, {.selfCollision = options.selfCollision});
+      CheckerOptions checking;
+      checking.selfCollision = options.selfCollision;
+      const auto exact = makeSceneChecker(kDefaultSceneChecker, robot, problem.scene, checking);
+      const CollisionChecker& checker = *exact;
       const auto nearTarget = [&](const Eigen::Vector3d& p) {
         return (p - target).norm() <= options.reach;
       };
