@@ -1,6 +1,6 @@
 // MoveIt MotionPlanRequest YAML (fastron::parseMoveItRequest), then its start and goal taken
 // for the Panda as `fastron plan` takes them.
-#include "fastron/geometry/scene_file.h"
+#include "fastron/geometry/moveit_request.h"
 #include "fuzz_reader.h"
 #include "robot_for_fuzzing.h"
 
