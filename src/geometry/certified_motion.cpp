@@ -189,7 +189,7 @@ struct Stretch {
 class MotionLooks {
  public:
   MotionLooks(const ClearanceModel& model, const ExactPairCheck& exact, const double* from,
-              const double* to, std::size_t dim, std::size_t segments)
+              const double* to, std::size_t dim, std::size_t segments, std::size_t& placed)
       : model_(model),
         exact_(exact),
         from_(from),
@@ -198,7 +198,8 @@ class MotionLooks {
         segments_(segments),
         balls_(model),
         q_(dim),
-        perStep_(model.pairs.size()) {
+        perStep_(model.pairs.size()),
+        placed_(placed) {
     Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
     for (std::size_t j = 0; j < dim; ++j)
       stride[static_cast<Eigen::Index>(j)] =
@@ -209,7 +210,6 @@ class MotionLooks {
 
   /// How much one step of the motion can bring pair p closer.
   double perStep(std::size_t p) const { return perStep_[p]; }
-  std::size_t statesPlaced() const { return placed_; }
 
   /// Places state i; writes each active pair's bound (0 where none proves it apart); with
   /// `decide`, asks the exact checker about those pairs and returns true at a contact. A bound
@@ -251,7 +251,7 @@ class MotionLooks {
   std::vector<Eigen::Isometry3d> poses_;
   std::vector<double> q_;
   std::vector<double> perStep_;
-  std::size_t placed_ = 0;
+  std::size_t& placed_;  // the states placed, counted into the caller's answer
 };
 
 }  // namespace
@@ -262,20 +262,14 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   CertifiedMotion answer;
   if (segments == 0) return answer;
   const std::size_t pairs = model.pairs.size();
-  MotionLooks looks(model, exact, from, to, dim, segments);
-  const auto look = [&](std::size_t i, const std::vector<std::uint32_t>& active,
-                        std::vector<double>& bounds, bool decide, double steps, const auto& close) {
-    const bool touches = looks.look(i, active, bounds, decide, steps, close);
-    answer.statesPlaced = looks.statesPlaced();
-    return touches;
-  };
+  MotionLooks looks(model, exact, from, to, dim, segments, answer.statesPlaced);
   const auto never = [](std::uint32_t) { return false; };
   const double all = static_cast<double>(segments);
 
   std::vector<std::uint32_t> every(pairs);
   std::iota(every.begin(), every.end(), 0U);
   auto atTo = std::make_shared<std::vector<double>>(pairs, 0.0);
-  if (look(segments, every, *atTo, true, all, never)) {  // into an obstacle: found at once
+  if (looks.look(segments, every, *atTo, true, all, never)) {  // into an obstacle: found at once
     answer.collidingState = segments;
     return answer;
   }
@@ -285,12 +279,12 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   // `from` only when it survives them.
   const std::size_t half = segments / 2;
   auto atHalf = std::make_shared<std::vector<double>>(pairs, 0.0);
-  if (look(half, every, *atHalf, true, all / 2, never)) {
+  if (looks.look(half, every, *atHalf, true, all / 2, never)) {
     answer.collidingState = half;
     return answer;
   }
   auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
-  look(0, every, *atFrom, false, all / 2, never);
+  looks.look(0, every, *atFrom, false, all / 2, never);
 
   // Breadth first, as the dense check's bisection order: a collision anywhere on the motion is met
   // after a few looks (depth first walked the first half's every unproven state before the
@@ -313,7 +307,7 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     const auto closeAtBothEnds = [&](std::uint32_t p) {
       return (*s.atLo)[p] == 0 && (*s.atHi)[p] == 0;
     };
-    if (look(mid, open, *atMid, true, steps / 2, closeAtBothEnds)) {
+    if (looks.look(mid, open, *atMid, true, steps / 2, closeAtBothEnds)) {
       answer.collidingState = mid;
       return answer;
     }

@@ -295,19 +295,16 @@ void FclChecker::placeFixedShapes(Obstacles& world) const {
     if (!world.allowed.empty()) data.allowed = world.allowed.data() + s * world.objects.size();
     world.manager.collide(world.fixedObjects[s].get(), &data, collideCallback);
     if (data.hit != nullptr)
-      world.fixedContact = Contact{linkName(s), world.names[obstacleIndex(data.hit)], false};
+      world.fixedContact =
+          Contact{robot_.shapeLinkName(s), world.names[obstacleIndex(data.hit)], false};
   }
   for (const auto& [a, b] : world.selfPairs) {
     if (geometry.moves[a] != 0 || geometry.moves[b] != 0) {
       world.movingSelfPairs.emplace_back(a, b);
     } else if (!world.fixedContact && shapesTouch(*world.fixedObjects[a], *world.fixedObjects[b])) {
-      world.fixedContact = Contact{linkName(a), linkName(b), true};
+      world.fixedContact = Contact{robot_.shapeLinkName(a), robot_.shapeLinkName(b), true};
     }
   }
-}
-
-const std::string& FclChecker::linkName(std::size_t shape) const {
-  return robot_.links()[static_cast<std::size_t>(robot_.shapes()[shape].link)].name;
 }
 
 // Forward kinematics, then every robot shape that moves placed at its pose with its AABB updated.
@@ -331,12 +328,12 @@ std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scra
     world.manager.collide(scratch.robotObjects[s].get(), &data, collideCallback);
     if (data.hit != nullptr) {
       if (!wantContact) return Contact{};
-      return Contact{linkName(s), world.names[obstacleIndex(data.hit)], false};
+      return Contact{robot_.shapeLinkName(s), world.names[obstacleIndex(data.hit)], false};
     }
   }
   for (const auto& [a, b] : world.movingSelfPairs) {
     if (shapesTouch(world.robotObject(scratch, a), world.robotObject(scratch, b)))
-      return Contact{linkName(a), linkName(b), true};
+      return Contact{robot_.shapeLinkName(a), robot_.shapeLinkName(b), true};
   }
   return std::nullopt;
 }

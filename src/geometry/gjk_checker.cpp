@@ -228,11 +228,9 @@ std::optional<Contact> GjkChecker::contactAt(const double* q) const {
   auto scratch = scratch_.lease();
   const std::optional<Touch> touch = firstTouch(*world, *scratch, q);
   if (!touch) return std::nullopt;
-  const auto linkOf = [&](std::size_t shape) -> const std::string& {
-    return robot_.links()[static_cast<std::size_t>(robot_.shapes()[shape].link)].name;
-  };
-  return Contact{linkOf(touch->shape),
-                 touch->self ? linkOf(touch->other) : world->names[touch->other], touch->self};
+  return Contact{robot_.shapeLinkName(touch->shape),
+                 touch->self ? robot_.shapeLinkName(touch->other) : world->names[touch->other],
+                 touch->self};
 }
 
 std::optional<GjkChecker::Touch> GjkChecker::firstTouch(const World& world, Scratch& scratch,

@@ -71,7 +71,6 @@ class FclChecker final : public SceneChecker {
   void buildClearance(Obstacles& world, const Scene& scene) const;
   /// True when the levers hold along the motion: every prismatic coordinate within its limits.
   bool leversHold(const double* from, const double* to) const;
-  const std::string& linkName(std::size_t shape) const;
   /// Places the robot at q in `scratch`, then the first contact with `world` or itself.
   std::optional<Contact> collide(const Obstacles& world, Scratch& scratch, const double* q,
                                  bool wantContact) const;

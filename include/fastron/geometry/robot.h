@@ -71,6 +71,10 @@ class Robot {
   /// Parent before child: forward kinematics walks them in this order.
   const std::vector<Joint>& joints() const { return joints_; }
   const std::vector<LinkShape>& shapes() const { return shapes_; }
+  /// The name of the link that collision shape `shape` belongs to.
+  const std::string& shapeLinkName(std::size_t shape) const {
+    return links_[static_cast<std::size_t>(shapes_[shape].link)].name;
+  }
   int rootLink() const { return root_; }
 
   /// Index of the link or joint with this name; throws InvalidArgument naming it.
