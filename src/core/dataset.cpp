@@ -13,6 +13,7 @@
 #include "fastron/core/csv_table.h"
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
+#include "fastron/core/npy.h"
 
 namespace fastron {
 namespace {
@@ -62,136 +63,21 @@ Dataset parseCsv(std::string_view csv, const std::string& source) {
   return data;
 }
 
-namespace {
-
-/// What a .npy header says of the array after it.
-struct NpyLayout {
-  std::size_t dataStart = 0;  ///< offset of the first element
-  std::string descr;          ///< "<f8", "<f4", "<i8" or "<i4"
-  std::size_t itemSize = 0;
-  bool fortran = false;
-  std::size_t rows = 0, columns = 0;
-};
-
-/// The layout of a .npy file of a 2-D array of at least 2 columns, whose data are all present;
-/// throws FileError naming `file` and what is wrong.
-NpyLayout parseNpyHeader(std::string_view bytes, const std::string& file) {
-  if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) {
-    throw FileError(file + ": not a .npy file (bad magic bytes)");
-  }
-  const auto major = static_cast<unsigned char>(bytes[6]);
-  std::size_t headerLength = 0, headerStart = 0;
-  if (major == 1) {
-    headerLength = static_cast<unsigned char>(bytes[8]) |
-                   static_cast<std::size_t>(static_cast<unsigned char>(bytes[9])) << 8;
-    headerStart = 10;
-  } else if (major == 2 || major == 3) {
-    if (bytes.size() < 12) throw FileError(file + ": truncated .npy header");
-    for (int b = 3; b >= 0; --b)
-      headerLength = headerLength << 8 | static_cast<unsigned char>(bytes[8 + b]);
-    headerStart = 12;
-  } else {
-    throw FileError(file + ": unsupported .npy version " + std::to_string(major));
-  }
-  if (bytes.size() < headerStart + headerLength) throw FileError(file + ": truncated .npy header");
-  const std::string header(bytes.substr(headerStart, headerLength));
-
-  auto valueOf = [&](const std::string& key) {
-    const std::size_t k = header.find("'" + key + "'");
-    const std::size_t colon = k == std::string::npos ? k : header.find(':', k);
-    if (colon == std::string::npos)
-      throw FileError(file + ": .npy header has no '" + key + "' field");
-    return trimBlanks(std::string_view(header).substr(colon + 1));
-  };
-  auto enclosed = [&](std::string_view text, char open, char close, const char* key) {
-    const std::size_t end =
-        text.empty() || text.front() != open ? std::string_view::npos : text.find(close, 1);
-    if (end == std::string_view::npos)
-      throw FileError(file + ": bad .npy header field '" + key + "'");
-    return text.substr(1, end - 1);
-  };
-  const std::string_view descrText = valueOf("descr");
-  const char quote = descrText.starts_with('"') ? '"' : '\'';
-  const std::string_view descr = enclosed(descrText, quote, quote, "descr");
-  NpyLayout layout;
-  layout.fortran = valueOf("fortran_order").starts_with("True");
-  const std::string_view shapeText = enclosed(valueOf("shape"), '(', ')', "shape");
-  std::vector<std::size_t> shape;
-  for (const auto field : splitCsvFields(shapeText)) {
-    if (field.empty()) continue;
-    std::size_t v = 0;
-    const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), v);
-    if (error != std::errc() || end != field.data() + field.size()) {
-      throw FileError(file + ": bad .npy shape '" + std::string(shapeText) + "'");
-    }
-    shape.push_back(v);
-  }
-  if (shape.size() != 2 || shape[1] < 2 || shape[0] == 0) {
-    throw FileError(file + ": expected a 2-D array with at least 2 columns and 1 row, got shape (" +
-                    std::string(shapeText) + ")");
-  }
-
-  std::size_t& itemSize = layout.itemSize;
-  if (descr == "<f8" || descr == "<i8")
-    itemSize = 8;
-  else if (descr == "<f4" || descr == "<i4")
-    itemSize = 4;
-  else
-    throw FileError(file + ": unsupported .npy dtype '" + std::string(descr) +
-                    "' (use <f8, <f4, <i8 or <i4)");
-
-  const std::size_t rows = shape[0], columns = shape[1];
-  layout.rows = rows;
-  layout.columns = columns;
-  layout.descr = std::string(descr);
-  const std::size_t dataStart = headerStart + headerLength;
-  const std::size_t available = (bytes.size() - dataStart) / itemSize;  // whole elements present
-  if (columns > available || rows > available / columns) {
-    throw FileError(file + ": truncated .npy data (" + std::to_string(bytes.size() - dataStart) +
-                    " bytes for shape (" + std::to_string(rows) + ", " + std::to_string(columns) +
-                    "))");
-  }
-  layout.dataStart = dataStart;
-  return layout;
-}
-
-/// Element (r, c) of the array `layout` describes, as a double.
-double npyElement(std::string_view bytes, const NpyLayout& layout, std::size_t r, std::size_t c) {
-  const std::size_t index = layout.fortran ? c * layout.rows + r : r * layout.columns + c;
-  const char* p = bytes.data() + layout.dataStart + index * layout.itemSize;
-  if (layout.descr == "<f8") {
-    double v;
-    std::memcpy(&v, p, 8);
-    return v;
-  }
-  if (layout.descr == "<f4") {
-    float v;
-    std::memcpy(&v, p, 4);
-    return v;
-  }
-  if (layout.descr == "<i8") {
-    std::int64_t v;
-    std::memcpy(&v, p, 8);
-    return static_cast<double>(v);
-  }
-  std::int32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
-}  // namespace
-
 Dataset parseNpy(std::string_view bytes, const std::string& source) {
   const std::string& file = source;
-  const NpyLayout layout = parseNpyHeader(bytes, file);
-  const std::size_t rows = layout.rows, columns = layout.columns;
+  const NpyMatrix array(bytes, file);
+  const std::size_t rows = array.rows(), columns = array.columns();
+  if (columns < 2 || rows == 0) {
+    throw FileError(file + ": expected a 2-D array with at least 2 columns and 1 row, got shape (" +
+                    std::to_string(rows) + ", " + std::to_string(columns) + ")");
+  }
   std::vector<double> values;
   values.reserve(rows * (columns - 1));
   Labels labels;
   labels.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     for (std::size_t c = 0; c < columns; ++c) {
-      const double v = npyElement(bytes, layout, r, c);
+      const double v = array.at(r, c);
       const std::string where =
           file + ": row " + std::to_string(r) + ", column " + std::to_string(c);
       if (!std::isfinite(v)) throw FileError(where + ": value is not finite");
@@ -281,27 +167,14 @@ void writeCsv(const Dataset& data, const std::filesystem::path& path) {
 
 void writeNpy(const Dataset& data, const std::filesystem::path& path) {
   const std::size_t rows = data.size(), columns = data.dim() + 1;
-  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" +
-                       std::to_string(rows) + ", " + std::to_string(columns) + "), }";
-  // The header, with the 10 preamble bytes, is padded with spaces to a multiple of 64 and ends
-  // with a newline (NumPy format version 1.0).
-  header.append(63 - (10 + header.size()) % 64, ' ');
-  header.push_back('\n');
-  std::string bytes = "\x93NUMPY";
-  bytes.push_back('\x01');
-  bytes.push_back('\x00');
-  bytes.push_back(static_cast<char>(header.size() & 0xff));
-  bytes.push_back(static_cast<char>(header.size() >> 8));
-  bytes += header;
+  std::vector<double> values;
+  values.reserve(rows * columns);
   for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t c = 0; c < columns; ++c) {
-      const double v = c + 1 < columns
-                           ? data.points(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c))
-                           : data.labels[r];
-      bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
-    }
+    for (std::size_t c = 0; c + 1 < columns; ++c)
+      values.push_back(data.points(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)));
+    values.push_back(data.labels[r]);
   }
-  writeFileAtomically(path, bytes, "dataset file");
+  writeFileAtomically(path, npyBytes(values.data(), rows, columns), "dataset file");
 }
 
 }  // namespace fastron

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -229,6 +230,9 @@ std::vector<Ball> coveringBalls(const Shape& shape, std::size_t maxBalls) {
             return balls;
           },
           [&](const Mesh& m) { return meshCover(*m.mesh, maxBalls, 0).balls; },
+          [](const PointCloud&) -> std::vector<Ball> {
+            throw InvalidArgument("coveringBalls: a point cloud is not a robot shape");
+          },
       },
       shape);
 }
@@ -260,6 +264,19 @@ EnclosingVolume::EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& po
                    halfExtents_ = (hi - lo) / 2;
                    toLocal_ = Eigen::Translation3d(-(lo + hi) / 2) * toLocal_;
                  },
+                 [&](const PointCloud& c) {
+                   if (c.cloud->points.empty()) {
+                     kind_ = Kind::Nothing;
+                     return;
+                   }
+                   Eigen::Vector3d lo = c.cloud->points.front(), hi = lo;
+                   for (const auto& p : c.cloud->points) {
+                     lo = lo.cwiseMin(p);
+                     hi = hi.cwiseMax(p);
+                   }
+                   halfExtents_ = ((hi - lo) / 2).array() + c.radius;
+                   toLocal_ = Eigen::Translation3d(-(lo + hi) / 2) * toLocal_;
+                 },
              },
              shape);
 }
@@ -279,6 +296,8 @@ double EnclosingVolume::distanceFrom(const Eigen::Vector3d& point) const {
           (p - Eigen::Vector3d(0, 0, std::clamp(p.z(), -halfLength_, halfLength_))).norm() -
               radius_,
           0.0);
+    case Kind::Nothing:
+      return std::numeric_limits<double>::infinity();
   }
   return 0;
 }
@@ -297,8 +316,15 @@ int commonAncestor(const Robot& robot, int linkA, int linkB) {
   return robot.rootLink();  // one tree: not reached
 }
 
-Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
-                            int relativeTo) {
+namespace {
+
+struct LeversAndReach {
+  Eigen::VectorXd levers;
+  double reach = 0;  ///< bound on any point's distance from relativeTo's origin
+};
+
+LeversAndReach leversAndReach(const Robot& robot, std::size_t shape,
+                              const std::vector<Ball>& balls, int relativeTo) {
   const LinkShape& s = robot.shapes().at(shape);
   const auto& joints = robot.joints();
   // The coordinate that drives each joint, with the multiplier it is driven by.
@@ -344,7 +370,24 @@ Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::ve
     }
     link = joint.parent;
   }
-  return levers;
+  return {levers, reach};
+}
+
+}  // namespace
+
+Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
+                            int relativeTo) {
+  return leversAndReach(robot, shape, balls, relativeTo).levers;
+}
+
+double reachBound(const Robot& robot, double padding) {
+  double reach = 0;
+  for (std::size_t s = 0; s < robot.shapes().size(); ++s) {
+    const std::vector<Ball> whole{{Eigen::Vector3d::Zero(),
+                                   boundingRadius(robot.shapes()[s].shape) + padding}};
+    reach = std::max(reach, leversAndReach(robot, s, whole, robot.rootLink()).reach);
+  }
+  return reach;
 }
 
 }  // namespace fastron

@@ -14,6 +14,8 @@
 #include <map>
 
 #include "fastron/core/error.h"
+#include "fastron/geometry/clearance_bounds.h"
+#include "fastron/geometry/cloud_grid.h"
 #include "fastron/geometry/kinematics.h"
 #include "overloaded.h"
 
@@ -68,6 +70,8 @@ FclGeometry toFcl(const Shape& shape, Hierarchy hierarchy) {
             return hierarchy == Hierarchy::Collision ? meshHierarchy<fcl::OBBd>(*m.mesh)
                                                      : meshHierarchy<fcl::OBBRSSd>(*m.mesh);
           },
+          // Clouds are checked beside FCL's broad phase (FclChecker::Cloud), not by it.
+          [](const PointCloud&) -> FclGeometry { return nullptr; },
       },
       shape);
 }
@@ -129,6 +133,12 @@ bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b)
 
 struct FclChecker::Geometry {
   std::vector<FclGeometries> shapes;  // one per robot shape, padded
+  // For clouds: each padded shape's exact distance from a point (a primitive's), or a lower bound
+  // on it (the box around a mesh's vertices, whose triangles FCL then asks), in the shape's frame;
+  // and how far from the root's origin any point of a shape can be.
+  std::vector<EnclosingVolume> volumes;
+  std::vector<std::uint8_t> meshes;
+  double reach = 0;
   std::vector<std::uint8_t> moves;    // shapesMovedByConfiguration
   std::vector<std::size_t> moving;    // the shapes that move, in shape order
   // For clearance bounds, with options.proveMotionsFree only: balls covering each padded shape,
@@ -137,6 +147,14 @@ struct FclChecker::Geometry {
   std::vector<Eigen::VectorXd> levers;
   // Coordinates of prismatic joints with their limits: the levers hold within them.
   std::vector<std::tuple<std::size_t, double, double>> prismatic;
+};
+
+/// A point-cloud obstacle: its balls' centres (world frame, cropped to the robot's reach) in a grid.
+struct FclChecker::Cloud {
+  std::size_t obstacle = 0;  // index in the scene
+  CloudGrid grid;
+  double radius = 0;
+  std::shared_ptr<fcl::Sphered> ball;  // of the radius, for FCL's ball-against-mesh tests
 };
 
 struct FclChecker::Scratch {
@@ -171,6 +189,8 @@ struct FclChecker::Obstacles {
       meshes;
   std::vector<FclGeometry> distanceShapes;  // of each obstacle, for distance()
   ClearanceModel clearance;                 // for checkMotion
+  // Point-cloud obstacles; their entries in objects and distanceShapes are null.
+  std::vector<Cloud> clouds;
 };
 
 FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -191,12 +211,15 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     const Shape padded = paddedShape(robot_, s, options_);
     meshes = meshes || std::holds_alternative<Mesh>(padded);
     geometry->shapes.push_back(geometriesOf(padded));
+    geometry->volumes.emplace_back(padded, Eigen::Isometry3d::Identity());
+    geometry->meshes.push_back(std::holds_alternative<Mesh>(padded) ? 1 : 0);
     if (geometry->moves[s] != 0) geometry->moving.push_back(s);
     if (!options_.proveMotionsFree) continue;
     balls->push_back(coveringBallTree(padded));
     geometry->levers.push_back(shapeLevers(robot_, s, balls->back().balls, robot_.rootLink()));
   }
   geometry->balls = std::move(balls);
+  geometry->reach = reachBound(robot_, options_.padding);
   proofs_ = !options_.proveMotionsFree ? MotionProofs::None
             : meshes                   ? MotionProofs::Verification
                                        : MotionProofs::Everywhere;
@@ -238,6 +261,14 @@ void FclChecker::setScene(const Scene& scene) {
   std::vector<fcl::CollisionObjectd*> raw;
   for (std::size_t i = 0; i < scene.obstacles().size(); ++i) {
     const Obstacle& o = scene.obstacles()[i];
+    if (const auto* cloud = std::get_if<PointCloud>(&o.shape)) {
+      next->clouds.push_back(placeCloud(*cloud, o.pose, scene.robotBase));
+      next->clouds.back().obstacle = i;
+      next->objects.push_back(nullptr);
+      next->names.push_back(o.name);
+      next->distanceShapes.push_back(nullptr);
+      continue;
+    }
     const FclGeometries geometry = geometryOf(o.shape);
     auto object = std::make_unique<fcl::CollisionObjectd>(geometry.collision, toFcl(o.pose));
     object->computeAABB();
@@ -252,8 +283,80 @@ void FclChecker::setScene(const Scene& scene) {
   if (options_.selfCollision) next->selfPairs = robot_.selfCollisionPairs(scene.allowedCollisions);
   next->allowed = allowedObstacleContacts(robot_, scene);
   placeFixedShapes(*next);
-  if (options_.proveMotionsFree) buildClearance(*next, scene);
+  // Clearance bounds know no clouds: motions among them are checked state by state.
+  if (options_.proveMotionsFree && next->clouds.empty()) buildClearance(*next, scene);
   obstacles_.set(std::move(next));
+}
+
+FclChecker::Cloud FclChecker::placeCloud(const PointCloud& cloud, const Eigen::Isometry3d& pose,
+                                         const Eigen::Isometry3d& robotBase) const {
+  // Balls farther from the robot's base than any point of the robot can reach are dropped.
+  const double reach = geometry_->reach + cloud.radius;
+  const Eigen::Vector3d base = robotBase.translation();
+  std::vector<Eigen::Vector3d> world;
+  world.reserve(cloud.cloud->points.size());
+  for (const Eigen::Vector3d& p : cloud.cloud->points) {
+    const Eigen::Vector3d w = pose * p;
+    if ((w - base).squaredNorm() <= reach * reach) world.push_back(w);
+  }
+  Cloud placed;
+  // Cells of a few balls' width: a link's box then spans a few cells a side, each holding a
+  // few dozen points of a sensed surface (docs/geometry.md, "Point clouds").
+  placed.grid = CloudGrid(world, std::max(4 * cloud.radius, 0.05));
+  placed.radius = cloud.radius;
+  placed.ball = std::make_shared<fcl::Sphered>(cloud.radius);
+  return placed;
+}
+
+bool FclChecker::touchesCloud(const Cloud& cloud, std::size_t shape,
+                              const fcl::CollisionObjectd& object) const {
+  const fcl::AABBd& box = object.getAABB();
+  const Eigen::AlignedBox3d near(box.min_.array() - cloud.radius, box.max_.array() + cloud.radius);
+  const Eigen::Isometry3d toLocal = object.getTransform().inverse(Eigen::Isometry);
+  const EnclosingVolume& volume = geometry_->volumes[shape];
+  const bool mesh = geometry_->meshes[shape] != 0;
+  return cloud.grid.anyInBox(near, [&](const Eigen::Vector3d& p) {
+    if (!near.contains(p) || volume.distanceFrom(toLocal * p) > cloud.radius) return false;
+    if (!mesh) return true;  // the distance is exact for a primitive
+    const fcl::CollisionRequestd request;
+    fcl::CollisionResultd result;
+    fcl::collide(cloud.ball.get(), fcl::Transform3d(Eigen::Translation3d(p)),
+                 geometry_->shapes[shape].collision.get(), object.getTransform(), request, result);
+    return result.isCollision();
+  });
+}
+
+double FclChecker::cloudDistance(const Cloud& cloud, std::size_t shape,
+                                 const fcl::CollisionObjectd& object) const {
+  if (cloud.grid.empty()) return std::numeric_limits<double>::infinity();
+  const fcl::AABBd& box = object.getAABB();
+  const Eigen::Isometry3d toLocal = object.getTransform().inverse(Eigen::Isometry);
+  const EnclosingVolume& volume = geometry_->volumes[shape];
+  const bool mesh = geometry_->meshes[shape] != 0;
+  const fcl::DistanceRequestd request;
+  double best = std::numeric_limits<double>::infinity();
+  const auto look = [&](const Eigen::Vector3d& p) {
+    const double bound = volume.distanceFrom(toLocal * p) - cloud.radius;
+    if (bound >= best) return false;
+    if (!mesh) {
+      best = std::max(bound, 0.0);
+    } else {
+      fcl::DistanceResultd result;
+      fcl::distance(cloud.ball.get(), fcl::Transform3d(Eigen::Translation3d(p)),
+                    geometry_->shapes[shape].distance.get(), object.getTransform(), request,
+                    result);
+      best = std::min(best, std::max(result.min_distance, 0.0));
+    }
+    return best == 0;
+  };
+  // Boxes about the shape that grow until a ball within them is nearer than any outside can be.
+  const double whole = cloud.grid.bounds().sizes().norm() + box.size();
+  for (double margin = cloud.grid.cell();; margin *= 2) {
+    const Eigen::AlignedBox3d near(box.min_.array() - margin - cloud.radius,
+                                   box.max_.array() + margin + cloud.radius);
+    cloud.grid.anyInBox(near, look);
+    if (best <= margin || margin > whole) return best;
+  }
 }
 
 void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
@@ -297,6 +400,9 @@ void FclChecker::placeFixedShapes(Obstacles& world) const {
     if (data.hit != nullptr)
       world.fixedContact =
           Contact{robot_.shapeLinkName(s), world.names[obstacleIndex(data.hit)], false};
+    if (const Cloud* cloud = touchedCloud(world, s, *world.fixedObjects[s]);
+        cloud != nullptr && !world.fixedContact)
+      world.fixedContact = Contact{robot_.shapeLinkName(s), world.names[cloud->obstacle], false};
   }
   for (const auto& [a, b] : world.selfPairs) {
     if (geometry.moves[a] != 0 || geometry.moves[b] != 0) {
@@ -318,6 +424,17 @@ void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
   }
 }
 
+const FclChecker::Cloud* FclChecker::touchedCloud(const Obstacles& world, std::size_t shape,
+                                                  const fcl::CollisionObjectd& object) const {
+  for (const Cloud& cloud : world.clouds) {
+    if (!world.allowed.empty() &&
+        world.allowed[shape * world.objects.size() + cloud.obstacle] != 0)
+      continue;
+    if (touchesCloud(cloud, shape, object)) return &cloud;
+  }
+  return nullptr;
+}
+
 std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scratch,
                                            const double* q, bool wantContact) const {
   if (world.fixedContact) return wantContact ? world.fixedContact : Contact{};
@@ -329,6 +446,10 @@ std::optional<Contact> FclChecker::collide(const Obstacles& world, Scratch& scra
     if (data.hit != nullptr) {
       if (!wantContact) return Contact{};
       return Contact{robot_.shapeLinkName(s), world.names[obstacleIndex(data.hit)], false};
+    }
+    if (const Cloud* cloud = touchedCloud(world, s, *scratch.robotObjects[s])) {
+      if (!wantContact) return Contact{};
+      return Contact{robot_.shapeLinkName(s), world.names[cloud->obstacle], false};
     }
   }
   for (const auto& [a, b] : world.movingSelfPairs) {
@@ -388,9 +509,9 @@ bool FclChecker::leversHold(const double* from, const double* to) const {
 
 CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const double* to,
                                                       std::size_t segments) const {
-  if (proofs_ == MotionProofs::None || !leversHold(from, to))
-    return checkMotionStateByState(from, to, segments);
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  if (proofs_ == MotionProofs::None || !leversHold(from, to) || !world->clouds.empty())
+    return checkMotionStateByState(from, to, segments);
   if (world->fixedContact) return {segments, 1};  // every state collides; `to` is looked at first
   auto scratch = scratch_.lease();
   ExactPairCheck exact;
@@ -444,10 +565,17 @@ double FclChecker::distanceAt(const double* q) const {
     const fcl::CollisionGeometryd* shape = geometry_->shapes[s].distance.get();
     for (std::size_t o = 0; o < world->objects.size(); ++o) {
       if (!world->allowed.empty() && world->allowed[s * world->objects.size() + o] != 0) continue;
+      if (!world->objects[o]) continue;  // a cloud: below
       fcl::DistanceResultd result;
       fcl::distance(shape, pose, world->distanceShapes[o].get(), world->objects[o]->getTransform(),
                     request, result);
       best = std::min(best, std::max(0.0, result.min_distance));
+    }
+    for (const Cloud& cloud : world->clouds) {
+      if (!world->allowed.empty() &&
+          world->allowed[s * world->objects.size() + cloud.obstacle] != 0)
+        continue;
+      best = std::min(best, cloudDistance(cloud, s, world->robotObject(*scratch, s)));
     }
   }
   return best;

@@ -54,6 +54,9 @@ ConvexBody ConvexBody::from(const Shape& shape) {
                    body.radius = c.radius;
                    body.halfLength = c.length / 2;
                  },
+                 [](const PointCloud&) {
+                   throw Unsupported("the GJK checker does not check point clouds (use fcl)");
+                 },
                  [&](const Mesh& m) {
                    body.kind = Kind::Hull;
                    // Shares the mesh's vertices (aliasing): moving a scene copies nothing.
@@ -160,6 +163,9 @@ void GjkChecker::setScene(const Scene& scene) {
   auto next = std::make_shared<World>();
   next->robotBase = scene.robotBase;
   for (const Obstacle& o : scene.obstacles()) {
+    if (std::holds_alternative<PointCloud>(o.shape))
+      throw Unsupported("obstacle '" + o.name +
+                        "' is a point cloud, which the GJK checker does not check (use fcl)");
     ConvexBody body = ConvexBody::from(o.shape);
     body.pose = o.pose;
     next->obstacles.push_back(std::move(body));

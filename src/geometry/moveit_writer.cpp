@@ -59,6 +59,10 @@ void emitPrimitive(YAML::Emitter& out, const Obstacle& obstacle) {
             throw InvalidArgument("MoveIt scene: obstacle '" + obstacle.name +
                                   "' is a mesh; only primitives are written");
           },
+          [&](const PointCloud&) {
+            throw InvalidArgument("MoveIt scene: obstacle '" + obstacle.name +
+                                  "' is a point cloud; only primitives are written");
+          },
       },
       obstacle.shape);
   out << YAML::EndMap;

@@ -119,6 +119,12 @@ void Scene::setPose(std::string_view name, const Eigen::Isometry3d& pose) {
   obstacles_[indexOf(name)].pose = pose;
 }
 
+void Scene::setShape(std::string_view name, Shape shape) {
+  const std::size_t i = indexOf(name);
+  validate(shape, "obstacle '" + std::string(name) + "'");
+  obstacles_[i].shape = std::move(shape);
+}
+
 const Obstacle& Scene::obstacle(std::string_view name) const {
   return obstacles_[indexOf(name)];
 }

@@ -7,6 +7,8 @@
 #include "fastron/core/error.h"
 #include "fastron/core/file_io.h"
 #include "fastron/geometry/mesh_loader.h"
+#include "fastron/geometry/point_cloud.h"
+#include "fastron/geometry/point_cloud_file.h"
 #include "yaml_reader.h"
 
 namespace fastron {
@@ -107,15 +109,57 @@ void readAllowedPairs(const Reader& r, const YAML::Node& pairs, Scene& scene) {
   }
 }
 
-Scene parseMoveItSceneText(const std::string& yaml, const std::string& source);
+/// The sensed obstacles of a scene file: `point_clouds` and `octomaps`, each a list of
+/// {id, file, radius, voxel, position, rpy | orientation}, files relative to the scene file.
+void readSensedObstacles(const Reader& r, const YAML::Node& root,
+                         const std::filesystem::path& base, Scene& scene) {
+  for (const char* key : {"point_clouds", "octomaps"}) {
+    const YAML::Node list = root[key];
+    if (!list) continue;
+    const bool octomap = std::string(key) == "octomaps";
+    r.list(list, key);
+    for (const auto& entry : list) {
+      const std::string id = r.text(r.required(entry, "id", key), std::string(key) + " id");
+      const std::string what = std::string(octomap ? "octomap" : "point cloud") + " '" + id + "'";
+      r.onlyKeys(entry, {"id", "file", "radius", "voxel", "position", "rpy", "orientation"}, what);
+      const std::filesystem::path file =
+          base / r.text(r.required(entry, "file", what), what + " file");
+      CloudFile cloud;
+      try {
+        cloud = readCloudFile(file);
+      } catch (const FileError& e) {
+        r.fail(entry["file"], what + ": " + e.what());
+      }
+      // An OctoMap's voxel is covered by the ball about its centre through its corners.
+      const double radius = entry["radius"] ? r.number(entry["radius"], what + " radius")
+                            : octomap       ? cloud.voxelSize * std::sqrt(3.0) / 2
+                                            : r.number(r.required(entry, "radius", what), what + " radius");
+      const double voxel =
+          entry["voxel"] ? r.number(entry["voxel"], what + " voxel") : octomap ? 0.0 : radius;
+      try {
+        scene.add({id, sensedCloud(cloud.points, radius, voxel), r.pose(entry, what),
+                   std::nullopt});
+      } catch (const InvalidArgument& e) {
+        r.fail(entry, what + ": " + e.what());
+      }
+    }
+  }
+}
+
+Scene parseMoveItSceneText(const std::string& yaml, const std::string& source,
+                           const std::filesystem::path& baseDirectory);
 
 Scene parseSceneText(const std::string& yaml, const std::string& source,
                      const std::filesystem::path& baseDirectory) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
   if (!root.IsMap()) throw FileError(source + ": a scene file is a YAML map");
-  if (root["world"] && !root["obstacles"]) return parseMoveItSceneText(yaml, source);
-  r.onlyKeys(root, {"obstacles", "robot_base", "allowed_collisions", "description"}, "scene");
+  if (root["world"] && !root["obstacles"])
+    return parseMoveItSceneText(yaml, source, baseDirectory);
+  r.onlyKeys(root,
+             {"obstacles", "robot_base", "allowed_collisions", "description", "point_clouds",
+              "octomaps"},
+             "scene");
   Scene scene;
   if (root["robot_base"]) {
     r.onlyKeys(root["robot_base"], {"position", "rpy", "orientation"}, "robot_base");
@@ -123,7 +167,10 @@ Scene parseSceneText(const std::string& yaml, const std::string& source,
   }
   if (root["allowed_collisions"]) readAllowedPairs(r, root["allowed_collisions"], scene);
   const YAML::Node obstacles = root["obstacles"];
-  if (!obstacles) return scene;
+  if (!obstacles) {
+    readSensedObstacles(r, root, baseDirectory, scene);
+    return scene;
+  }
   if (!obstacles.IsSequence()) r.fail(obstacles, "'obstacles' must be a list");
   std::size_t index = 0;
   for (const auto& o : obstacles) {
@@ -143,6 +190,7 @@ Scene parseSceneText(const std::string& yaml, const std::string& source,
     }
     ++index;
   }
+  readSensedObstacles(r, root, baseDirectory, scene);
   return scene;
 }
 
@@ -258,7 +306,8 @@ void readMoveItAllowedPairs(const Reader& r, const YAML::Node& acm, Scene& scene
   }
 }
 
-Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
+Scene parseMoveItSceneText(const std::string& yaml, const std::string& source,
+                           const std::filesystem::path& baseDirectory) {
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
   Scene scene;
@@ -288,6 +337,7 @@ Scene parseMoveItSceneText(const std::string& yaml, const std::string& source) {
   if (const YAML::Node state = root["robot_state"]) readRobotState(r, state, scene);
   if (const YAML::Node acm = root["allowed_collision_matrix"])
     readMoveItAllowedPairs(r, acm, scene);
+  readSensedObstacles(r, root, baseDirectory, scene);
   return scene;
 }
 
@@ -298,8 +348,10 @@ Scene parseScene(const std::string& yaml, const std::string& source,
   return namingYamlErrors(source, [&] { return parseSceneText(yaml, source, baseDirectory); });
 }
 
-Scene parseMoveItScene(const std::string& yaml, const std::string& source) {
-  return namingYamlErrors(source, [&] { return parseMoveItSceneText(yaml, source); });
+Scene parseMoveItScene(const std::string& yaml, const std::string& source,
+                       const std::filesystem::path& baseDirectory) {
+  return namingYamlErrors(source,
+                          [&] { return parseMoveItSceneText(yaml, source, baseDirectory); });
 }
 
 Scene loadScene(const std::filesystem::path& path) {

@@ -44,6 +44,16 @@ void validate(const Shape& shape, const std::string& context) {
                      throw InvalidArgument(context + ": mesh has no triangles");
                    }
                  },
+                 [&](const PointCloud& c) {
+                   requirePositive(c.radius, "point cloud radius", context);
+                   if (!c.cloud) throw InvalidArgument(context + ": point cloud has no points");
+                   const auto& points = c.cloud->points;
+                   for (std::size_t i = 0; i < points.size(); ++i) {
+                     if (!points[i].allFinite())
+                       throw InvalidArgument(context + ": point " + std::to_string(i) +
+                                             " of the cloud is not finite");
+                   }
+                 },
              },
              shape);
 }
@@ -65,6 +75,9 @@ Shape inflate(const Shape& shape, double padding) {
                         [&](const Mesh& m) -> Shape {
                           throw InvalidArgument("cannot pad the mesh " +
                                                 (m.mesh ? m.mesh->source : std::string("(empty)")));
+                        },
+                        [&](const PointCloud& c) -> Shape {
+                          return PointCloud{c.cloud, c.radius + padding};
                         },
                     },
                     shape);
@@ -88,6 +101,11 @@ std::string describe(const Shape& shape) {
                                  std::to_string(m.mesh ? m.mesh->triangles.size() : 0) +
                                  " triangles)";
                         },
+                        [](const PointCloud& c) {
+                          return "point cloud " + (c.cloud ? c.cloud->source : std::string()) +
+                                 " (" + std::to_string(c.cloud ? c.cloud->points.size() : 0) +
+                                 " points, r " + number(c.radius) + ")";
+                        },
                     },
                     shape);
 }
@@ -102,6 +120,11 @@ double boundingRadius(const Shape& shape) {
                           double r = 0;
                           for (const auto& v : m.mesh->vertices) r = std::max(r, v.norm());
                           return r;
+                        },
+                        [](const PointCloud& c) {
+                          double r = 0;
+                          for (const auto& p : c.cloud->points) r = std::max(r, p.norm());
+                          return c.cloud->points.empty() ? 0.0 : r + c.radius;
                         },
                     },
                     shape);
@@ -122,6 +145,11 @@ Eigen::Vector3d halfExtents(const Shape& shape) {
             Eigen::Vector3d h = Eigen::Vector3d::Zero();
             for (const auto& v : m.mesh->vertices) h = h.cwiseMax(v.cwiseAbs());
             return h;
+          },
+          [](const PointCloud& c) -> Eigen::Vector3d {
+            Eigen::Vector3d h = Eigen::Vector3d::Zero();
+            for (const auto& p : c.cloud->points) h = h.cwiseMax(p.cwiseAbs());
+            return c.cloud->points.empty() ? h : (h.array() + c.radius).matrix();
           },
       },
       shape);

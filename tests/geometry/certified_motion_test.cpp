@@ -77,6 +77,10 @@ std::vector<Eigen::Vector3d> pointsOf(const Shape& shape, std::size_t n, Rng& rn
                   a * (v[static_cast<std::size_t>(t[1])] - v[static_cast<std::size_t>(t[0])]) +
                   b * (v[static_cast<std::size_t>(t[2])] - v[static_cast<std::size_t>(t[0])]));
             },
+            [&](const PointCloud& c) {
+              const auto& p = c.cloud->points;
+              points.push_back(p[static_cast<std::size_t>(unit(rng) * static_cast<double>(p.size() - 1))]);
+            },
         },
         shape);
   }

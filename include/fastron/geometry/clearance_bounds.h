@@ -43,7 +43,7 @@ BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls = 12,
 
 /// A primitive that contains an obstacle, placed in the world, and the distance from a point to
 /// it: the obstacle itself for a box, sphere, cylinder or capsule, the box around its vertices for
-/// a mesh.
+/// a mesh, around its balls for a point cloud (nothing, infinitely far, for an empty cloud).
 class EnclosingVolume {
  public:
   EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& pose);
@@ -51,7 +51,7 @@ class EnclosingVolume {
   double distanceFrom(const Eigen::Vector3d& point) const;
 
  private:
-  enum class Kind { Box, Sphere, Cylinder, Capsule };
+  enum class Kind { Box, Sphere, Cylinder, Capsule, Nothing };
   Kind kind_ = Kind::Box;
   Eigen::Isometry3d toLocal_ = Eigen::Isometry3d::Identity();  ///< world to the volume's frame
   Eigen::Vector3d halfExtents_ = Eigen::Vector3d::Zero();      ///< a box's
@@ -68,6 +68,11 @@ class EnclosingVolume {
 /// most sum_k levers[k] * |delta[k]|. Throws InvalidArgument when `relativeTo` is not an ancestor.
 Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
                             int relativeTo);
+
+/// An upper bound, over every configuration, on the distance of any point of any robot shape
+/// grown by `padding` from the root link's origin: nothing farther from the robot's base can touch
+/// it (clouds are cropped so).
+double reachBound(const Robot& robot, double padding = 0);
 
 /// The nearest link that is an ancestor of (or equal to) both links.
 int commonAncestor(const Robot& robot, int linkA, int linkB);

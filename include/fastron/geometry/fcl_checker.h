@@ -1,7 +1,10 @@
 #pragma once
 // The exact checker of the paper's changing-environment experiments: forward kinematics, then
 // FCL 0.7 (libccd GJK solver) between the robot's links and the obstacles, with FCL's dynamic
-// AABB tree as broad phase, and optional self-collision.
+// AABB tree as broad phase, and optional self-collision. Point clouds are checked beside FCL's
+// broad phase: their balls sorted into a grid (cloud_grid.h) once per scene, a link's box picks
+// the balls near it, and each is tested exactly (in closed form against a primitive, by FCL
+// against a mesh) — the answers of FCL on one sphere per point, in a fraction of the time.
 
 #include <atomic>
 #include <memory>
@@ -15,6 +18,11 @@
 #include "fastron/geometry/scene_checker.h"
 #include "fastron/geometry/scratch_pool.h"
 #include "fastron/geometry/snapshot.h"
+
+namespace fcl {
+template <typename S>
+class CollisionObject;
+}  // namespace fcl
 
 namespace FASTRON_API fastron {
 
@@ -64,6 +72,19 @@ class FclChecker final : public SceneChecker {
   struct Geometry;
   struct Obstacles;
   struct Scratch;
+  struct Cloud;
+  /// `cloud` (its points posed by `pose`) cropped to the robot's reach from `robotBase`, in a grid.
+  Cloud placeCloud(const PointCloud& cloud, const Eigen::Isometry3d& pose,
+                   const Eigen::Isometry3d& robotBase) const;
+  /// True when robot shape `shape`, placed as `object`, touches a ball of `cloud`.
+  bool touchesCloud(const Cloud& cloud, std::size_t shape,
+                    const fcl::CollisionObject<double>& object) const;
+  /// The first cloud of `world` that shape `shape`, placed as `object`, may not touch but does.
+  const Cloud* touchedCloud(const Obstacles& world, std::size_t shape,
+                            const fcl::CollisionObject<double>& object) const;
+  /// The distance from robot shape `shape`, placed as `object`, to the nearest ball of `cloud`.
+  double cloudDistance(const Cloud& cloud, std::size_t shape,
+                       const fcl::CollisionObject<double>& object) const;
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
   /// The shapes no configuration moves, placed in `world`, and their contacts (Obstacles).
   void placeFixedShapes(Obstacles& world) const;

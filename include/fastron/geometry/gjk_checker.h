@@ -2,7 +2,8 @@
 // The paper's cheaper, approximate checker: forward kinematics, then a GJK intersection test
 // (libccd, called directly) between every robot shape and every obstacle, with no broad phase.
 // Robot links are boxes, spheres, cylinders or capsules; a mesh is replaced by its convex hull
-// (the support function of its vertices), as are mesh obstacles.
+// (the support function of its vertices), as are mesh obstacles. Point clouds are refused
+// (Unsupported): a cloud is no convex body, and a GJK run per point is what FclChecker avoids.
 
 #include <memory>
 #include <mutex>

@@ -62,6 +62,9 @@ class Scene {
   void add(Obstacle obstacle);
   void remove(std::string_view name);
   void setPose(std::string_view name, const Eigen::Isometry3d& pose);
+  /// Replaces an obstacle's shape, e.g. a camera's cloud by the next frame's (the pose and motion
+  /// stay). Throws InvalidArgument for an unknown name or an invalid shape.
+  void setShape(std::string_view name, Shape shape);
   const Obstacle& obstacle(std::string_view name) const;
   const std::vector<Obstacle>& obstacles() const { return obstacles_; }
   std::size_t size() const { return obstacles_.size(); }

@@ -14,7 +14,9 @@ namespace FASTRON_API fastron {
 /// PlanningScene (a top-level `world`). Throws FileError naming the file and line.
 Scene loadScene(const std::filesystem::path& path);
 
-/// The project's scene format from a string; mesh files are resolved from `baseDirectory`.
+/// The project's scene format from a string; mesh and cloud files are resolved from
+/// `baseDirectory`. Both formats take the top-level lists `point_clouds` and `octomaps`
+/// ({id, file, radius, voxel, position, rpy | orientation}; docs/geometry.md).
 Scene parseScene(const std::string& yaml, const std::string& source,
                  const std::filesystem::path& baseDirectory = {});
 
@@ -22,6 +24,7 @@ Scene parseScene(const std::string& yaml, const std::string& source,
 /// primitive_poses, optional object pose, inline meshes), allowed_collision_matrix, and
 /// robot_state (joint_state as Scene::robotState; a multi_dof_joint_state's one transform, the
 /// virtual joint's, as Scene::robotBase).
-Scene parseMoveItScene(const std::string& yaml, const std::string& source);
+Scene parseMoveItScene(const std::string& yaml, const std::string& source,
+                       const std::filesystem::path& baseDirectory = {});
 
 }  // namespace fastron

@@ -36,19 +36,33 @@ struct Mesh {
   std::shared_ptr<const TriangleMesh> mesh;
 };
 
-using Shape = std::variant<Box, Sphere, Cylinder, Capsule, Mesh>;
+/// Points in the shape's frame (metres), e.g. a depth camera's, already filtered
+/// (point_cloud.h).
+struct CloudPoints {
+  std::vector<Eigen::Vector3d> points;
+  std::string source;  ///< the file or sensor it came from, for messages
+};
+/// A sensed obstacle: a ball of `radius` about every point. No points: an obstacle that nothing
+/// touches.
+struct PointCloud {
+  std::shared_ptr<const CloudPoints> cloud;
+  double radius;
+};
+
+using Shape = std::variant<Box, Sphere, Cylinder, Capsule, Mesh, PointCloud>;
 
 /// Throws InvalidArgument naming `context` unless every size is finite and positive (a capsule's
-/// cylinder part may be 0: a sphere) and a mesh has triangles.
+/// cylinder part may be 0: a sphere), a mesh has triangles and a cloud's points are finite.
 void validate(const Shape& shape, const std::string& context);
 
-/// The shape grown by `padding` in every direction (a mesh cannot be padded: InvalidArgument).
+/// The shape grown by `padding` in every direction (a cloud by its radius; a mesh cannot be padded:
+/// InvalidArgument).
 Shape inflate(const Shape& shape, double padding);
 
 /// "box 0.2 x 0.2 x 0.2", "sphere r 0.1", ...
 std::string describe(const Shape& shape);
 
-/// Radius of the smallest sphere about the shape's origin that contains it.
+/// Radius of the smallest sphere about the shape's origin that contains it (0 for an empty cloud).
 double boundingRadius(const Shape& shape);
 
 /// Half the extents of the smallest box about the shape's origin, aligned with its frame, that
