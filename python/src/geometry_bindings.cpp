@@ -13,6 +13,7 @@
 #include "fastron/geometry/gjk_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/moveit_request.h"
+#include "fastron/geometry/point_cloud.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
@@ -138,6 +139,16 @@ void bindRobots(py::module_& m) {
         "The data folder (robots/, scenes/): $FASTRON_DATA_DIR, else the installation's.");
 }
 
+/// A cloud obstacle from an (n, 3) array, down-sampled at `voxel` (default: the radius).
+PointCloud cloudOf(py::handle points, double radius, std::optional<double> voxel,
+                   const std::string& name) {
+  const ConfigurationRows rows = configurations(points, 3, "points", false);
+  // Rows of three doubles, C-ordered: Eigen::Vector3d's layout.
+  const std::span<const Eigen::Vector3d> view(reinterpret_cast<const Eigen::Vector3d*>(rows.data),
+                                              rows.rows);
+  return sensedCloud(view, radius, voxel.value_or(radius), "array '" + name + "'");
+}
+
 /// Scene, scene files, MoveIt requests and the robot a request plans.
 void bindScenes(py::module_& m) {
   py::class_<Scene>(m, "Scene", "Obstacles (some moving) and where the robot's base is.")
@@ -167,6 +178,30 @@ void bindScenes(py::module_& m) {
           },
           py::arg("name"), py::arg("radius"), py::arg("length"), py::arg("position"),
           py::arg("rpy") = py::none())
+      .def(
+          "add_point_cloud",
+          [](Scene& s, const std::string& name, py::handle points, double radius,
+             std::optional<double> voxel, py::handle position, py::handle rpy) {
+            s.add({name, cloudOf(points, radius, voxel, name),
+                   position.is_none() ? Eigen::Isometry3d::Identity() : pose(position, rpy),
+                   std::nullopt});
+          },
+          py::arg("name"), py::arg("points"), py::arg("radius"), py::kw_only(),
+          py::arg("voxel") = py::none(), py::arg("position") = py::none(),
+          py::arg("rpy") = py::none(),
+          "A sensed obstacle: a ball of `radius` about each row of `points` ((n, 3), metres; "
+          "n may be 0), down-sampled to one point per cube of edge `voxel` (default: the "
+          "radius; 0 keeps every point). A float64 C-ordered array is read in place. "
+          "`position`/`rpy` pose the cloud's frame (default: the world's).")
+      .def(
+          "set_point_cloud",
+          [](Scene& s, const std::string& name, py::handle points, double radius,
+             std::optional<double> voxel) {
+            s.setShape(name, cloudOf(points, radius, voxel, name));
+          },
+          py::arg("name"), py::arg("points"), py::arg("radius"), py::kw_only(),
+          py::arg("voxel") = py::none(),
+          "Replaces a cloud's points (the next camera frame), its pose kept; as add_point_cloud.")
       .def("remove", &Scene::remove, py::arg("name"))
       .def(
           "set_pose",

@@ -323,8 +323,8 @@ struct LeversAndReach {
   double reach = 0;  ///< bound on any point's distance from relativeTo's origin
 };
 
-LeversAndReach leversAndReach(const Robot& robot, std::size_t shape,
-                              const std::vector<Ball>& balls, int relativeTo) {
+LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
+                              int relativeTo) {
   const LinkShape& s = robot.shapes().at(shape);
   const auto& joints = robot.joints();
   // The coordinate that drives each joint, with the multiplier it is driven by.
@@ -383,8 +383,8 @@ Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::ve
 double reachBound(const Robot& robot, double padding) {
   double reach = 0;
   for (std::size_t s = 0; s < robot.shapes().size(); ++s) {
-    const std::vector<Ball> whole{{Eigen::Vector3d::Zero(),
-                                   boundingRadius(robot.shapes()[s].shape) + padding}};
+    const std::vector<Ball> whole{
+        {Eigen::Vector3d::Zero(), boundingRadius(robot.shapes()[s].shape) + padding}};
     reach = std::max(reach, leversAndReach(robot, s, whole, robot.rootLink()).reach);
   }
   return reach;

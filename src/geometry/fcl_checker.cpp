@@ -139,8 +139,8 @@ struct FclChecker::Geometry {
   std::vector<EnclosingVolume> volumes;
   std::vector<std::uint8_t> meshes;
   double reach = 0;
-  std::vector<std::uint8_t> moves;    // shapesMovedByConfiguration
-  std::vector<std::size_t> moving;    // the shapes that move, in shape order
+  std::vector<std::uint8_t> moves;  // shapesMovedByConfiguration
+  std::vector<std::size_t> moving;  // the shapes that move, in shape order
   // For clearance bounds, with options.proveMotionsFree only: balls covering each padded shape,
   // and each shape's levers relative to the robot's root.
   std::shared_ptr<const std::vector<BallCover>> balls;
@@ -149,7 +149,8 @@ struct FclChecker::Geometry {
   std::vector<std::tuple<std::size_t, double, double>> prismatic;
 };
 
-/// A point-cloud obstacle: its balls' centres (world frame, cropped to the robot's reach) in a grid.
+/// A point-cloud obstacle: its balls' centres (world frame, cropped to the robot's reach) in a
+/// grid.
 struct FclChecker::Cloud {
   std::size_t obstacle = 0;  // index in the scene
   CloudGrid grid;
@@ -427,8 +428,7 @@ void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
 const FclChecker::Cloud* FclChecker::touchedCloud(const Obstacles& world, std::size_t shape,
                                                   const fcl::CollisionObjectd& object) const {
   for (const Cloud& cloud : world.clouds) {
-    if (!world.allowed.empty() &&
-        world.allowed[shape * world.objects.size() + cloud.obstacle] != 0)
+    if (!world.allowed.empty() && world.allowed[shape * world.objects.size() + cloud.obstacle] != 0)
       continue;
     if (touchesCloud(cloud, shape, object)) return &cloud;
   }

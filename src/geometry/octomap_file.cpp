@@ -21,8 +21,7 @@ struct OctomapHeader {
 };
 
 OctomapHeader octomapHeader(std::string_view bytes, bool binary, const std::string& source) {
-  const std::string_view magic =
-      binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file";
+  const std::string_view magic = binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file";
   if (!bytes.starts_with(magic))
     throw FileError(source + ": not an OctoMap " + (binary ? ".bt" : ".ot") +
                     " file (its first line is not '" + std::string(magic) + "')");

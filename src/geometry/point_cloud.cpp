@@ -26,20 +26,26 @@ std::uint64_t voxelKey(const Eigen::Vector3d& p, double inverseVoxel) {
 }  // namespace
 
 CloudPoints voxelDownsample(const CloudPoints& cloud, double voxel) {
+  if (voxel == 0) return cloud;
+  return voxelDownsample(cloud.points, voxel, cloud.source);
+}
+
+CloudPoints voxelDownsample(std::span<const Eigen::Vector3d> points, double voxel,
+                            std::string source) {
   if (!std::isfinite(voxel) || voxel < 0)
     throw InvalidArgument("voxelDownsample: the voxel must be finite and >= 0, got " +
                           std::to_string(voxel));
-  if (voxel == 0 || cloud.points.empty()) return cloud;
+  if (voxel == 0 || points.empty()) return {{points.begin(), points.end()}, std::move(source)};
   // An open-addressing table of the voxels met: twice as many slots as points, a power of 2.
   std::size_t slots = 16;
-  while (slots < 2 * cloud.points.size()) slots *= 2;
+  while (slots < 2 * points.size()) slots *= 2;
   constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
   std::vector<std::uint64_t> keys(slots, kEmpty);
   std::vector<std::uint32_t> voxelOf(slots);
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
   const double inverse = 1 / voxel;
-  for (const Eigen::Vector3d& p : cloud.points) {
+  for (const Eigen::Vector3d& p : points) {
     const std::uint64_t key = voxelKey(p, inverse);
     std::size_t slot = (key * 0x9E3779B97F4A7C15ULL) >> 20 & (slots - 1);
     while (keys[slot] != kEmpty && keys[slot] != key) slot = (slot + 1) & (slots - 1);
@@ -53,7 +59,7 @@ CloudPoints voxelDownsample(const CloudPoints& cloud, double voxel) {
     ++counts[voxelOf[slot]];
   }
   CloudPoints out;
-  out.source = cloud.source;
+  out.source = std::move(source);
   out.points.reserve(sums.size());
   for (std::size_t v = 0; v < sums.size(); ++v) out.points.push_back(sums[v] / counts[v]);
   return out;
@@ -69,8 +75,17 @@ CloudPoints croppedToBall(const CloudPoints& cloud, const Eigen::Vector3d& centr
 }
 
 PointCloud sensedCloud(const CloudPoints& points, double radius, double voxel) {
-  PointCloud cloud{std::make_shared<const CloudPoints>(voxelDownsample(points, voxel)), radius};
-  validate(cloud, "point cloud " + points.source);
+  return sensedCloud(points.points, radius, voxel, points.source);
+}
+
+PointCloud sensedCloud(std::span<const Eigen::Vector3d> points, double radius, double voxel,
+                       std::string source) {
+  const std::string what = "point cloud " + source;
+  validate(PointCloud{std::make_shared<const CloudPoints>(), radius}, what);  // the radius first
+  PointCloud cloud{
+      std::make_shared<const CloudPoints>(voxelDownsample(points, voxel, std::move(source))),
+      radius};
+  validate(cloud, what);
   return cloud;
 }
 

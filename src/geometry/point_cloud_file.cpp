@@ -17,7 +17,9 @@ namespace {
 
 constexpr std::size_t kMaxPoints = 50'000'000;
 
-std::string count(std::size_t n) { return std::to_string(n); }
+std::string count(std::size_t n) {
+  return std::to_string(n);
+}
 
 void requireFinite(const Eigen::Vector3d& p, std::size_t index, const std::string& where) {
   if (!p.allFinite()) throw FileError(where + ": point " + count(index) + " is not finite");
@@ -53,9 +55,8 @@ class HeaderLines {
   std::optional<std::string_view> next() {
     if (position_ >= bytes_.size()) return std::nullopt;
     const std::size_t end = bytes_.find('\n', position_);
-    std::string_view line = bytes_.substr(position_, end == std::string_view::npos
-                                                         ? std::string_view::npos
-                                                         : end - position_);
+    std::string_view line = bytes_.substr(
+        position_, end == std::string_view::npos ? std::string_view::npos : end - position_);
     position_ = end == std::string_view::npos ? bytes_.size() : end + 1;
     ++line_;
     if (line.ends_with('\r')) line.remove_suffix(1);
@@ -237,7 +238,8 @@ CloudPoints plyCloud(std::string_view bytes, const std::string& source) {
   for (std::size_t i = 0; i < header.elements.size() && vertex == header.elements.size(); ++i) {
     if (header.elements[i].name == "vertex") vertex = i;
   }
-  if (vertex == header.elements.size()) throw FileError(source + ": PLY file has no vertex element");
+  if (vertex == header.elements.size())
+    throw FileError(source + ": PLY file has no vertex element");
   const PlyElement& v = header.elements[vertex];
   if (v.hasList) throw FileError(source + ": the PLY vertex element has a list property");
   const std::size_t axes[3] = {propertyIndex(v, "x", lines), propertyIndex(v, "y", lines),
@@ -396,8 +398,8 @@ CloudPoints pcdCloud(std::string_view bytes, const std::string& source) {
   }
   for (int a = 0; a < 3; ++a) {
     if (!found[a])
-      throw FileError(source + ": the PCD file has no '" + std::string(1, static_cast<char>('x' + a)) +
-                      "' field");
+      throw FileError(source + ": the PCD file has no '" +
+                      std::string(1, static_cast<char>('x' + a)) + "' field");
   }
   // An organised cloud (an image's pixels) marks the camera's missing returns with NaN.
   const bool organised = h.height > 1;
@@ -472,8 +474,8 @@ CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::
       break;
     case CloudFormat::OctomapBinary:
     case CloudFormat::OctomapFull: {
-      OctomapVoxels voxels = octomapVoxels(bytes, format == CloudFormat::OctomapBinary, source,
-                                           kMaxPoints);
+      OctomapVoxels voxels =
+          octomapVoxels(bytes, format == CloudFormat::OctomapBinary, source, kMaxPoints);
       file.points.points = std::move(voxels.centres);
       file.voxelSize = voxels.resolution;
       break;

@@ -111,8 +111,8 @@ void readAllowedPairs(const Reader& r, const YAML::Node& pairs, Scene& scene) {
 
 /// The sensed obstacles of a scene file: `point_clouds` and `octomaps`, each a list of
 /// {id, file, radius, voxel, position, rpy | orientation}, files relative to the scene file.
-void readSensedObstacles(const Reader& r, const YAML::Node& root,
-                         const std::filesystem::path& base, Scene& scene) {
+void readSensedObstacles(const Reader& r, const YAML::Node& root, const std::filesystem::path& base,
+                         Scene& scene) {
   for (const char* key : {"point_clouds", "octomaps"}) {
     const YAML::Node list = root[key];
     if (!list) continue;
@@ -132,13 +132,15 @@ void readSensedObstacles(const Reader& r, const YAML::Node& root,
       }
       // An OctoMap's voxel is covered by the ball about its centre through its corners.
       const double radius = entry["radius"] ? r.number(entry["radius"], what + " radius")
-                            : octomap       ? cloud.voxelSize * std::sqrt(3.0) / 2
-                                            : r.number(r.required(entry, "radius", what), what + " radius");
-      const double voxel =
-          entry["voxel"] ? r.number(entry["voxel"], what + " voxel") : octomap ? 0.0 : radius;
+                            : octomap
+                                ? cloud.voxelSize * std::sqrt(3.0) / 2
+                                : r.number(r.required(entry, "radius", what), what + " radius");
+      const double voxel = entry["voxel"] ? r.number(entry["voxel"], what + " voxel")
+                           : octomap      ? 0.0
+                                          : radius;
       try {
-        scene.add({id, sensedCloud(cloud.points, radius, voxel), r.pose(entry, what),
-                   std::nullopt});
+        scene.add(
+            {id, sensedCloud(cloud.points, radius, voxel), r.pose(entry, what), std::nullopt});
       } catch (const InvalidArgument& e) {
         r.fail(entry, what + ": " + e.what());
       }
@@ -154,12 +156,11 @@ Scene parseSceneText(const std::string& yaml, const std::string& source,
   const Reader r(source);
   const YAML::Node root = parseYaml(yaml, source);
   if (!root.IsMap()) throw FileError(source + ": a scene file is a YAML map");
-  if (root["world"] && !root["obstacles"])
-    return parseMoveItSceneText(yaml, source, baseDirectory);
-  r.onlyKeys(root,
-             {"obstacles", "robot_base", "allowed_collisions", "description", "point_clouds",
-              "octomaps"},
-             "scene");
+  if (root["world"] && !root["obstacles"]) return parseMoveItSceneText(yaml, source, baseDirectory);
+  r.onlyKeys(
+      root,
+      {"obstacles", "robot_base", "allowed_collisions", "description", "point_clouds", "octomaps"},
+      "scene");
   Scene scene;
   if (root["robot_base"]) {
     r.onlyKeys(root["robot_base"], {"position", "rpy", "orientation"}, "robot_base");

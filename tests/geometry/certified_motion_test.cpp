@@ -79,7 +79,8 @@ std::vector<Eigen::Vector3d> pointsOf(const Shape& shape, std::size_t n, Rng& rn
             },
             [&](const PointCloud& c) {
               const auto& p = c.cloud->points;
-              points.push_back(p[static_cast<std::size_t>(unit(rng) * static_cast<double>(p.size() - 1))]);
+              points.push_back(
+                  p[static_cast<std::size_t>(unit(rng) * static_cast<double>(p.size() - 1))]);
             },
         },
         shape);

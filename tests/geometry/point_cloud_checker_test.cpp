@@ -22,7 +22,8 @@ using ::testing::HasSubstr;
 std::shared_ptr<CloudPoints> surfacePoints(const Eigen::Vector3d& centre, double spacing) {
   auto cloud = std::make_shared<CloudPoints>();
   cloud->source = "test surfaces";
-  for (const Eigen::Vector3d& c : {centre, Eigen::Vector3d(centre + Eigen::Vector3d(0, 0.5, 0.2))}) {
+  for (const Eigen::Vector3d& c :
+       {centre, Eigen::Vector3d(centre + Eigen::Vector3d(0, 0.5, 0.2))}) {
     const Eigen::Vector3d half(0.15, 0.2, 0.12);
     for (double x = -half.x(); x <= half.x() + 1e-9; x += spacing)
       for (double y = -half.y(); y <= half.y() + 1e-9; y += spacing)
@@ -38,8 +39,8 @@ std::shared_ptr<CloudPoints> surfacePoints(const Eigen::Vector3d& centre, double
 Scene spheresOf(const CloudPoints& cloud, double radius) {
   Scene scene;
   for (std::size_t i = 0; i < cloud.points.size(); ++i)
-    scene.add({"p" + std::to_string(i), Sphere{radius}, Eigen::Isometry3d(Eigen::Translation3d(cloud.points[i])),
-               std::nullopt});
+    scene.add({"p" + std::to_string(i), Sphere{radius},
+               Eigen::Isometry3d(Eigen::Translation3d(cloud.points[i])), std::nullopt});
   return scene;
 }
 
@@ -60,7 +61,8 @@ void expectSameAnswers(const std::string& robotName, const Eigen::Vector3d& cent
   const auto points = surfacePoints(centre, 0.04);
   const double radius = 0.02;
   Scene cloudScene;
-  cloudScene.add({"camera", PointCloud{points, radius}, Eigen::Isometry3d::Identity(), std::nullopt});
+  cloudScene.add(
+      {"camera", PointCloud{points, radius}, Eigen::Isometry3d::Identity(), std::nullopt});
   const FclChecker onCloud(robot, cloudScene);
   const FclChecker onSpheres(robot, spheresOf(*points, radius));
   const Configurations q = randomConfigurations(robot, configurations, 7);

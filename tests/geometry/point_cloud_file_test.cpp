@@ -91,8 +91,8 @@ TEST(CloudFiles, PcdAsciiBinaryAndOrganised) {
                               CloudFormat::Pcd, "c.pcd"));
   std::string bin = header + "DATA binary\n";
   for (const auto& p : kPoints)
-    bin += binary<float>({static_cast<float>(p.x()), static_cast<float>(p.y()),
-                          static_cast<float>(p.z()), 1.0F});
+    bin += binary<float>(
+        {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()), 1.0F});
   expectPoints(parseCloudFile(bin, CloudFormat::Pcd, "c.pcd"));
   // An organised cloud: NaN marks a pixel without a return, and is skipped.
   const std::string organised =
@@ -160,9 +160,10 @@ TEST(CloudFiles, BadCloudsGetOneLineErrors) {
               HasSubstr("truncated PLY data: 1 of 2 vertices"));
   EXPECT_THAT(messageOf("ply\nformat binary_big_endian 1.0\nend_header\n", CloudFormat::Ply),
               HasSubstr("c.file:2: PLY format 'binary_big_endian' is not supported"));
-  EXPECT_THAT(messageOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n",
-                        CloudFormat::Ply),
-              HasSubstr("no 'y' property"));
+  EXPECT_THAT(
+      messageOf("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n",
+                CloudFormat::Ply),
+      HasSubstr("no 'y' property"));
   const std::string pcdHeader =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 100000000\nHEIGHT 1\nPOINTS 100000000\n";
   EXPECT_THAT(messageOf(pcdHeader + "DATA binary\n" + std::string(1000, '\0'), CloudFormat::Pcd),
@@ -211,7 +212,8 @@ TEST_F(SensedSceneFiles, BothSceneFormatsTakePointCloudsAndOctomaps) {
       "point_clouds:\n  - {id: camera, file: cloud.npy, radius: 0.01, position: [1, 0, 0]}\n"
       "octomaps:\n  - {id: map, file: map.bt}\n";
   const Scene own = loadScene(write("own.yaml", "obstacles: []\n" + sensed));
-  const Scene moveit = loadScene(write("moveit.yaml", "world:\n  collision_objects: []\n" + sensed));
+  const Scene moveit =
+      loadScene(write("moveit.yaml", "world:\n  collision_objects: []\n" + sensed));
   for (const Scene* scene : {&own, &moveit}) {
     ASSERT_EQ(scene->size(), 2u);
     const auto& camera = std::get<PointCloud>(scene->obstacle("camera").shape);
@@ -223,7 +225,8 @@ TEST_F(SensedSceneFiles, BothSceneFormatsTakePointCloudsAndOctomaps) {
     EXPECT_NEAR(map.radius, 0.1 * std::sqrt(3.0) / 2, 1e-12);  // covers each voxel
   }
   try {
-    (void)loadScene(write("bad.yaml", "point_clouds:\n  - {id: c, file: missing.npy, radius: 1}\n"));
+    (void)loadScene(
+        write("bad.yaml", "point_clouds:\n  - {id: c, file: missing.npy, radius: 1}\n"));
     FAIL();
   } catch (const FileError& e) {
     EXPECT_THAT(e.what(), HasSubstr("bad.yaml:2"));

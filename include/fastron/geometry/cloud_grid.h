@@ -46,10 +46,10 @@ bool CloudGrid::anyInBox(const Eigen::AlignedBox3d& box, Visit&& visit) const {
   Eigen::Vector3i lo, hi;
   for (int a = 0; a < 3; ++a) {
     const double last = cells_[a] - 1;
-    lo[a] = static_cast<int>(
-        std::clamp((box.min()[a] - bounds_.min()[a]) * inverseCell_, 0.0, last));
-    hi[a] = static_cast<int>(
-        std::clamp((box.max()[a] - bounds_.min()[a]) * inverseCell_, 0.0, last));
+    lo[a] =
+        static_cast<int>(std::clamp((box.min()[a] - bounds_.min()[a]) * inverseCell_, 0.0, last));
+    hi[a] =
+        static_cast<int>(std::clamp((box.max()[a] - bounds_.min()[a]) * inverseCell_, 0.0, last));
   }
   for (int x = lo.x(); x <= hi.x(); ++x) {
     for (int y = lo.y(); y <= hi.y(); ++y) {

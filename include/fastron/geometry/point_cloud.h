@@ -3,6 +3,8 @@
 // the points' frame.
 
 #include <Eigen/Geometry>
+#include <span>
+#include <string>
 
 #include "fastron/core/export.h"
 #include "fastron/geometry/shapes.h"
@@ -16,6 +18,9 @@ namespace FASTRON_API fastron {
 /// keeps every point. Throws InvalidArgument for a negative or non-finite voxel, or one so small
 /// that a coordinate is more than 2^20 voxels from the origin.
 CloudPoints voxelDownsample(const CloudPoints& cloud, double voxel);
+/// The same on points held elsewhere (a numpy array's buffer, read in place).
+CloudPoints voxelDownsample(std::span<const Eigen::Vector3d> points, double voxel,
+                            std::string source);
 
 /// The points within `radius` of `centre`.
 CloudPoints croppedToBall(const CloudPoints& cloud, const Eigen::Vector3d& centre, double radius);
@@ -23,5 +28,7 @@ CloudPoints croppedToBall(const CloudPoints& cloud, const Eigen::Vector3d& centr
 /// A cloud obstacle from sensed points: down-sampled at `voxel` (0: not at all), a ball of
 /// `radius` about each point kept. Throws InvalidArgument as validate() and voxelDownsample do.
 PointCloud sensedCloud(const CloudPoints& points, double radius, double voxel);
+PointCloud sensedCloud(std::span<const Eigen::Vector3d> points, double radius, double voxel,
+                       std::string source);
 
 }  // namespace fastron
