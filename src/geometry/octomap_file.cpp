@@ -96,6 +96,9 @@ class StructureCheck {
   void binaryNode(int depth) {
     if (depth >= kTreeDepth) throw FileError(source_ + ": OctoMap data deeper than the tree");
     const unsigned bits = byte() | static_cast<unsigned>(byte()) << 8;
+    // octomap reads every inner node as occupied, and then gives it its children's largest
+    // occupancy: all but the root, which without children stays an occupied leaf.
+    if (bits == 0 && depth == 0) addVoxels(0);
     for (int child = 0; child < 8; ++child) {
       const unsigned code = bits >> (2 * child) & 3U;
       if (code == 2) addVoxels(depth + 1);  // bit 2c clear, bit 2c+1 set: occupied

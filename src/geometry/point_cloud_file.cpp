@@ -15,8 +15,6 @@
 namespace fastron {
 namespace {
 
-constexpr std::size_t kMaxPoints = 50'000'000;
-
 std::string count(std::size_t n) {
   return std::to_string(n);
 }
@@ -25,18 +23,18 @@ void requireFinite(const Eigen::Vector3d& p, std::size_t index, const std::strin
   if (!p.allFinite()) throw FileError(where + ": point " + count(index) + " is not finite");
 }
 
-void requireFewEnough(std::size_t n, const std::string& where) {
-  if (n > kMaxPoints)
+void requireFewEnough(std::size_t n, std::size_t maxPoints, const std::string& where) {
+  if (n > maxPoints)
     throw FileError(where + ": " + count(n) + " points declared, more than the " +
-                    count(kMaxPoints) + " a cloud may hold");
+                    count(maxPoints) + " a cloud may hold");
 }
 
-CloudPoints npyCloud(std::string_view bytes, const std::string& source) {
+CloudPoints npyCloud(std::string_view bytes, const std::string& source, std::size_t maxPoints) {
   const NpyMatrix array(bytes, source);
   if (array.columns() != 3)
     throw FileError(source + ": expected an (n, 3) array of points, got shape (" +
                     count(array.rows()) + ", " + count(array.columns()) + ")");
-  requireFewEnough(array.rows(), source);
+  requireFewEnough(array.rows(), maxPoints, source);
   CloudPoints cloud;
   cloud.points.reserve(array.rows());
   for (std::size_t r = 0; r < array.rows(); ++r) {
@@ -231,7 +229,7 @@ std::size_t propertyIndex(const PlyElement& e, const char* name, const HeaderLin
   lines.fail("the vertex element has no '" + std::string(name) + "' property");
 }
 
-CloudPoints plyCloud(std::string_view bytes, const std::string& source) {
+CloudPoints plyCloud(std::string_view bytes, const std::string& source, std::size_t maxPoints) {
   HeaderLines lines(bytes, source);
   const PlyHeader header = plyHeader(lines);
   std::size_t vertex = header.elements.size();
@@ -259,7 +257,7 @@ CloudPoints plyCloud(std::string_view bytes, const std::string& source) {
     if (v.count > 0 && v.stride > data.size() / v.count)
       throw FileError(source + ": truncated PLY data (" + count(data.size()) + " bytes for " +
                       count(v.count) + " vertices of " + count(v.stride) + " bytes)");
-    requireFewEnough(v.count, source);
+    requireFewEnough(v.count, maxPoints, source);
     std::size_t offsets[3];
     for (int a = 0; a < 3; ++a) {
       offsets[a] = 0;
@@ -275,7 +273,7 @@ CloudPoints plyCloud(std::string_view bytes, const std::string& source) {
     }
     return cloud;
   }
-  requireFewEnough(v.count, source);
+  requireFewEnough(v.count, maxPoints, source);
   std::size_t skip = 0;
   for (std::size_t i = 0; i < vertex; ++i) skip += header.elements[i].count;
   for (std::size_t i = 0; i < skip; ++i) {
@@ -371,7 +369,7 @@ PcdHeader pcdHeader(HeaderLines& lines) {
   lines.fail("the PCD header has no DATA line");
 }
 
-CloudPoints pcdCloud(std::string_view bytes, const std::string& source) {
+CloudPoints pcdCloud(std::string_view bytes, const std::string& source, std::size_t maxPoints) {
   HeaderLines lines(bytes, source);
   const PcdHeader h = pcdHeader(lines);
   if (h.data != "ascii" && h.data != "binary")
@@ -416,7 +414,7 @@ CloudPoints pcdCloud(std::string_view bytes, const std::string& source) {
     if (h.points > 0 && stride > data.size() / h.points)
       throw FileError(source + ": truncated PCD data (" + count(data.size()) + " bytes for " +
                       count(h.points) + " points of " + count(stride) + " bytes)");
-    requireFewEnough(h.points, source);
+    requireFewEnough(h.points, maxPoints, source);
     cloud.points.reserve(h.points);
     for (std::size_t i = 0; i < h.points; ++i) {
       const char* p = data.data() + i * stride;
@@ -426,7 +424,7 @@ CloudPoints pcdCloud(std::string_view bytes, const std::string& source) {
     }
     return cloud;
   }
-  requireFewEnough(h.points, source);
+  requireFewEnough(h.points, maxPoints, source);
   cloud.points.reserve(std::min(h.points, bytes.size() / 6));
   for (std::size_t i = 0; i < h.points; ++i) {
     const auto line = lines.next();
@@ -460,22 +458,23 @@ CloudFormat cloudFormatOf(const std::filesystem::path& path) {
                   "' (expected .npy, .ply, .pcd, .bt or .ot)");
 }
 
-CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::string& source) {
+CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::string& source,
+                         std::size_t maxPoints) {
   CloudFile file;
   switch (format) {
     case CloudFormat::Npy:
-      file.points = npyCloud(bytes, source);
+      file.points = npyCloud(bytes, source, maxPoints);
       break;
     case CloudFormat::Ply:
-      file.points = plyCloud(bytes, source);
+      file.points = plyCloud(bytes, source, maxPoints);
       break;
     case CloudFormat::Pcd:
-      file.points = pcdCloud(bytes, source);
+      file.points = pcdCloud(bytes, source, maxPoints);
       break;
     case CloudFormat::OctomapBinary:
     case CloudFormat::OctomapFull: {
       OctomapVoxels voxels =
-          octomapVoxels(bytes, format == CloudFormat::OctomapBinary, source, kMaxPoints);
+          octomapVoxels(bytes, format == CloudFormat::OctomapBinary, source, maxPoints);
       file.points.points = std::move(voxels.centres);
       file.voxelSize = voxels.resolution;
       break;
@@ -485,9 +484,9 @@ CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::
   return file;
 }
 
-CloudFile readCloudFile(const std::filesystem::path& path) {
+CloudFile readCloudFile(const std::filesystem::path& path, std::size_t maxPoints) {
   const CloudFormat format = cloudFormatOf(path);
-  return parseCloudFile(readFile(path, "point cloud file"), format, path.string());
+  return parseCloudFile(readFile(path, "point cloud file"), format, path.string(), maxPoints);
 }
 
 }  // namespace fastron

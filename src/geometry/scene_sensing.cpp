@@ -57,8 +57,7 @@ double raySide(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius
   return kNoHit;
 }
 
-double rayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius,
-                   double half) {
+double rayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius, double half) {
   if (std::hypot(o.x(), o.y()) <= radius && std::abs(o.z()) <= half) return 0;
   double best = raySide(o, d, radius, half);
   if (std::abs(d.z()) > 1e-15) {
@@ -71,8 +70,7 @@ double rayCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double ra
   return best;
 }
 
-double rayCapsule(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius,
-                  double half) {
+double rayCapsule(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double radius, double half) {
   double best = raySide(o, d, radius, half);
   for (const double z : {-half, half})
     best = std::min(best, raySphere(o, d, Eigen::Vector3d(0, 0, z), radius));
@@ -167,10 +165,10 @@ CloudPoints renderDepth(const DepthCamera& camera, const Scene& scene, Rng& rng)
   const Eigen::Vector3d eye = camera.pose.translation();
   for (int v = 0; v < camera.height; ++v) {
     for (int u = 0; u < camera.width; ++u) {
-      const Eigen::Vector3d ray = camera.pose.linear() *
-                                  Eigen::Vector3d((u + 0.5 - camera.width / 2.0) / focal,
-                                                  (v + 0.5 - camera.height / 2.0) / focal, 1)
-                                      .normalized();
+      const Eigen::Vector3d ray =
+          camera.pose.linear() * Eigen::Vector3d((u + 0.5 - camera.width / 2.0) / focal,
+                                                 (v + 0.5 - camera.height / 2.0) / focal, 1)
+                                     .normalized();
       double nearest = camera.maxRange;
       bool hit = false;
       for (const Seen& s : seen) {
@@ -214,8 +212,8 @@ void addBoxSurface(const Eigen::Vector3d& size, double spacing, std::vector<Eige
 /// all).
 void addSphereSurface(const Eigen::Vector3d& centre, double radius, double spacing, int keep,
                       std::vector<Eigen::Vector3d>& out) {
-  const auto n = static_cast<int>(
-      std::ceil(4 * std::numbers::pi * radius * radius / (spacing * spacing))) + 1;
+  const auto n =
+      static_cast<int>(std::ceil(4 * std::numbers::pi * radius * radius / (spacing * spacing))) + 1;
   const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
   for (int i = 0; i < n; ++i) {
     const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z);
@@ -241,13 +239,11 @@ double surfaceArea(const Shape& shape) {
   return std::visit(
       Overloaded{
           [](const Box& b) {
-            return 2 * (b.size.x() * b.size.y() + b.size.y() * b.size.z() +
-                        b.size.x() * b.size.z());
+            return 2 *
+                   (b.size.x() * b.size.y() + b.size.y() * b.size.z() + b.size.x() * b.size.z());
           },
           [](const Sphere& s) { return 4 * std::numbers::pi * s.radius * s.radius; },
-          [](const Cylinder& c) {
-            return 2 * std::numbers::pi * c.radius * (c.radius + c.length);
-          },
+          [](const Cylinder& c) { return 2 * std::numbers::pi * c.radius * (c.radius + c.length); },
           [](const Capsule& c) {
             return 2 * std::numbers::pi * c.radius * (2 * c.radius + c.length);
           },

@@ -34,10 +34,13 @@ struct CloudFile {
 ///   pruned leaf expanded into voxels of the map's resolution; the centre of each is a point.
 /// Throws FileError naming the file (and line, for text) of the first problem: unknown or
 /// malformed header, missing field, a point that is not finite, data shorter than declared (checked
-/// before anything is allocated), or more than 50 million points.
-CloudFile readCloudFile(const std::filesystem::path& path);
+/// before anything is allocated), or more than `maxPoints` points (an OctoMap of a few bytes can
+/// describe millions of voxels).
+inline constexpr std::size_t kMaxCloudPoints = 50'000'000;
+CloudFile readCloudFile(const std::filesystem::path& path, std::size_t maxPoints = kMaxCloudPoints);
 
 /// The same readers on the bytes of a file; errors name `source` as they would the file.
-CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::string& source);
+CloudFile parseCloudFile(std::string_view bytes, CloudFormat format, const std::string& source,
+                         std::size_t maxPoints = kMaxCloudPoints);
 
 }  // namespace fastron

@@ -14,9 +14,9 @@ namespace FASTRON_API fastron {
 /// right of the image, y down.
 struct DepthCamera {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< the camera's frame in the world
-  int width = 160, height = 120;                            ///< pixels
-  double horizontalFieldOfView = 1.2;                       ///< radians
-  double minRange = 0.1, maxRange = 5.0;                    ///< metres along the ray
+  int width = 160, height = 120;                           ///< pixels
+  double horizontalFieldOfView = 1.2;                      ///< radians
+  double minRange = 0.1, maxRange = 5.0;                   ///< metres along the ray
   /// Standard deviation (metres) of the Gaussian noise added to each depth; 0 for none.
   double depthNoise = 0;
 };
