@@ -5,6 +5,8 @@
 #include <sstream>
 #include <thread>
 
+#include "fastron/experiments/report_text.h"
+#include "fastron/experiments/statistics.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"

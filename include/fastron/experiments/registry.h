@@ -14,6 +14,7 @@
 #include "fastron/core/feature_map.h"
 #include "fastron/experiments/progress.h"
 #include "fastron/experiments/table.h"
+#include "fastron/planning/planner.h"
 
 namespace fastron::experiments {
 
