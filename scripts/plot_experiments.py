@@ -266,6 +266,49 @@ def plot_surgical(rows, out):
     fig.savefig(out / "surgical.png", dpi=110)
 
 
+def plot_sensed(rows, out):
+    """The sensed scene with a plan on it, and per frame the model's update rate and accuracy."""
+    fig = plt.figure(figsize=(13, 5.2))
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    if (out / "scene.csv").exists():
+        cloud = np.array([[number(r[k]) for k in "xyz"] for r in read(out / "scene.csv")])
+        if len(cloud):
+            ax.scatter(cloud[:, 0], cloud[:, 1], cloud[:, 2], s=0.3, c=cloud[:, 2], cmap="viridis", alpha=0.5)
+    if (out / "path.csv").exists():
+        path = read(out / "path.csv")
+        for kind, colour, label in (("path", "red", "Fastron's path (the arm's tip)"),
+                                    ("start", "black", "arm at the start"), ("goal", "blue", "arm at the goal")):
+            p = np.array([[number(r[k]) for k in "xyz"] for r in path if r["kind"] == kind])
+            if len(p):
+                ax.plot(p[:, 0], p[:, 1], p[:, 2], color=colour, lw=2 if kind == "path" else 3,
+                        marker=None if kind == "path" else "o", ms=3, label=label)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    ax.view_init(elev=28, azim=-140)
+    ax.set_title("What the camera saw (the last frame), and a plan verified on it")
+    ax.legend(loc="upper left", fontsize=8)
+    right = fig.add_subplot(1, 2, 2)
+    frames = sorted({int(r["frame"]) for r in rows})
+    def per_frame(key):
+        return [np.nanmean([number(r[key]) for r in rows if int(r["frame"]) == f]) for f in frames]
+    right.plot(frames, per_frame("updates_per_s"), color="tab:blue", label="model updates per second")
+    right.axhline(30, color="tab:blue", ls=":", label="a 30 Hz camera")
+    right.set_xlabel("frame")
+    right.set_ylabel("updates per second (ingest + update)")
+    twin = right.twinx()
+    twin.plot(frames, per_frame("accuracy_cloud"), color="tab:green", label="accuracy (FCL on the cloud)")
+    twin.plot(frames, per_frame("tpr_cloud"), color="tab:orange", label="TPR (FCL on the cloud)")
+    twin.set_ylim(0.8, 1.0)
+    twin.set_ylabel("rate on fresh configurations")
+    lines = right.get_legend_handles_labels()
+    more = twin.get_legend_handles_labels()
+    right.legend(lines[0] + more[0], lines[1] + more[1], loc="lower right", fontsize=8)
+    right.set_title("Keeping up with the camera (mean over trials)")
+    fig.tight_layout()
+    fig.savefig(out / "sensed.png", dpi=110)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -288,6 +331,8 @@ def main():
         plot_single_planner(rows, out, "shelf", "UR3 shelf, RRT: time to a valid plan", "planner")
     elif name == "surgical":
         plot_surgical(rows, out)
+    elif name == "sensed":
+        plot_sensed(rows, out)
     elif name == "motion-bench":
         plot_single_planner(rows, out, "motion-bench", "MoveIt problems, RRT-Connect: time to a valid plan", "problem")
     else:

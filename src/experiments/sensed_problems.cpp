@@ -24,7 +24,8 @@ std::vector<std::filesystem::path> sceneFiles(const std::filesystem::path& folde
     if (name.starts_with("scene") && entry.path().extension() == ".yaml")
       scenes.push_back(entry.path());
   }
-  if (error) throw FileError(folder.string() + ": cannot list the folder (" + error.message() + ")");
+  if (error)
+    throw FileError(folder.string() + ": cannot list the folder (" + error.message() + ")");
   std::sort(scenes.begin(), scenes.end());
   return scenes;
 }
@@ -73,11 +74,10 @@ std::size_t writeSensedProblems(const std::filesystem::path& from, const std::fi
   for (const std::filesystem::path& scene : scenes) {
     const CloudPoints cloud = surfacePoints(loadScene(scene), options.spacing, rng);
     const std::string cloudFile = scene.stem().string() + ".npy";
-    writeFileAtomically(
-        to / cloudFile,
-        npyBytes(cloud.points.empty() ? nullptr : cloud.points.front().data(), cloud.points.size(),
-                 3),
-        "point cloud file");
+    writeFileAtomically(to / cloudFile,
+                        npyBytes(cloud.points.empty() ? nullptr : cloud.points.front().data(),
+                                 cloud.points.size(), 3),
+                        "point cloud file");
     writeFileAtomically(to / scene.filename(), sensedSceneYaml(scene, cloudFile, radius),
                         "scene file");
   }

@@ -339,7 +339,10 @@ bool FclChecker::touchesCloud(const Cloud& cloud, std::size_t shape,
   const Eigen::Isometry3d toLocal = object.getTransform().inverse(Eigen::Isometry);
   const EnclosingVolume& volume = geometry_->volumes[shape];
   const bool mesh = geometry_->meshes[shape] != 0;
-  return cloud.grid.anyInBox(near, [&](const Eigen::Vector3d& p) {
+  const auto cellNear = [&](const Eigen::Vector3d& centre, double halfDiagonal) {
+    return volume.distanceFrom(toLocal * centre) <= cloud.radius + halfDiagonal;
+  };
+  return cloud.grid.anyInBox(near, cellNear, [&](const Eigen::Vector3d& p) {
     if (!near.contains(p) || volume.distanceFrom(toLocal * p) > cloud.radius) return false;
     if (!mesh) return true;  // the distance is exact for a primitive
     const fcl::CollisionRequestd request;

@@ -50,5 +50,38 @@ TEST(CheckerConcurrency, GjkChecksDuringSceneUpdates) {
   checkWhileTheSceneChanges<GjkChecker>();
 }
 
+/// A camera's cloud of a few points about (x, 0, 0.4), each a ball of 2 cm.
+Scene cloudAt(double x) {
+  auto points = std::make_shared<CloudPoints>();
+  for (int i = 0; i < 50; ++i) points->points.emplace_back(x + 0.002 * i, 0.001 * i, 0.4);
+  Scene scene;
+  scene.add({"camera", PointCloud{points, 0.02}, Eigen::Isometry3d::Identity(), std::nullopt});
+  return scene;
+}
+
+// A new cloud each frame while two threads check and measure distances (the mesh links' distances
+// build the cloud's point hierarchy on first use, from whichever thread asks first).
+TEST(CheckerConcurrency, FclChecksDuringCloudUpdates) {
+  const Robot panda = loadRobot("panda-mesh");
+  FclChecker checker(panda, cloudAt(0.3));
+  const std::vector<double> q(panda.dof(), 0.0);
+  std::atomic<bool> done{false};
+  std::atomic<std::size_t> asked{0};
+  auto worker = [&] {
+    while (!done) {
+      (void)checker.inCollision(q);
+      EXPECT_GE(checker.distance(q), 0.0);
+      ++asked;
+    }
+  };
+  {
+    std::jthread a(worker), b(worker);
+    for (int i = 0; i < 50 || asked < 100; ++i) checker.setScene(cloudAt(i % 2 == 0 ? 3.0 : 0.3));
+    done = true;
+  }
+  checker.setScene(cloudAt(3.0));  // beyond the arm's reach: cropped away
+  EXPECT_FALSE(checker.inCollision(q));
+}
+
 }  // namespace
 }  // namespace fastron

@@ -10,8 +10,8 @@
 namespace fastron::experiments {
 
 struct SensedProblemOptions {
-  double spacing = 0.01;  ///< metres between surface points (scene_sensing.h, surfacePoints)
-  double radius = 0;      ///< of each point's ball; 0: the spacing (the balls then close the gaps)
+  double spacing = 0.01;   ///< metres between surface points (scene_sensing.h, surfacePoints)
+  double radius = 0;       ///< of each point's ball; 0: the spacing (the balls then close the gaps)
   std::uint64_t seed = 1;  ///< of the samples on mesh triangles
 };
 

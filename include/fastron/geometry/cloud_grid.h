@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,11 +27,19 @@ class CloudGrid {
   /// The box around every point (empty for no points).
   const Eigen::AlignedBox3d& bounds() const { return bounds_; }
 
-  /// Calls `visit(point)` for the points of every cell that `box` overlaps, until a call returns
-  /// true; returns whether one did. The points of a cell are visited together, cells in x-major
-  /// order; points outside `box` may be visited (their cell overlaps it).
+  /// Calls `visit(point)` for the points of every cell that `box` overlaps and `cellNear` admits,
+  /// until a call returns true; returns whether one did. `cellNear(centre, halfDiagonal)` is asked
+  /// once per cell that holds points: false skips them (a shape farther than half the cell's
+  /// diagonal from its centre, plus what may touch, cannot touch any). Cells in x-major order;
+  /// points outside `box` may be visited (their cell overlaps it).
+  template <class CellNear, class Visit>
+  bool anyInBox(const Eigen::AlignedBox3d& box, CellNear&& cellNear, Visit&& visit) const;
+  /// The same with every cell admitted.
   template <class Visit>
-  bool anyInBox(const Eigen::AlignedBox3d& box, Visit&& visit) const;
+  bool anyInBox(const Eigen::AlignedBox3d& box, Visit&& visit) const {
+    return anyInBox(
+        box, [](const Eigen::Vector3d&, double) { return true; }, visit);
+  }
 
  private:
   Eigen::AlignedBox3d bounds_;
@@ -40,8 +49,8 @@ class CloudGrid {
   std::vector<Eigen::Vector3d> points_;
 };
 
-template <class Visit>
-bool CloudGrid::anyInBox(const Eigen::AlignedBox3d& box, Visit&& visit) const {
+template <class CellNear, class Visit>
+bool CloudGrid::anyInBox(const Eigen::AlignedBox3d& box, CellNear&& cellNear, Visit&& visit) const {
   if (points_.empty() || !box.intersects(bounds_)) return false;
   Eigen::Vector3i lo, hi;
   for (int a = 0; a < 3; ++a) {
@@ -51,15 +60,22 @@ bool CloudGrid::anyInBox(const Eigen::AlignedBox3d& box, Visit&& visit) const {
     hi[a] =
         static_cast<int>(std::clamp((box.max()[a] - bounds_.min()[a]) * inverseCell_, 0.0, last));
   }
+  const double halfDiagonal = cell_ * std::sqrt(3.0) / 2;
   for (int x = lo.x(); x <= hi.x(); ++x) {
     for (int y = lo.y(); y <= hi.y(); ++y) {
       const std::size_t row = (static_cast<std::size_t>(x) * static_cast<std::size_t>(cells_.y()) +
                                static_cast<std::size_t>(y)) *
                               static_cast<std::size_t>(cells_.z());
-      const std::uint32_t first = start_[row + static_cast<std::size_t>(lo.z())];
-      const std::uint32_t last = start_[row + static_cast<std::size_t>(hi.z()) + 1];
-      for (std::uint32_t i = first; i < last; ++i) {
-        if (visit(points_[i])) return true;
+      for (int z = lo.z(); z <= hi.z(); ++z) {
+        const std::uint32_t first = start_[row + static_cast<std::size_t>(z)];
+        const std::uint32_t last = start_[row + static_cast<std::size_t>(z) + 1];
+        if (first == last) continue;
+        const Eigen::Vector3d centre =
+            bounds_.min() + cell_ * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+        if (!cellNear(centre, halfDiagonal)) continue;
+        for (std::uint32_t i = first; i < last; ++i) {
+          if (visit(points_[i])) return true;
+        }
       }
     }
   }
