@@ -31,7 +31,9 @@ CloudPoints cameraCloud(int width, int height) {
   return renderDepth(camera, loadScene(dataDirectory() / "scenes" / "baxter_sensed.yaml"), rng);
 }
 
-Robot baxter() { return loadRobot("baxter"); }
+Robot baxter() {
+  return loadRobot("baxter");
+}
 
 Scene cloudScene(const PointCloud& cloud) {
   Scene scene;
@@ -41,8 +43,8 @@ Scene cloudScene(const PointCloud& cloud) {
 
 // Read, down-sampled at the radius, and the checker's grid: what a new camera frame costs.
 void BM_CloudIngest(benchmark::State& state) {
-  const CloudPoints raw = cameraCloud(static_cast<int>(state.range(0)),
-                                      static_cast<int>(state.range(1)));
+  const CloudPoints raw =
+      cameraCloud(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const std::string bytes = npyBytes(raw.points.front().data(), raw.points.size(), 3);
   Scene scene = cloudScene(sensedCloud(raw, kRadius, kRadius));
   FclChecker checker(baxter(), scene);

@@ -7,6 +7,7 @@
 #include "baxter_cases.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/metrics.h"
+#include "fastron/core/trainer.h"
 #include "fastron/experiments/report_text.h"
 #include "fastron/experiments/statistics.h"
 #include "fastron/experiments/timing.h"
@@ -48,11 +49,10 @@ std::size_t pointsInReach(const PointCloud& cloud, const Scene& scene, double re
 }
 
 const std::vector<std::string> kFrameColumns{
-    "trial",          "frame",       "raw_points",     "kept_points",    "reach_points",
-    "camera_s",       "ingest_s",    "update_s",       "label_s",        "train_s",
-    "updates_per_s",  "accuracy_cloud",
-    "tpr_cloud",      "accuracy_truth", "tpr_truth",   "cloud_truth",    "support",
-    "query_s",        "fcl_query_s"};
+    "trial",         "frame",          "raw_points", "kept_points",    "reach_points",
+    "camera_s",      "ingest_s",       "update_s",   "label_s",        "train_s",
+    "updates_per_s", "accuracy_cloud", "tpr_cloud",  "accuracy_truth", "tpr_truth",
+    "cloud_truth",   "support",        "query_s",    "fcl_query_s"};
 
 /// The arm's link origins from the first that moves to the child of its last joint, at q.
 std::vector<Eigen::Vector3d> armPolyline(const Robot& robot, const Eigen::VectorXd& q,
@@ -109,19 +109,17 @@ VerifiedPlan planQuery(const SensedOptions& o, const ProxyCollisionDetector& pro
   };
   const Eigen::VectorXd start = freeOfBoth(), goal = freeOfBoth();
   const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);
-  const auto methods = planWithEachChecker(proxy.calibratedModel(), nullptr, onCloud, limits,
-                                           start, goal, options, o.seed, frame);
+  const auto methods = planWithEachChecker(proxy.calibratedModel(), nullptr, onCloud, limits, start,
+                                           goal, options, o.seed, frame);
   const double audit = o.resolution / 3;
   for (const MethodPlan& m : methods) {
-    const bool collidesCloud =
-        m.plan.solved() && !checkPath(*onCloud, m.plan.path, audit).valid();
-    plans.rows.push_back(
-        {{{"trial", std::to_string(trial)}, {"frame", std::to_string(frame)}},
-         "RRTConnect",
-         m.method,
-         outcomeOf(m, onTruth, audit),
-         {{"collides_cloud", collidesCloud ? 1.0 : 0.0},
-          {"support", static_cast<double>(proxy.model()->supportCount())}}});
+    const bool collidesCloud = m.plan.solved() && !checkPath(*onCloud, m.plan.path, audit).valid();
+    plans.rows.push_back({{{"trial", std::to_string(trial)}, {"frame", std::to_string(frame)}},
+                          "RRTConnect",
+                          m.method,
+                          outcomeOf(m, onTruth, audit),
+                          {{"collides_cloud", collidesCloud ? 1.0 : 0.0},
+                           {"support", static_cast<double>(proxy.model()->supportCount())}}});
   }
   return methods.front().plan;
 }
@@ -147,7 +145,11 @@ SensedResults runSensed(const SensedOptions& o, const Progress& progress) {
                 Eigen::Isometry3d::Identity(), std::nullopt});
     const auto onCloud = makeSceneChecker("fcl", robot, sensed);
     const auto onTruth = makeSceneChecker("fcl", robot, truth);
+    // The kernel of the models of a scene's obstacles (sceneTrainParams): a cloud is just that.
     ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
+    const TrainParams ofScenes = sceneTrainParams(o.features, false);
+    params.train.kernel = ofScenes.kernel;
+    params.train.beta = ofScenes.beta;
     if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
     if (o.beta > 0) params.train.beta = o.beta;
     if (o.activeSamples > 0) params.activeLearning.maxSamples = o.activeSamples;
@@ -175,25 +177,27 @@ SensedResults runSensed(const SensedOptions& o, const Progress& progress) {
       const Labels onTruthLabels = labelConfigurations(*onTruth, test);
       const std::shared_ptr<const Model> model = proxy.model();
       const Eigen::VectorXd scores = model->scoreBatch(test);
-      const auto predicted = [&](std::size_t i) { return scores[static_cast<Eigen::Index>(i)] > 0; };
+      const auto predicted = [&](std::size_t i) {
+        return scores[static_cast<Eigen::Index>(i)] > 0;
+      };
       const ConfusionCounts cloudCounts = confusionOf(onCloudLabels, predicted);
       const ConfusionCounts truthCounts = confusionOf(onTruthLabels, predicted);
       const ConfusionCounts agreement =
           confusionOf(onTruthLabels, [&](std::size_t i) { return onCloudLabels[i] > 0; });
-      results.frames.add(
-          {std::to_string(trial), std::to_string(frame), cell(static_cast<double>(raw.points.size())),
-           cell(static_cast<double>(cloud.cloud->points.size())),
-           cell(static_cast<double>(pointsInReach(cloud, sensed, reach))), cell(cameraSeconds),
-           cell(ingestSeconds), cell(updateSeconds),
-           cell(std::chrono::duration<double>(update.labelTime).count()),
-           cell(std::chrono::duration<double>(update.update.elapsed).count()),
-           cell(1 / (ingestSeconds + updateSeconds)),
-           cell(cloudCounts.accuracy()), cell(cloudCounts.tpr()), cell(truthCounts.accuracy()),
-           cell(truthCounts.tpr()), cell(agreement.accuracy()),
-           cell(static_cast<double>(model->supportCount())),
-           cell(meanSecondsPerCall(test, [&](const double* q) { return model->inCollision(q); },
-                                   0.01)),
-           cell(meanSecondsPerCheck(test, *onCloud, 0.01))});
+      results.frames.add({std::to_string(trial), std::to_string(frame),
+                          cell(static_cast<double>(raw.points.size())),
+                          cell(static_cast<double>(cloud.cloud->points.size())),
+                          cell(static_cast<double>(pointsInReach(cloud, sensed, reach))),
+                          cell(cameraSeconds), cell(ingestSeconds), cell(updateSeconds),
+                          cell(std::chrono::duration<double>(update.labelTime).count()),
+                          cell(std::chrono::duration<double>(update.update.elapsed).count()),
+                          cell(1 / (ingestSeconds + updateSeconds)), cell(cloudCounts.accuracy()),
+                          cell(cloudCounts.tpr()), cell(truthCounts.accuracy()),
+                          cell(truthCounts.tpr()), cell(agreement.accuracy()),
+                          cell(static_cast<double>(model->supportCount())),
+                          cell(meanSecondsPerCall(
+                              test, [&](const double* q) { return model->inCollision(q); }, 0.01)),
+                          cell(meanSecondsPerCheck(test, *onCloud, 0.01))});
       if (frame % (o.quick ? 2 : o.planEvery) != 0) continue;
       const VerifiedPlan plan =
           planQuery(o, proxy, onCloud, *onTruth, limits, trial, frame, rng, results.plans);
@@ -205,8 +209,20 @@ SensedResults runSensed(const SensedOptions& o, const Progress& progress) {
 
 std::string sensedReport(const SensedResults& r, const SensedOptions& o) {
   const Table& f = r.frames;
-  const auto median = [&](const char* column) { return summarize(f.numbers(column)).median; };
-  const auto mean = [&](const char* column) { return summarize(f.numbers(column)).mean; };
+  const auto fixed = [](double value, int digits) {
+    std::ostringstream text;
+    text.setf(std::ios::fixed);
+    text.precision(digits);
+    text << value;
+    return text.str();
+  };
+  const auto median = [&](const char* column, int digits = 0) {
+    return fixed(summarize(f.numbers(column)).median, digits);
+  };
+  const auto seconds = [&](const char* column) {
+    return durationText(summarize(f.numbers(column)).median);
+  };
+  const auto mean = [&](const char* column) { return fixed(summarize(f.numbers(column)).mean, 3); };
   std::ostringstream md;
   md << "# Sensed scenes: Baxter among moving boxes seen through a depth camera\n\n"
      << "Baxter's right arm (7 joints) over a table with three 0.2 m boxes on random walks of 1 to "
@@ -223,17 +239,16 @@ std::string sensedReport(const SensedResults& r, const SensedOptions& o) {
   md << "| cloud: raw | kept | in reach | ingest | update | updates/s | accuracy (cloud) | TPR "
         "(cloud) | accuracy (boxes) | TPR (boxes) | FCL cloud = boxes | \\|S\\| | query | FCL "
         "on the cloud |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
-     << "| " << cell(median("raw_points")) << " | " << cell(median("kept_points")) << " | "
-     << cell(median("reach_points")) << " | " << durationText(median("ingest_s")) << " | "
-     << durationText(median("update_s")) << " | " << cell(median("updates_per_s")) << " | "
-     << cell(mean("accuracy_cloud")) << " | " << cell(mean("tpr_cloud")) << " | "
-     << cell(mean("accuracy_truth")) << " | " << cell(mean("tpr_truth")) << " | "
-     << cell(mean("cloud_truth")) << " | " << cell(median("support")) << " | "
-     << durationText(median("query_s")) << " | " << durationText(median("fcl_query_s")) << " |\n\n"
+     << "| " << median("raw_points") << " | " << median("kept_points") << " | "
+     << median("reach_points") << " | " << seconds("ingest_s") << " | " << seconds("update_s")
+     << " | " << median("updates_per_s", 1) << " | " << mean("accuracy_cloud") << " | "
+     << mean("tpr_cloud") << " | " << mean("accuracy_truth") << " | " << mean("tpr_truth") << " | "
+     << mean("cloud_truth") << " | " << median("support") << " | " << seconds("query_s") << " | "
+     << seconds("fcl_query_s") << " |\n\n"
      << "Medians over frames (accuracies: means). Ingest: down-sampling and the checker's grid; "
         "update: labelling on the cloud and training (Algorithms 1 and 2); updates/s: 1 / (ingest "
         "+ update), on this machine's 2 cores. The camera's rendering ("
-     << durationText(median("camera_s")) << " a frame) is the simulator's, not counted.\n\n";
+     << seconds("camera_s") << " a frame) is the simulator's, not counted.\n\n";
   if (!r.plans.rows.empty()) {
     md << "## Plans\n\nA query every " << o.planEvery
        << " frames (start and goal free of the cloud and of the boxes): Fastron on the frame's "
@@ -245,23 +260,30 @@ std::string sensedReport(const SensedResults& r, const SensedOptions& o) {
        << "| method | solved | median total | colliding with the cloud | colliding with the boxes "
           "|\n|---|---|---|---|---|\n";
     const Table plans = r.plans.table();
+    const auto medianTotal = [&](const std::string& method) {
+      std::vector<double> totals;
+      const Table::Filter where{{"method", method}};
+      const auto solved = plans.numbers("solved", where);
+      const auto total = plans.numbers("total_s", where);
+      for (std::size_t i = 0; i < total.size(); ++i)
+        if (solved[i] > 0) totals.push_back(total[i]);
+      return summarize(totals).median;
+    };
     for (const std::string& method : plans.distinct("method")) {
       const Table::Filter where{{"method", method}};
       const auto solved = plans.numbers("solved", where);
       double solvedCount = 0;
       for (const double s : solved) solvedCount += s;
-      std::vector<double> totals;
-      const auto total = plans.numbers("total_s", where);
-      for (std::size_t i = 0; i < total.size(); ++i)
-        if (solved[i] > 0) totals.push_back(total[i]);
       double cloudHits = 0, boxHits = 0;
       for (const double v : plans.numbers("collides_cloud", where)) cloudHits += v;
       for (const double v : plans.numbers("collides_fcl", where))
         if (!std::isnan(v)) boxHits += v;
       md << "| " << method << " | " << cell(solvedCount) << "/" << solved.size() << " | "
-         << durationText(summarize(totals).median) << " | " << cell(cloudHits) << " | "
-         << cell(boxHits) << " |\n";
+         << durationText(medianTotal(method)) << " | " << cell(cloudHits) << " | " << cell(boxHits)
+         << " |\n";
     }
+    md << "\nMedian total time of FCL / of Fastron: "
+       << fixed(medianTotal("FCL") / medianTotal("Fastron"), 1) << "x.\n";
     md << "\nColliding with the boxes: a path free of the cloud can still touch a box where the "
           "camera does not see it (a box's far side, or behind another).\n";
   }

@@ -221,6 +221,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     : robot_(std::move(robot)), options_(options), scratch_([this] {
         auto s = std::make_unique<Scratch>();
         s->kinematics = makeKinematicsData(robot_);
+        const std::lock_guard lock(objectsOfRobotGeometry_);
         for (const auto& g : geometry_->shapes)
           s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g.collision));
         return s;
@@ -408,11 +409,14 @@ void FclChecker::placeFixedShapes(Obstacles& world) const {
   const Geometry& geometry = *geometry_;
   const KinematicsData kinematics = kinematicsAtZero(robot_, world.robotBase);
   world.fixedObjects.resize(geometry.shapes.size());
-  for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
-    if (geometry.moves[s] != 0) continue;
-    world.fixedObjects[s] = std::make_unique<fcl::CollisionObjectd>(
-        geometry.shapes[s].collision, toFcl(shapePose(robot_, kinematics, s)));
-    world.fixedObjects[s]->computeAABB();
+  {
+    const std::lock_guard lock(objectsOfRobotGeometry_);
+    for (std::size_t s = 0; s < geometry.shapes.size(); ++s) {
+      if (geometry.moves[s] != 0) continue;
+      world.fixedObjects[s] = std::make_unique<fcl::CollisionObjectd>(
+          geometry.shapes[s].collision, toFcl(shapePose(robot_, kinematics, s)));
+      world.fixedObjects[s]->computeAABB();
+    }
   }
   for (std::size_t s = 0; s < geometry.shapes.size() && !world.fixedContact; ++s) {
     if (geometry.moves[s] != 0) continue;

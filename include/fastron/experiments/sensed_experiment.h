@@ -16,13 +16,14 @@ namespace fastron::experiments {
 
 struct SensedOptions {
   std::size_t trials = 3;
-  std::size_t frames = 60;    ///< camera frames (model updates) per trial
+  std::size_t frames = 60;     ///< camera frames (model updates) per trial
   std::size_t planEvery = 10;  ///< a planning query every this many frames
   std::uint64_t seed = 1;
   bool quick = false;
   FeatureKind features = FeatureKind::Kinematic;
   double radius = 0.01;  ///< of each point's ball; the cloud is down-sampled at it
-  /// The model's kernel width and conditional bias; 0 keeps the features' defaults.
+  /// The model's kernel width and conditional bias; 0 keeps those of the models of a scene's
+  /// obstacles (sceneTrainParams: for task-space features gamma 60, beta 40).
   double gamma = 0, beta = 0;
   /// A_max, the active-learning samples per update; 0 keeps the features' default.
   std::size_t activeSamples = 0;

@@ -101,6 +101,9 @@ class FclChecker final : public SceneChecker {
   std::shared_ptr<const Geometry> geometry_;  // robot shapes as FCL geometry
   Snapshot<Obstacles> obstacles_;
   std::atomic<std::size_t> meshBuilds_{0};
+  // FCL's CollisionObject constructor writes its geometry's local box: objects of the robot's
+  // shared geometries (a thread's scratch, a scene's fixed shapes) are made under this lock.
+  mutable std::mutex objectsOfRobotGeometry_;
   mutable ScratchPool<Scratch> scratch_;
   MotionProofs proofs_ = MotionProofs::None;
 };
