@@ -274,6 +274,7 @@ def plot_sensed(rows, out):
         cloud = np.array([[number(r[k]) for k in "xyz"] for r in read(out / "scene.csv")])
         if len(cloud):
             ax.scatter(cloud[:, 0], cloud[:, 1], cloud[:, 2], s=0.3, c=cloud[:, 2], cmap="viridis", alpha=0.5)
+            ax.set_box_aspect(np.ptp(cloud, axis=0))  # metres alike on every axis
     if (out / "path.csv").exists():
         path = read(out / "path.csv")
         for kind, colour, label in (("path", "red", "Fastron's path (the arm's tip)"),

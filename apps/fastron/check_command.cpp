@@ -1,6 +1,7 @@
 // fastron check: is this configuration in collision? Every exact checker answers; exit 0 when the
 // one of --checker (FCL unless told) finds it free, 1 when in collision, 2 on an error.
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -42,7 +43,18 @@ int runCheck(const CheckOptions& o) {
             << (scene.size() == 1 ? " obstacle\n" : " obstacles\n");
   bool collides = false;
   for (const SceneCheckerKind& kind : sceneCheckerKinds()) {
-    const auto checker = makeSceneChecker(kind.name, robot, scene, checkerOptionsFrom(o.scene));
+    std::shared_ptr<SceneChecker> checker;
+    try {
+      checker = makeSceneChecker(kind.name, robot, scene, checkerOptionsFrom(o.scene));
+    } catch (const Unsupported& e) {
+      // A backend that cannot check this scene (GJK and a point cloud) says so; the one that
+      // decides the exit code must answer.
+      if (kind.name == o.scene.checker) throw;
+      std::string name = kind.name;
+      std::transform(name.begin(), name.end(), name.begin(), ::toupper);
+      std::cout << std::left << std::setw(8) << name << "cannot check: " << e.what() << '\n';
+      continue;
+    }
     const auto contact = checker->firstContact(o.config);
     std::cout << std::left << std::setw(8) << checker->name();
     if (contact) {

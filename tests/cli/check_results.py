@@ -205,6 +205,25 @@ def main():
                 fail(f"the path figures are measured on the solved requests only: {row}")
         if "Along FCL's own path of each request" not in report:
             fail("report.md does not say where the model stands along FCL's paths")
+    elif name == "sensed":
+        rate_columns(rows, ["accuracy_cloud", "tpr_cloud", "accuracy_truth", "tpr_truth", "cloud_truth"])
+        for r in rows:
+            if not value(r, "raw_points") >= value(r, "kept_points") >= value(r, "reach_points") > 1000:
+                fail(f"the cloud does not shrink from raw to kept to in reach, or is nearly empty: {r}")
+            if not value(r, "ingest_s") > 0 or not value(r, "update_s") >= value(r, "label_s") + value(r, "train_s") * 0.999:
+                fail(f"ingest or update times do not add up: {r}")
+            if value(r, "cloud_truth") < 0.9:
+                fail(f"FCL on the cloud and on the boxes disagree on {1 - value(r, 'cloud_truth')} of the configurations")
+        if sum(value(r, "accuracy_cloud") for r in rows) / len(rows) < 0.85:
+            fail("the model's accuracy against FCL on the cloud is below 0.85")
+        plans = list(csv.DictReader(open(out / "plans.csv", newline="")))
+        if {p["method"] for p in plans} != {"Fastron", "FCL"}:
+            fail(f"methods {sorted({p['method'] for p in plans})}")
+        if not any(p["solved"] == "1" for p in plans):
+            fail("no plan was solved")
+        scene = list(csv.DictReader(open(out / "scene.csv", newline="")))
+        if len(scene) < 1000:
+            fail("scene.csv holds too few of the cloud's points for a picture")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:
