@@ -176,6 +176,34 @@ BENCHMARK(BM_TaskSpaceQueryOnSimdPath)
     ->ArgsProduct({{300, 1000}, {1, 16}, {0, 1}, {0, 1, 2}})
     ->ArgNames({"S", "batch", "terms", "simd"});
 
+// Model::scoreGradients (double, analytic: the kernel's derivative through the points' Jacobian)
+// against Model::scoreBatch (float, SIMD) on the same 16 configurations of the same task-space
+// model (Baxter, the default kernel): gradient 0 times the scores, 1 the scores and gradients.
+// Time per configuration.
+void BM_ScoreGradientBatch(benchmark::State& state) {
+  const Robot robot = loadRobot("baxter");
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const bool gradient = state.range(1) != 0;
+  Rng rng(13);
+  const Model model(robotFeatures(robot, FeatureKind::Kinematic),
+                    defaultTrainParams(FeatureKind::Kinematic).kernel,
+                    uniformConfigurations(robot.limits(), support, rng),
+                    Eigen::VectorXd::Random(static_cast<Eigen::Index>(support)));
+  constexpr std::size_t kBatch = 16;
+  const Configurations q = queries(robot).topRows(kBatch);
+  std::vector<double> out(kBatch);
+  for (auto _ : state) {
+    if (gradient) {
+      benchmark::DoNotOptimize(model.scoreGradients(q));
+    } else {
+      model.scoreBatch(q.data(), kBatch, out.data());
+      benchmark::DoNotOptimize(out.data());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(kBatch));
+}
+BENCHMARK(BM_ScoreGradientBatch)->ArgsProduct({{300, 1000}, {0, 1}})->ArgNames({"S", "gradient"});
+
 template <class Checker>
 void BM_Check(benchmark::State& state) {
   const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);

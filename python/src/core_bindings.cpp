@@ -36,6 +36,25 @@ py::object scores(const Model& model, py::handle q) {
   return out;
 }
 
+/// (score, gradient) of one configuration (d,), or (scores (n,), gradients (n, d)) of each row.
+py::tuple scoreGradients(const Model& model, py::handle q) {
+  const ConfigurationRows rows = configurations(q, model.dim(), "q");
+  if (rows.single) {
+    Model::ScoreGradient one;
+    {
+      py::gil_scoped_release released;
+      one = model.scoreGradient(rows.row(0));
+    }
+    return py::make_tuple(one.score, toArray(one.gradient));
+  }
+  Model::ScoreGradients many;
+  {
+    py::gil_scoped_release released;
+    many = model.scoreGradients(rows.matrix());
+  }
+  return py::make_tuple(toArray(many.scores), toArray(many.gradients));
+}
+
 py::object inCollision(const Model& model, py::handle q) {
   const ConfigurationRows rows = configurations(q, model.dim(), "q");
   if (rows.single) return py::bool_(model.inCollision(rows.row(0)));
@@ -179,6 +198,9 @@ void bindModel(py::module_& m) {
           "The support points' weights, shape (|S|,); a read-only view.")
       .def("score", &scores, py::arg("q"),
            "f(q) for one configuration (d,) -> float, or for each row of (n, d) -> (n,).")
+      .def("score_gradient", &scoreGradients, py::arg("q"),
+           "f(q) summed in double and its analytic gradient with respect to the joint values: "
+           "(float, (d,)) for one configuration (d,), ((n,), (n, d)) for each row of (n, d).")
       .def("in_collision", &inCollision, py::arg("q"),
            "f(q) > 0 for one configuration (d,) -> bool, or for each row of (n, d) -> (n,) bool.")
       .def(

@@ -47,6 +47,32 @@ def test_batch_and_single_queries_agree():
     assert model.first_in_collision(x[:50]) == (hits[0] if hits.size else None)
 
 
+def test_score_gradients_point_out_of_collision(baxter, baxter_fcl):
+    x, y = disc_data()
+    model, _ = fastron.train(x, y, gamma=30, beta=5)
+    score, gradient = model.score_gradient(x[0])
+    assert isinstance(score, float) and gradient.shape == (2,)
+    scores, gradients = model.score_gradient(x[:20])
+    assert scores.shape == (20,) and gradients.shape == (20, 2)
+    assert np.allclose(gradients[0], gradient) and np.isclose(scores[0], score)
+    h = 1e-6
+    for q, g in zip(x[:20], gradients):
+        numeric = [(model.score_gradient(q + h * e)[0] - model.score_gradient(q - h * e)[0]) / (2 * h)
+                   for e in np.eye(2)]
+        assert np.allclose(g, numeric, rtol=1e-4, atol=1e-4 * max(1e-3, np.abs(numeric).max()))
+    # On a task-space model, a step along minus the gradient lowers the score.
+    detector = fastron.ProxyCollisionDetector(baxter_fcl, fastron.robot_features(baxter),
+                                              calibration_samples=0)
+    detector.initialize(1500)
+    task = detector.model()
+    q = uniform(baxter.limits, 200, seed=3)
+    f, g = task.score_gradient(q)
+    stepped, _ = task.score_gradient(q - 1e-4 * g)
+    assert np.all(stepped <= f + 1e-12)
+    with pytest.raises(fastron.InvalidArgument, match="q"):
+        model.score_gradient(np.zeros(3))
+
+
 def test_pruned_and_merged_models_keep_their_answers():
     x, y = disc_data()
     model, _ = fastron.train(x, y, gamma=30, beta=5)

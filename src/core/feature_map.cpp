@@ -1,6 +1,8 @@
 #include "fastron/core/feature_map.h"
 
+#include <algorithm>
 #include <array>
+#include <vector>
 
 #include "fastron/core/error.h"
 
@@ -72,6 +74,34 @@ void FeatureMap::mapBatch(const double* q, std::size_t n, float* x) const {
   }
   const std::size_t dof = configurationDim();
   for (std::size_t i = 0; i < n; ++i) mapTo(q + i * dof, x + i * featureDim_);
+}
+
+void FeatureMap::jacobian(const double* q, double* x, double* jacobian) const {
+  if (kind_ == FeatureKind::Kinematic) {
+    kinematics_->jacobian(q, x, jacobian);
+    return;
+  }
+  const std::size_t dof = configurationDim();
+  std::fill_n(jacobian, dof * dof, 0.0);
+  mapTo(q, x);
+  for (std::size_t j = 0; j < dof; ++j)
+    jacobian[j * dof + j] = limits_.scale()[static_cast<Eigen::Index>(j)];
+}
+
+void PointKinematics::jacobian(const double* q, double* out, double* jacobian) const {
+  constexpr double kStep = 1e-6;
+  const std::size_t dofs = dof(), coordinates = 3 * pointCount();
+  positions(q, out);
+  std::vector<double> moved(q, q + dofs), plus(coordinates), minus(coordinates);
+  for (std::size_t j = 0; j < dofs; ++j) {
+    moved[j] = q[j] + kStep;
+    positions(moved.data(), plus.data());
+    moved[j] = q[j] - kStep;
+    positions(moved.data(), minus.data());
+    moved[j] = q[j];
+    for (std::size_t c = 0; c < coordinates; ++c)
+      jacobian[c * dofs + j] = (plus[c] - minus[c]) / (2 * kStep);
+  }
 }
 
 void PointKinematics::positionsBatch(const double* q, std::size_t n, float* out) const {

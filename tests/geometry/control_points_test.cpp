@@ -162,6 +162,72 @@ TEST(ControlPoints, PositionsEqualForwardKinematicsOnEveryShippedRobot) {
   }
 }
 
+// The analytic Jacobian of the points (RobotPointKinematics::jacobian) against central differences
+// of their double positions, on every shipped robot (mimic and prismatic joints among them).
+TEST(ControlPoints, TheJacobianIsTheDerivativeOfThePositions) {
+  for (const auto& name : kRobots) {
+    const Robot robot = loadRobot(name);
+    std::vector<ControlPoint> points = defaultControlPoints(robot);
+    for (const Link& link : robot.links())
+      points.push_back({link.name, Eigen::Vector3d(0.05, 0, 0)});
+    const RobotPointKinematics kinematics(robot, points);
+    const std::size_t dof = robot.dof(), coordinates = 3 * points.size();
+    Rng rng(21);
+    const Configurations q = uniformConfigurations(robot.limits(), 20, rng);
+    std::vector<double> at(coordinates), jacobian(coordinates * dof), plus(coordinates),
+        minus(coordinates);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      Eigen::VectorXd row = q.row(i);
+      kinematics.jacobian(row.data(), at.data(), jacobian.data());
+      for (std::size_t j = 0; j < dof; ++j) {
+        const double h = 1e-6, keep = row[static_cast<Eigen::Index>(j)];
+        row[static_cast<Eigen::Index>(j)] = keep + h;
+        kinematics.positions(row.data(), plus.data());
+        row[static_cast<Eigen::Index>(j)] = keep - h;
+        kinematics.positions(row.data(), minus.data());
+        row[static_cast<Eigen::Index>(j)] = keep;
+        for (std::size_t c = 0; c < coordinates; ++c)
+          ASSERT_NEAR(jacobian[c * dof + j], (plus[c] - minus[c]) / (2 * h), 1e-6)
+              << name << " coordinate " << c << " joint " << j;
+      }
+    }
+  }
+}
+
+// Model::scoreGradient on task-space features: the kernel's derivative through the points'
+// Jacobian, against central differences of scoreExact (step 1e-6 rad).
+TEST(TaskSpaceFeatures, ScoreGradientsAgreeWithCentralDifferences) {
+  const Robot baxter = loadRobot("baxter");
+  const FeatureMap features = robotFeatures(baxter, FeatureKind::Kinematic);
+  Rng rng(5);
+  const Configurations support = uniformConfigurations(baxter.limits(), 60, rng);
+  std::uniform_real_distribution<double> weight(-2, 2);
+  Eigen::VectorXd weights(support.rows());
+  for (auto& w : weights) w = weight(rng);
+  for (const Kernel& kernel : {defaultTrainParams(FeatureKind::Kinematic).kernel,
+                               Kernel{KernelType::Gaussian, 20, 0, 0}}) {
+    const Model model(features, kernel, support, weights);
+    const Configurations q = uniformConfigurations(baxter.limits(), 30, rng);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      Eigen::VectorXd row = q.row(i);
+      const Model::ScoreGradient analytic = model.scoreGradient({row.data(), baxter.dof()});
+      Eigen::VectorXd numeric(row.size());
+      for (Eigen::Index j = 0; j < row.size(); ++j) {
+        const double h = 1e-6, keep = row[j];
+        row[j] = keep + h;
+        const double plus = model.scoreExact(row.data());
+        row[j] = keep - h;
+        const double minus = model.scoreExact(row.data());
+        row[j] = keep;
+        numeric[j] = (plus - minus) / (2 * h);
+      }
+      const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
+      ASSERT_LE((analytic.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
+          << "kernel block " << kernel.block << " row " << i;
+    }
+  }
+}
+
 TEST(ControlPoints, HeldJointsAndASubsetOfActuatedJoints) {
   Robot baxter = baxterWithJoints(4);
   baxter.setHeldPosition("right_w1", 0.7);  // not actuated: folded into a constant transform

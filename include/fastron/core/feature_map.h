@@ -55,6 +55,10 @@ class PointKinematics {
   /// (n * 3 * pointCount()): the path for batches of queries such as edge checks. The default
   /// places them one by one; an implementation may compute many at once.
   virtual void positionsBatch(const double* q, std::size_t n, float* out) const;
+  /// positions() in double, and their Jacobian with respect to the joint values: `jacobian`
+  /// receives 3 * pointCount() rows of dof() values, row by row (d position / d q). The default
+  /// takes central differences (step 1e-6); an implementation may compute it analytically.
+  virtual void jacobian(const double* q, double* out, double* jacobian) const;
   virtual KinematicsDescription description() const = 0;
 };
 
@@ -97,6 +101,10 @@ class FeatureMap {
   void map(const double* q, float* x) const;
   /// Float features of n configurations, q and x row by row (not checked: the hot path).
   void mapBatch(const double* q, std::size_t n, float* x) const;
+  /// Features of one configuration in double, and their Jacobian with respect to the joint
+  /// values: `jacobian` receives featureDim() rows of configurationDim() values, row by row (not
+  /// checked). Joint scaling: the diagonal of the scales; kinematic: the points' Jacobian.
+  void jacobian(const double* q, double* x, double* jacobian) const;
   /// Throws InvalidArgument on a wrong column count or a non-finite value.
   void check(const Configurations& q) const;
   /// Features of every row, check()ed.

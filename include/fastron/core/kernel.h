@@ -37,6 +37,18 @@ R kernelOfSquaredDistance(const R& r2, Scalar gamma) {
   }
 }
 
+/// dk/dr2 of kernelOfSquaredDistance: -gamma t^-3 for the rational quadratic (t = 1 + gamma/2
+/// r2), -gamma exp(-gamma r2) for the Gaussian.
+template <KernelType type, class Scalar>
+Scalar kernelDerivativeOfSquaredDistance(Scalar r2, Scalar gamma) {
+  if constexpr (type == KernelType::RationalQuadratic) {
+    const Scalar t = Scalar(1) + (Scalar(0.5) * gamma) * r2;
+    return -gamma / (t * t * t);
+  } else {
+    return -gamma * std::exp(-gamma * r2);
+  }
+}
+
 struct Kernel {
   KernelType type = KernelType::RationalQuadratic;
   double gamma = 10;  ///< width parameter, > 0; larger is narrower
@@ -60,6 +72,12 @@ struct Kernel {
                : kernelOfSquaredDistance<KernelType::Gaussian>(r2, T(gamma));
   }
 
+  /// dk/dr2 of one term at squared distance r2.
+  double derivative(double r2) const {
+    return type == KernelType::RationalQuadratic
+               ? kernelDerivativeOfSquaredDistance<KernelType::RationalQuadratic>(r2, gamma)
+               : kernelDerivativeOfSquaredDistance<KernelType::Gaussian>(r2, gamma);
+  }
   /// Point terms for `dim` features: 0 for the one-term kernel.
   std::size_t pointTerms(std::size_t dim) const { return block == 0 ? 0 : dim / block; }
   /// The weights of the whole term and of each point term's sum: (1, 0) for the one-term kernel,

@@ -95,6 +95,22 @@ class Model {
   /// Scores of every row of `q`.
   Eigen::VectorXd scoreBatch(const Configurations& q) const;
 
+  /// f(q) summed in double (as scoreExact) and its gradient with respect to the joint values: the
+  /// kernel's derivative in feature space (every term: the whole vector's and each point's),
+  /// through the features' Jacobian (joint scaling's scales, or the control points' Jacobian from
+  /// forward kinematics). Analytic. Throws InvalidArgument on a wrong size or a non-finite value.
+  struct ScoreGradient {
+    double score = 0;
+    Eigen::VectorXd gradient;  ///< dim() values
+  };
+  ScoreGradient scoreGradient(std::span<const double> q) const;
+  /// The same for every row of q: scores (n) and gradients (n x dim(), row by row).
+  struct ScoreGradients {
+    Eigen::VectorXd scores;
+    Configurations gradients;
+  };
+  ScoreGradients scoreGradients(const Configurations& q) const;
+
  private:
   friend class Trainer;
   /// For the trainer, which holds the support features already (computed from the same

@@ -34,6 +34,10 @@ class RobotPointKinematics final : public PointKinematics {
   /// a step are computed for a register of them at once (structure of arrays), so a batch costs a
   /// fraction of single queries.
   void positionsBatch(const double* q, std::size_t n, float* out) const override;
+  /// Analytic: each actuated step on a point's way contributes its z axis times the point's
+  /// offset from the step's origin (a revolute joint) or its z axis (a prismatic one), times the
+  /// coordinate's multiplier (mimic joints).
+  void jacobian(const double* q, double* out, double* jacobian) const override;
   KinematicsDescription description() const override { return description_; }
 
   /// Actuated joints that move at least one control point.

@@ -1,0 +1,88 @@
+// Model::scoreGradient: the analytic gradient agrees with central differences of scoreExact for
+// every kernel (rational quadratic, Gaussian; one term, and point terms beside the whole vector's)
+// on joint-space features. Kinematic features: tests/geometry/control_points_test.cpp.
+
+#include <gtest/gtest.h>
+
+#include "fastron/core/error.h"
+#include "fastron/core/model.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace gradient_test {
+
+/// A model of random support points and weights in [-1, 1]^dim (no training: every weight and
+/// point counts, near ones and far ones).
+Model randomModel(std::size_t dim, Kernel kernel, std::uint64_t seed) {
+  const Configurations support = test::uniformPoints(40, dim, seed);
+  Rng rng(seed + 1);
+  std::uniform_real_distribution<double> weight(-2, 2);
+  Eigen::VectorXd weights(support.rows());
+  for (auto& w : weights) w = weight(rng);
+  return Model(FeatureMap::jointScaling(JointLimits::unitBox(dim)), kernel, support, weights);
+}
+
+/// Central differences of scoreExact, step h.
+Eigen::VectorXd centralDifferences(const Model& model, Eigen::VectorXd q, double h) {
+  Eigen::VectorXd g(q.size());
+  for (Eigen::Index j = 0; j < q.size(); ++j) {
+    const double keep = q[j];
+    q[j] = keep + h;
+    const double plus = model.scoreExact(q.data());
+    q[j] = keep - h;
+    const double minus = model.scoreExact(q.data());
+    q[j] = keep;
+    g[j] = (plus - minus) / (2 * h);
+  }
+  return g;
+}
+
+struct KernelCase {
+  KernelType type;
+  double gamma;
+  std::uint32_t block;
+  double wholeShare;
+};
+
+TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernel) {
+  const std::vector<KernelCase> cases{{KernelType::RationalQuadratic, 5, 0, 0},
+                                      {KernelType::Gaussian, 3, 0, 0},
+                                      {KernelType::RationalQuadratic, 8, 3, 0.5},
+                                      {KernelType::Gaussian, 2, 3, 0.2},
+                                      {KernelType::RationalQuadratic, 8, 2, 0}};
+  for (const KernelCase& c : cases) {
+    const Model model = randomModel(6, {c.type, c.gamma, c.block, c.wholeShare}, 7);
+    const Configurations q = test::uniformPoints(50, 6, 9);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      const Eigen::VectorXd row = q.row(i);
+      const Model::ScoreGradient analytic = model.scoreGradient({row.data(), 6});
+      EXPECT_NEAR(analytic.score, model.scoreExact(row.data()), 1e-12);
+      // Step 1e-5: the differences' own error (h^2 f''') is far below the tolerance.
+      const Eigen::VectorXd numeric = centralDifferences(model, row, 1e-5);
+      const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
+      ASSERT_LE((analytic.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
+          << "kernel " << static_cast<int>(c.type) << " block " << c.block << " row " << i;
+    }
+  }
+}
+
+TEST(ScoreGradient, BatchesAgreeWithSingleQueriesAndBadInputIsRefused) {
+  const Model model = randomModel(4, {KernelType::RationalQuadratic, 5, 0, 0}, 3);
+  const Configurations q = test::uniformPoints(20, 4, 4);
+  const Model::ScoreGradients batch = model.scoreGradients(q);
+  ASSERT_EQ(batch.gradients.rows(), 20);
+  ASSERT_EQ(batch.gradients.cols(), 4);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const Eigen::VectorXd row = q.row(i);
+    const Model::ScoreGradient one = model.scoreGradient({row.data(), 4});
+    EXPECT_DOUBLE_EQ(batch.scores[i], one.score);
+    EXPECT_TRUE(batch.gradients.row(i).transpose().isApprox(one.gradient));
+  }
+  const std::vector<double> three{0, 0, 0}, nan{0, 0, std::nan(""), 0};
+  EXPECT_THROW((void)model.scoreGradient(three), InvalidArgument);
+  EXPECT_THROW((void)model.scoreGradient(nan), InvalidArgument);
+  EXPECT_THROW((void)model.scoreGradients(Configurations(2, 3)), InvalidArgument);
+}
+
+}  // namespace gradient_test
+}  // namespace fastron
