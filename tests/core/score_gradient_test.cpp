@@ -44,7 +44,7 @@ struct KernelCase {
   double wholeShare;
 };
 
-TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernel) {
+TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernelOnBothPaths) {
   const std::vector<KernelCase> cases{{KernelType::RationalQuadratic, 5, 0, 0},
                                       {KernelType::Gaussian, 3, 0, 0},
                                       {KernelType::RationalQuadratic, 8, 3, 0.5},
@@ -55,13 +55,19 @@ TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernel) {
     const Configurations q = test::uniformPoints(50, 6, 9);
     for (Eigen::Index i = 0; i < q.rows(); ++i) {
       const Eigen::VectorXd row = q.row(i);
-      const Model::ScoreGradient analytic = model.scoreGradient({row.data(), 6});
-      EXPECT_NEAR(analytic.score, model.scoreExact(row.data()), 1e-12);
-      // Step 1e-5: the differences' own error (h^2 f''') is far below the tolerance.
+      const Model::ScoreGradient exact = model.scoreGradientExact({row.data(), 6});
+      EXPECT_NEAR(exact.score, model.scoreExact(row.data()), 1e-12);
+      // Step 1e-5: the differences' own error (h^2 times the third derivative) is far below the
+      // tolerance.
       const Eigen::VectorXd numeric = centralDifferences(model, row, 1e-5);
       const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
-      ASSERT_LE((analytic.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
+      ASSERT_LE((exact.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
           << "kernel " << static_cast<int>(c.type) << " block " << c.block << " row " << i;
+      // The float path: the same within float's precision over 40 terms.
+      const Model::ScoreGradient fast = model.scoreGradient({row.data(), 6});
+      EXPECT_NEAR(fast.score, exact.score, 1e-5 * std::max(1.0, std::abs(exact.score)));
+      ASSERT_LE((fast.gradient - exact.gradient).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
+          << "float path, kernel " << static_cast<int>(c.type) << " block " << c.block;
     }
   }
 }
@@ -81,6 +87,7 @@ TEST(ScoreGradient, BatchesAgreeWithSingleQueriesAndBadInputIsRefused) {
   const std::vector<double> three{0, 0, 0}, nan{0, 0, std::nan(""), 0};
   EXPECT_THROW((void)model.scoreGradient(three), InvalidArgument);
   EXPECT_THROW((void)model.scoreGradient(nan), InvalidArgument);
+  EXPECT_THROW((void)model.scoreGradientExact(three), InvalidArgument);
   EXPECT_THROW((void)model.scoreGradients(Configurations(2, 3)), InvalidArgument);
 }
 

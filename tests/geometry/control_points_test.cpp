@@ -210,7 +210,8 @@ TEST(TaskSpaceFeatures, ScoreGradientsAgreeWithCentralDifferences) {
     const Configurations q = uniformConfigurations(baxter.limits(), 30, rng);
     for (Eigen::Index i = 0; i < q.rows(); ++i) {
       Eigen::VectorXd row = q.row(i);
-      const Model::ScoreGradient analytic = model.scoreGradient({row.data(), baxter.dof()});
+      const Model::ScoreGradient analytic = model.scoreGradientExact({row.data(), baxter.dof()});
+      const Model::ScoreGradient fast = model.scoreGradient({row.data(), baxter.dof()});
       Eigen::VectorXd numeric(row.size());
       for (Eigen::Index j = 0; j < row.size(); ++j) {
         const double h = 1e-6, keep = row[j];
@@ -224,6 +225,8 @@ TEST(TaskSpaceFeatures, ScoreGradientsAgreeWithCentralDifferences) {
       const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
       ASSERT_LE((analytic.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
           << "kernel block " << kernel.block << " row " << i;
+      ASSERT_LE((fast.gradient - analytic.gradient).lpNorm<Eigen::Infinity>(), 1e-3 * scale)
+          << "float path, kernel block " << kernel.block << " row " << i;
     }
   }
 }

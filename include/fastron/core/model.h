@@ -95,15 +95,19 @@ class Model {
   /// Scores of every row of `q`.
   Eigen::VectorXd scoreBatch(const Configurations& q) const;
 
-  /// f(q) summed in double (as scoreExact) and its gradient with respect to the joint values: the
-  /// kernel's derivative in feature space (every term: the whole vector's and each point's),
-  /// through the features' Jacobian (joint scaling's scales, or the control points' Jacobian from
-  /// forward kinematics). Analytic. Throws InvalidArgument on a wrong size or a non-finite value.
+  /// f(q) and its gradient with respect to the joint values: the kernel's derivative in feature
+  /// space (every term: the whole vector's and each point's), through the features' Jacobian
+  /// (joint scaling's scales, or the control points' Jacobian from forward kinematics, in double).
+  /// Analytic; the kernel terms summed in float over the query copies the scores read, chunk by
+  /// chunk (vectorised by Eigen), the chunks' sums in double. Throws InvalidArgument on a wrong
+  /// size or a non-finite value.
   struct ScoreGradient {
     double score = 0;
     Eigen::VectorXd gradient;  ///< dim() values
   };
   ScoreGradient scoreGradient(std::span<const double> q) const;
+  /// The same summed in double over the double support set (the reference, as scoreExact).
+  ScoreGradient scoreGradientExact(std::span<const double> q) const;
   /// The same for every row of q: scores (n) and gradients (n x dim(), row by row).
   struct ScoreGradients {
     Eigen::VectorXd scores;
