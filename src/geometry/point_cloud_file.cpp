@@ -200,7 +200,10 @@ PlyHeader plyHeader(HeaderLines& lines) {
       format = true;
     } else if (w[0] == "element") {
       if (w.size() != 3) lines.fail("expected 'element <name> <count>'");
-      header.elements.push_back({std::string(w[1]), parseCount(w[2], lines, "element count")});
+      PlyElement element;
+      element.name = std::string(w[1]);
+      element.count = parseCount(w[2], lines, "element count");
+      header.elements.push_back(std::move(element));
     } else if (w[0] == "property") {
       if (header.elements.empty()) lines.fail("a property before any element");
       PlyElement& e = header.elements.back();
