@@ -1,5 +1,6 @@
 #include "fastron/experiments/sensed_experiment.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -44,8 +45,11 @@ DepthCamera sensedCamera(const SensedOptions& o) {
 
 /// The points of `cloud` within the arm's reach of the robot's base.
 std::size_t pointsInReach(const PointCloud& cloud, const Scene& scene, double reach) {
-  return croppedToBall(*cloud.cloud, scene.robotBase.translation(), reach + cloud.radius)
-      .points.size();
+  const Eigen::Vector3d base = scene.robotBase.translation();
+  const double within = reach + cloud.radius;
+  return static_cast<std::size_t>(
+      std::count_if(cloud.cloud->points.begin(), cloud.cloud->points.end(),
+                    [&](const Eigen::Vector3d& p) { return (p - base).norm() <= within; }));
 }
 
 const std::vector<std::string> kFrameColumns{
@@ -102,10 +106,13 @@ VerifiedPlan planQuery(const SensedOptions& o, const ProxyCollisionDetector& pro
                        const SceneChecker& onTruth, const JointLimits& limits, std::size_t trial,
                        std::size_t frame, Rng& rng, PlanRows& plans) {
   const auto freeOfBoth = [&] {
-    for (;;) {
-      const Eigen::VectorXd q = uniformIn(limits, rng);
-      if (freeUnder(*onCloud, q) && freeUnder(onTruth, q)) return q;
-    }
+    return sampleFree(
+        *onCloud,
+        [&] {
+          return sampleFree(
+              onTruth, [&] { return uniformIn(limits, rng); }, "end");
+        },
+        "end free of the boxes and of the cloud");
   };
   const Eigen::VectorXd start = freeOfBoth(), goal = freeOfBoth();
   const PlannerOptions options = plannerOptions(o, PlannerType::RrtConnect);

@@ -45,7 +45,12 @@ CloudPoints voxelDownsample(std::span<const Eigen::Vector3d> points, double voxe
   std::vector<Eigen::Vector3d> sums;
   std::vector<std::uint32_t> counts;
   const double inverse = 1 / voxel;
-  for (const Eigen::Vector3d& p : points) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d& p = points[i];
+    // A NaN point would otherwise read as one more than 2^20 voxels away.
+    if (!p.allFinite())
+      throw InvalidArgument("voxelDownsample: point " + std::to_string(i) + " of " + source +
+                            " is not finite");
     const std::uint64_t key = voxelKey(p, inverse);
     std::size_t slot = (key * 0x9E3779B97F4A7C15ULL) >> 20 & (slots - 1);
     while (keys[slot] != kEmpty && keys[slot] != key) slot = (slot + 1) & (slots - 1);

@@ -65,7 +65,6 @@ class HeaderLines {
     throw FileError(where() + ": " + message);
   }
   std::string_view rest() const { return bytes_.substr(position_); }
-  std::size_t lineNumber() const { return line_; }
 
  private:
   std::string_view bytes_;
@@ -110,40 +109,26 @@ struct ScalarType {
   std::size_t size = 4;
 };
 
+/// The little-endian scalar of type T at p, as a double.
+template <class T>
+double scalarAt(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return static_cast<double>(v);
+}
+
 double readScalar(const char* p, ScalarType type) {
   switch (type.kind) {
-    case 'f': {
-      if (type.size == 8) {
-        double v;
-        std::memcpy(&v, p, 8);
-        return v;
-      }
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case 'i': {
-      if (type.size == 1) return static_cast<std::int8_t>(*p);
-      if (type.size == 2) {
-        std::int16_t v;
-        std::memcpy(&v, p, 2);
-        return v;
-      }
-      std::int32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    default: {
-      if (type.size == 1) return static_cast<std::uint8_t>(*p);
-      if (type.size == 2) {
-        std::uint16_t v;
-        std::memcpy(&v, p, 2);
-        return v;
-      }
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
+    case 'f':
+      return type.size == 8 ? scalarAt<double>(p) : scalarAt<float>(p);
+    case 'i':
+      return type.size == 1   ? scalarAt<std::int8_t>(p)
+             : type.size == 2 ? scalarAt<std::int16_t>(p)
+                              : scalarAt<std::int32_t>(p);
+    default:
+      return type.size == 1   ? scalarAt<std::uint8_t>(p)
+             : type.size == 2 ? scalarAt<std::uint16_t>(p)
+                              : scalarAt<std::uint32_t>(p);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/model.h"
+#include "finite_differences.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -20,21 +21,6 @@ Model randomModel(std::size_t dim, Kernel kernel, std::uint64_t seed) {
   Eigen::VectorXd weights(support.rows());
   for (auto& w : weights) w = weight(rng);
   return Model(FeatureMap::jointScaling(JointLimits::unitBox(dim)), kernel, support, weights);
-}
-
-/// Central differences of scoreExact, step h.
-Eigen::VectorXd centralDifferences(const Model& model, Eigen::VectorXd q, double h) {
-  Eigen::VectorXd g(q.size());
-  for (Eigen::Index j = 0; j < q.size(); ++j) {
-    const double keep = q[j];
-    q[j] = keep + h;
-    const double plus = model.scoreExact(q.data());
-    q[j] = keep - h;
-    const double minus = model.scoreExact(q.data());
-    q[j] = keep;
-    g[j] = (plus - minus) / (2 * h);
-  }
-  return g;
 }
 
 struct KernelCase {
@@ -59,7 +45,8 @@ TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernelOnBothPaths) {
       EXPECT_NEAR(exact.score, model.scoreExact(row.data()), 1e-12);
       // Step 1e-5: the differences' own error (h^2 times the third derivative) is far below the
       // tolerance.
-      const Eigen::VectorXd numeric = centralDifferences(model, row, 1e-5);
+      const Eigen::VectorXd numeric =
+          test::centralDifferences([&](const double* x) { return model.scoreExact(x); }, row, 1e-5);
       const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
       ASSERT_LE((exact.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
           << "kernel " << static_cast<int>(c.type) << " block " << c.block << " row " << i;

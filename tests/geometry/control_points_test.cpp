@@ -24,6 +24,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
 #include "fastron/proxy/labelling.h"
+#include "finite_differences.h"
 #include "simd_path_guard.h"
 #include "temp_dir.h"
 #include "test_worlds.h"
@@ -212,16 +213,8 @@ TEST(TaskSpaceFeatures, ScoreGradientsAgreeWithCentralDifferences) {
       Eigen::VectorXd row = q.row(i);
       const Model::ScoreGradient analytic = model.scoreGradientExact({row.data(), baxter.dof()});
       const Model::ScoreGradient fast = model.scoreGradient({row.data(), baxter.dof()});
-      Eigen::VectorXd numeric(row.size());
-      for (Eigen::Index j = 0; j < row.size(); ++j) {
-        const double h = 1e-6, keep = row[j];
-        row[j] = keep + h;
-        const double plus = model.scoreExact(row.data());
-        row[j] = keep - h;
-        const double minus = model.scoreExact(row.data());
-        row[j] = keep;
-        numeric[j] = (plus - minus) / (2 * h);
-      }
+      const Eigen::VectorXd numeric =
+          test::centralDifferences([&](const double* x) { return model.scoreExact(x); }, row, 1e-6);
       const double scale = std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-3);
       ASSERT_LE((analytic.gradient - numeric).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
           << "kernel block " << kernel.block << " row " << i;

@@ -199,6 +199,9 @@ TEST(VoxelDownsample, EveryPointLiesNearAKeptPoint) {
   EXPECT_EQ(voxelDownsample(cloud, 0).points.size(), cloud.points.size());
   EXPECT_THROW((void)voxelDownsample(cloud, -1), InvalidArgument);
   EXPECT_THROW((void)voxelDownsample(cloud, 1e-9), InvalidArgument);  // 2^20 voxels away
+  cloud.points[7].y() = std::nan("");
+  EXPECT_THAT([&] { (void)voxelDownsample(cloud, voxel); },
+              ::testing::ThrowsMessage<InvalidArgument>(HasSubstr("point 7")));
 }
 
 class SensedSceneFiles : public test::TempDir {};
