@@ -32,7 +32,8 @@ int main() {
   goal << 1.2, 0.3, 0.0, 1.2, 0.0, 0.5, 0.0;
   const fastron::PlannerOptions options{.type = fastron::PlannerType::RrtConnect,
                                         .resolution = 0.03,  // rad between checked states
-                                        .timeLimit = 5};
+                                        .timeLimit = 5,
+                                        .verify = {}};
   const fastron::VerifiedPlan plan =
       fastron::planVerified(proxy.calibratedModel(), fcl, limits, start, goal, options);
   if (!plan.solved()) {

@@ -310,6 +310,39 @@ def plot_sensed(rows, out):
     fig.savefig(out / "sensed.png", dpi=110)
 
 
+def plot_optimize(rows, out):
+    """The model's score along each path before (the straight line) and after optimising, and the
+    times and lengths of the optimiser against RRT-Connect."""
+    fig, (left, right) = plt.subplots(1, 2, figsize=(13, 4.8))
+    scores = read(out / "scores.csv") if (out / "scores.csv").exists() else []
+    trials = sorted({int(r["trial"]) for r in scores})[:4]
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, trial in enumerate(trials):
+        for which, style in (("before", ":"), ("after", "-")):
+            path = [r for r in scores if int(r["trial"]) == trial and r["path"] == which]
+            left.plot([number(r["s"]) for r in path], [number(r["score"]) for r in path],
+                      ls=style, color=colours[k % len(colours)],
+                      label=f"query {trial}, {'straight line' if which == 'before' else 'optimised'}")
+    left.axhline(0, color="black", lw=0.8)
+    left.set_xlabel("share of the path's length")
+    left.set_ylabel("model score f (> 0: collision)")
+    left.set_title("The score along the path, before and after optimising")
+    left.legend(fontsize=7, ncol=2)
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    solved = [[r for r in rows if r["method"] == m and r["solved"] == "1"] for m in methods]
+    times = [[number(r["time_ms"]) for r in group] for group in solved]
+    right.boxplot(times, labels=[f"{m}\n{len(g)} solved" for m, g in zip(methods, solved)])
+    right.set_yscale("log")
+    right.set_ylabel("time to an FCL-valid path (ms)")
+    twin = right.twinx()
+    twin.plot(range(1, len(methods) + 1), [np.median([number(r["length"]) for r in g]) if g else np.nan
+                                          for g in solved], "o", color="tab:red")
+    twin.set_ylabel("median path length (rad)", color="tab:red")
+    right.set_title("Baxter, three boxes: optimiser against RRT-Connect")
+    fig.tight_layout()
+    fig.savefig(out / "optimize.png", dpi=110)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -334,6 +367,8 @@ def main():
         plot_surgical(rows, out)
     elif name == "sensed":
         plot_sensed(rows, out)
+    elif name == "optimize":
+        plot_optimize(rows, out)
     elif name == "motion-bench":
         plot_single_planner(rows, out, "motion-bench", "MoveIt problems, RRT-Connect: time to a valid plan", "problem")
     else:

@@ -108,6 +108,10 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
   cmd.add_flag("--learn-from-verification", o.settings.learnFromVerification,
                "motion-bench: between a scene's queries, the paper's model learns the exact "
                "answers of the last plan's verification and repair that it got wrong");
+  cmd.add_flag("--gradient-repair", o.settings.gradientRepair,
+               "motion-bench, optimize: before replanning a colliding stretch, the default "
+               "method's model learns its exact answers and pushes it out along the gradient of "
+               "its collision cost");
   cmd.add_flag("--self-model", o.settings.selfModel,
                "motion-bench with --self-collision: also plan on a self-collision model learned "
                "once for the robot beside each scene's obstacle model (method 'Fastron split')");

@@ -261,6 +261,7 @@ class VerifiedPlan:
     repair_seconds: float
     total_seconds: float
     invalid_stretches: int
+    gradient_repairs: int
     relearned: int
     whole_path_replanned: bool
     attempts: list[tuple[str, str, float, int]]
@@ -283,7 +284,41 @@ def plan_verified(approximate: Union[Source, ProxyCollisionDetector], exact: Col
                   approximate_share: float = 0.1, model_share: Optional[float] = None,
                   substitute_share: float = 0.002, stretch_share: float = 0.02,
                   enclosed_after: int = 256, hybrid_range: Optional[float] = None,
-                  oracle_relaxes_exact: bool = False) -> VerifiedPlan: ...
+                  oracle_relaxes_exact: bool = False,
+                  gradient_repair: bool = False) -> VerifiedPlan: ...
+
+class OptimizedTrajectory:
+    path: npt.NDArray[np.float64]
+    free_on_model: bool
+    iterations: int
+    costs: list[float]
+    seconds: float
+
+class VerifiedTrajectory:
+    status: str
+    solved: bool
+    failure: str
+    path: npt.NDArray[np.float64]
+    rounds: int
+    iterations: int
+    optimize_seconds: float
+    verify_seconds: float
+    learn_seconds: float
+    costs: list[float]
+
+def path_collision_cost(model: Model, path: ArrayLike, *, margin: float = 1.0
+                        ) -> tuple[float, npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def straight_path(start: ArrayLike, goal: ArrayLike, *, spacing: float = 0.05
+                  ) -> npt.NDArray[np.float64]: ...
+def optimize_trajectory(model: Model, path: ArrayLike, *, margin: float = 1.0,
+                        max_step: float = 0.03, smoothing: float = 0.005,
+                        max_iterations: int = 400, model_resolution: float = 0.06
+                        ) -> OptimizedTrajectory: ...
+def optimize_verified(detector: ProxyCollisionDetector, exact: CollisionChecker, start: ArrayLike,
+                      goal: ArrayLike, *, resolution: float = 0.02, spacing: float = 0.05,
+                      margin: float = 1.0, max_step: float = 0.03, smoothing: float = 0.005,
+                      max_iterations: int = 400, model_resolution: float = 0.06,
+                      rounds: int = 4) -> VerifiedTrajectory: ...
 def train_scene_model(robot: Robot, scene: Scene, features: Optional[FeatureMap] = None, *,
                       samples: int = 2000, updates: int = 1, seed: int = 1,
                       gamma: Optional[float] = None, beta: Optional[float] = None,

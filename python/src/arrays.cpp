@@ -108,6 +108,22 @@ py::array_t<double> newArray(std::size_t rows, std::size_t cols) {
   return py::array_t<double>({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
 }
 
+py::array_t<double> pathArray(const std::vector<Eigen::VectorXd>& path, std::size_t dim) {
+  py::array_t<double> out = newArray(path.size(), dim);
+  for (std::size_t i = 0; i < path.size(); ++i)
+    std::copy(path[i].data(), path[i].data() + dim, out.mutable_data() + i * dim);
+  return out;
+}
+
+std::vector<Eigen::VectorXd> pathOf(py::handle waypoints, std::size_t dim, const char* name) {
+  const ConfigurationRows rows = configurations(waypoints, dim, name, false);
+  std::vector<Eigen::VectorXd> path;
+  for (std::size_t i = 0; i < rows.rows; ++i)
+    path.emplace_back(Eigen::Map<const Eigen::VectorXd>(rows.data + i * rows.cols,
+                                                        static_cast<Eigen::Index>(rows.cols)));
+  return path;
+}
+
 py::array_t<double> toArray(const std::vector<double>& v) {
   return toArray(Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
 }

@@ -74,6 +74,12 @@ py::array readOnlyView(const Eigen::PlainObjectBase<Derived>& m, py::handle owne
   return view;
 }
 
+/// A path of waypoints (planning/motion.h's JointPath) as a (k, d) array.
+py::array_t<double> pathArray(const std::vector<Eigen::VectorXd>& path, std::size_t dim);
+/// Waypoints (k, d) as a path of `dim` joint values each (dim 0: any); errors as configurations'.
+std::vector<Eigen::VectorXd> pathOf(py::handle waypoints, std::size_t dim,
+                                    const char* name = "path");
+
 /// The Python type name of `value`, for messages.
 std::string typeName(py::handle value);
 

@@ -12,6 +12,7 @@ void bindGeometry(pybind11::module_& m);
 void bindSceneCheckers(pybind11::module_& m);
 void bindProxy(pybind11::module_& m);
 void bindPlanning(pybind11::module_& m);
+void bindTrajectories(pybind11::module_& m);
 void bindPipeline(pybind11::module_& m);
 
 }  // namespace fastron::python

@@ -17,5 +17,6 @@ PYBIND11_MODULE(_fastron, m) {
   fastron::python::bindSceneCheckers(m);
   fastron::python::bindProxy(m);
   fastron::python::bindPlanning(m);
+  fastron::python::bindTrajectories(m);
   fastron::python::bindPipeline(m);
 }

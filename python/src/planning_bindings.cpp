@@ -41,7 +41,7 @@ struct PipelineSettings {
   unsigned learningRounds;
   bool learns;  ///< planVerifiedLearning plans: static_scene, or learning_rounds > 0
   std::optional<double> modelShare, hybridRange;
-  bool oracleRelaxesExact;
+  bool oracleRelaxesExact, gradientRepair;
 };
 
 /// Sets `settings` on `options`; throws InvalidArgument naming a setting that only a detector's
@@ -52,10 +52,10 @@ void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
   options.verify.stretchShare = settings.stretchShare;
   options.enclosedAfter = settings.enclosedAfter;
   options.verify.learningRounds = settings.learningRounds;
-  for (const auto& [given, name] :
-       {std::pair{settings.modelShare.has_value(), "model_share"},
-        std::pair{settings.hybridRange.has_value(), "hybrid_range"},
-        std::pair{settings.oracleRelaxesExact, "oracle_relaxes_exact"}}) {
+  for (const auto& [given, name] : {std::pair{settings.modelShare.has_value(), "model_share"},
+                                    std::pair{settings.hybridRange.has_value(), "hybrid_range"},
+                                    std::pair{settings.oracleRelaxesExact, "oracle_relaxes_exact"},
+                                    std::pair{settings.gradientRepair, "gradient_repair"}}) {
     if (given && !settings.learns) {
       throw InvalidArgument(std::string(name) +
                             ": only a ProxyCollisionDetector's plan in a static scene reads it "
@@ -65,6 +65,7 @@ void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
   if (settings.modelShare) options.verify.modelShare = *settings.modelShare;
   if (settings.hybridRange) options.verify.hybridRange = *settings.hybridRange;
   options.verify.oracleRelaxesExact = settings.oracleRelaxesExact;
+  options.verify.gradientRepair = settings.gradientRepair;
   validate(options);
 }
 
@@ -89,22 +90,6 @@ CollisionSource sourceOf(py::handle source) {
   throw InvalidArgument("source: expected a Model or a CollisionChecker, got " + typeName(source));
 }
 
-py::array_t<double> pathArray(const JointPath& path, std::size_t dim) {
-  py::array_t<double> out = newArray(path.size(), dim);
-  for (std::size_t i = 0; i < path.size(); ++i)
-    std::copy(path[i].data(), path[i].data() + dim, out.mutable_data() + i * dim);
-  return out;
-}
-
-JointPath pathOf(py::handle waypoints, std::size_t dim) {
-  const ConfigurationRows rows = configurations(waypoints, dim, "path", false);
-  JointPath path;
-  for (std::size_t i = 0; i < rows.rows; ++i)
-    path.emplace_back(
-        Eigen::Map<const Eigen::VectorXd>(rows.data + i * dim, static_cast<Eigen::Index>(dim)));
-  return path;
-}
-
 /// What a plan returns to Python: the path as an (k, d) array beside the report.
 struct PythonPlan {
   std::string status;
@@ -116,7 +101,7 @@ struct PythonVerifiedPlan {
   std::string status, failure, plannedOn;
   py::array_t<double> path;
   double planSeconds = 0, verifySeconds = 0, repairSeconds = 0;
-  std::size_t invalidStretches = 0, relearned = 0;
+  std::size_t invalidStretches = 0, gradientRepairs = 0, relearned = 0;
   bool wholePathReplanned = false;
   py::array_t<double> exactX;
   py::array_t<std::int8_t> exactY;
@@ -142,6 +127,7 @@ PythonVerifiedPlan toPython(const VerifiedPlan& plan, std::size_t dim) {
           inSeconds(plan.verifyTime),
           inSeconds(plan.repairTime),
           plan.invalidStretches,
+          plan.gradientRepairs,
           plan.relearned,
           plan.wholePathReplanned,
           toArray(plan.exactAnswers.points),
@@ -181,6 +167,8 @@ void bindPlanResults(py::module_& m) {
                                return p.planSeconds + p.verifySeconds + p.repairSeconds;
                              })
       .def_readonly("invalid_stretches", &PythonVerifiedPlan::invalidStretches)
+      .def_readonly("gradient_repairs", &PythonVerifiedPlan::gradientRepairs,
+                    "Of invalid_stretches, those gradient repair freed without replanning.")
       .def_readonly("relearned", &PythonVerifiedPlan::relearned,
                     "Paths on the model that verification found colliding and the detector "
                     "learned from before planning again (learning_rounds).")
@@ -245,7 +233,7 @@ void bindPlanVerified(py::module_& m) {
          double simplifyTime, const std::string& simplification, unsigned learningRounds,
          bool staticScene, double approximateShare, std::optional<double> modelShare,
          double substituteShare, double stretchShare, std::size_t enclosedAfter,
-         std::optional<double> hybridRange, bool oracleRelaxesExact) {
+         std::optional<double> hybridRange, bool oracleRelaxesExact, bool gradientRepair) {
         PlannerOptions options = plannerOptions(planner, range, resolution, modelResolution,
                                                 timeLimit, simplifyTime, simplification);
         const bool learns = staticScene || learningRounds > 0;
@@ -254,9 +242,10 @@ void bindPlanVerified(py::module_& m) {
               std::string(learningRounds > 0 ? "learning_rounds" : "static_scene") +
               ": only a ProxyCollisionDetector learns, got " + typeName(approximate));
         }
-        applyPipeline({approximateShare, substituteShare, stretchShare, enclosedAfter,
-                       learningRounds, learns, modelShare, hybridRange, oracleRelaxesExact},
-                      options);
+        applyPipeline(
+            {approximateShare, substituteShare, stretchShare, enclosedAfter, learningRounds, learns,
+             modelShare, hybridRange, oracleRelaxesExact, gradientRepair},
+            options);
         const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
@@ -290,6 +279,7 @@ void bindPlanVerified(py::module_& m) {
       py::arg("stretch_share") = PlannerOptions{}.verify.stretchShare,
       py::arg("enclosed_after") = PlannerOptions{}.enclosedAfter,
       py::arg("hybrid_range") = py::none(), py::arg("oracle_relaxes_exact") = false,
+      py::arg("gradient_repair") = false,
       "Plans on `approximate` (a Model, a ProxyCollisionDetector's latest model with its band, "
       "or a checker), then verifies every edge with `exact` and replans the stretches that "
       "collide: a solved plan's path never collides under `exact` at `resolution`, whatever "
@@ -300,7 +290,10 @@ void bindPlanVerified(py::module_& m) {
       "oracle with oracle_relaxes_exact=True) about its 'collides', with tree edges of "
       "`hybrid_range`. learning_rounds=N (implies static_scene): when verification finds the "
       "model's path colliding, the detector first learns the answers its model got wrong and "
-      "plans again, up to N times, before repairing. The shares are of `time_limit`: "
+      "plans again, up to N times, before repairing. gradient_repair=True (static_scene): before "
+      "a colliding stretch is replanned, the model learns its exact answers and pushes it out "
+      "along its collision cost's gradient; kept only when `exact` finds it free. The shares are "
+      "of `time_limit`: "
       "docs/planning.md and PlannerOptions in fastron/planning/planner.h.");
 }
 

@@ -47,7 +47,7 @@ Table PlanRows::table() const {
   // clang-format off
   for (const char* column :
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
-        "total_s", "path_length", "waypoints", "stretches", "relearned", "relearn_s", "fallback",
+        "total_s", "path_length", "waypoints", "stretches", "gradient_repairs", "relearned", "relearn_s", "fallback",
         "exact_ends", "collides_fcl", "exact_share", "attempts", "failed_plan_s", "plan_checks",
         "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
@@ -76,6 +76,7 @@ Table PlanRows::table() const {
         cell(o.pathLength),
         std::to_string(o.waypoints),
         std::to_string(o.repairedStretches),
+        std::to_string(o.gradientRepairs),
         std::to_string(o.relearned),
         cell(o.learnSeconds),
         flag(o.wholeMotionReplanned),

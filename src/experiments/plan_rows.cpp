@@ -25,6 +25,7 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   o.totalSeconds = inSeconds(plan.totalTime());
   o.waypoints = plan.path.size();
   o.repairedStretches = plan.invalidStretches;
+  o.gradientRepairs = plan.gradientRepairs;
   o.relearned = plan.relearned;
   o.learnSeconds = inSeconds(plan.learnTime);
   o.wholeMotionReplanned = plan.wholePathReplanned;

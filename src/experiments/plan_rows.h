@@ -134,8 +134,10 @@ PlannerOptions plannerOptions(const auto& o, PlannerType type) {
                          .modelResolution = o.modelResolution,
                          .timeLimit = o.timeLimit,
                          .simplifyTime = o.simplifyTime,
-                         .simplification = o.simplification};
+                         .simplification = o.simplification,
+                         .verify = {}};
   if constexpr (requires { o.range; }) options.range = o.range;  // where an experiment has one
+  if constexpr (requires { o.gradientRepair; }) options.verify.gradientRepair = o.gradientRepair;
   return options;
 }
 

@@ -9,6 +9,7 @@
 #include "fastron/experiments/shelf_experiment.h"
 #include "fastron/experiments/static_experiment.h"
 #include "fastron/experiments/surgical_experiment.h"
+#include "fastron/experiments/trajectory_experiment.h"
 
 namespace fastron::experiments {
 namespace {
@@ -35,6 +36,7 @@ void applyPlanning(const ExperimentSettings& s, Options& options) {
   if (s.modelResolution > 0) options.modelResolution = s.modelResolution;
   if (s.simplifyTime >= 0) options.simplifyTime = s.simplifyTime;
   if (s.simplification) options.simplification = *s.simplification;
+  if constexpr (requires { options.gradientRepair; }) options.gradientRepair = s.gradientRepair;
 }
 
 const std::vector<std::string> kPlanningSettings{
@@ -191,36 +193,51 @@ void addPlanningExperiments(std::vector<Experiment>& all) {
                                             {"path.csv", std::move(r.path)}},
                                            std::move(report)};
                  }});
-  all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
-                 planningAnd({"problems", "robot", "package-path", "srdf", "range",
-                              "self-collision", "dense-checks", "self-model", "queries-per-scene",
-                              "learn-from-verification", "samples", "updates", "gamma", "beta"}),
+  all.push_back({"optimize",
+                 "Baxter among three moving boxes: CHOMP-style optimisation on the model's "
+                 "collision cost from a colliding straight line, against RRT-Connect on FCL and on "
+                 "the model",
+                 planningAnd({"gradient-repair"}),
                  [](const ExperimentSettings& s, const Progress& progress) {
-                   if (s.problems.empty()) {
-                     throw InvalidArgument(
-                         "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
-                         "requestNNNN.yaml files)");
-                   }
-                   MotionBenchOptions o;
+                   TrajectoryExperimentOptions o;
                    applyPlanning(s, o);
-                   o.problems = s.problems;
-                   o.robot = s.robot;
-                   o.packagePaths = s.packagePaths;
-                   o.srdf = s.srdf;
-                   o.resultsFile = s.resultsFile;
-                   o.range = s.range;
-                   o.selfCollision = s.selfCollision;
-                   o.denseChecks = s.denseChecks;
-                   o.queriesPerScene = s.queriesPerScene;
-                   o.selfModel = s.selfModel;
-                   o.learnFromVerification = s.learnFromVerification;
-                   o.trainingPoints = s.samples;
-                   o.updates = s.updates;
-                   if (s.gamma > 0) o.gamma = s.gamma;
-                   if (s.beta > 0) o.beta = s.beta;
-                   const PlanRows plans = runMotionBench(o, progress);
-                   return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
+                   o.trials = trialsOr(s, 10);
+                   TrajectoryResults r = runTrajectories(o, progress);
+                   std::string report = trajectoryReport(r, o);
+                   return ExperimentOutput{
+                       std::move(r.results), {{"scores.csv", std::move(r.scores)}}, report};
                  }});
+  all.push_back(
+      {"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
+       planningAnd({"problems", "robot", "package-path", "srdf", "range", "self-collision",
+                    "dense-checks", "self-model", "queries-per-scene", "learn-from-verification",
+                    "samples", "updates", "gamma", "beta", "gradient-repair"}),
+       [](const ExperimentSettings& s, const Progress& progress) {
+         if (s.problems.empty()) {
+           throw InvalidArgument(
+               "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
+               "requestNNNN.yaml files)");
+         }
+         MotionBenchOptions o;
+         applyPlanning(s, o);
+         o.problems = s.problems;
+         o.robot = s.robot;
+         o.packagePaths = s.packagePaths;
+         o.srdf = s.srdf;
+         o.resultsFile = s.resultsFile;
+         o.range = s.range;
+         o.selfCollision = s.selfCollision;
+         o.denseChecks = s.denseChecks;
+         o.queriesPerScene = s.queriesPerScene;
+         o.selfModel = s.selfModel;
+         o.learnFromVerification = s.learnFromVerification;
+         o.trainingPoints = s.samples;
+         o.updates = s.updates;
+         if (s.gamma > 0) o.gamma = s.gamma;
+         if (s.beta > 0) o.beta = s.beta;
+         const PlanRows plans = runMotionBench(o, progress);
+         return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
+       }});
 }
 
 std::vector<Experiment> makeRegistry() {

@@ -12,6 +12,7 @@
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
 #include "fastron/experiments/random_scenes.h"
+#include "fastron/experiments/statistics.h"
 #include "fastron/experiments/timing.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"

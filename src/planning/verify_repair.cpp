@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <random>
@@ -13,6 +14,7 @@
 #include "fastron/core/recording_checker.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/parallel_check.h"
+#include "fastron/planning/trajectory_optimization.h"
 
 namespace fastron {
 namespace {
@@ -136,6 +138,16 @@ PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path
   return result;
 }
 
+/// The waypoints that replace a colliding stretch; `pushed` when gradient repair made them.
+struct Bridge {
+  JointPath waypoints;
+  bool pushed = false;
+};
+
+/// Gradient repair: a path between the ends of a stretch (given as its first free state, its
+/// waypoints and its last free state) that a model finds free, or nothing.
+using StretchPush = std::function<std::optional<JointPath>(const JointPath& stretch)>;
+
 /// The waypoints that replace the colliding stretch between waypoints i and j of `old` (after
 /// old[i], up to old[j]), or nothing when no bridge is found in the time given. The bridge joins
 /// the free states next to the stretch's first and last collisions, not its waypoints: a
@@ -144,16 +156,36 @@ PathCheck checkNotKnownFree(const CollisionChecker& exact, const JointPath& path
 /// without smoothing (on the mesh Panda, smoothing took two thirds of a repair and the final paths
 /// were as long without it). It is planned on `relaxed` when given, unless that finds the stretch's
 /// first collision free (the robot against itself, when it checks the obstacles alone): its bridge
-/// would keep that collision for the next round to bridge again.
-std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std::size_t j,
-                                       const std::shared_ptr<const CollisionChecker>& relaxed,
-                                       const std::shared_ptr<const CollisionChecker>& exact,
-                                       const JointLimits& limits, const PlannerOptions& options) {
+/// would keep that collision for the next round to bridge again. With `push` (gradient repair), the
+/// stretch from the first free state to the last, through its waypoints, is first pushed out of
+/// collision on a model, and that path is kept when `exact` finds it free.
+std::optional<Bridge> bridgeStretch(const JointPath& old, std::size_t i, std::size_t j,
+                                    const std::shared_ptr<const CollisionChecker>& relaxed,
+                                    const std::shared_ptr<const CollisionChecker>& exact,
+                                    const JointLimits& limits, const PlannerOptions& options,
+                                    const StretchPush& push) {
   const FirstCollisionToward entry =
       firstCollisionToward(exact, old[i], old[i + 1], options.resolution);
   const Eigen::VectorXd& from = entry.lastFree;
   const Eigen::VectorXd to =
       firstCollisionToward(exact, old[j], old[j - 1], options.resolution).lastFree;
+  // Joins `bridge` (from `from` to `to`) to the waypoints kept on either side.
+  const auto spliced = [&](const JointPath& bridge) {
+    Bridge out;
+    if (!from.isApprox(old[i])) out.waypoints.push_back(from);
+    out.waypoints.insert(out.waypoints.end(), bridge.begin() + 1, bridge.end());
+    if (!to.isApprox(old[j])) out.waypoints.push_back(old[j]);
+    return out;
+  };
+  if (push) {
+    // From the waypoints kept on either side: the free states next to the collisions lie on
+    // the obstacle's surface, where a model's smooth boundary may still say "collides".
+    JointPath stretch(old.begin() + static_cast<std::ptrdiff_t>(i),
+                      old.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+    const std::optional<JointPath> pushed = push(stretch);
+    if (pushed && checkPathParallel(*exact, *pushed, options.resolution).valid())
+      return Bridge{JointPath(pushed->begin() + 1, pushed->end()), true};
+  }
   const bool relaxedSeesIt = relaxed && !freeUnder(relaxed, entry.colliding);
   const std::shared_ptr<const CollisionChecker>& bridgeChecker = relaxedSeesIt ? relaxed : exact;
   PlannerOptions stretchOptions = options;
@@ -167,11 +199,7 @@ std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std:
                                  to, stretchOptions);
   if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
   if (!bridge.solved()) return std::nullopt;
-  JointPath waypoints;
-  if (!from.isApprox(old[i])) waypoints.push_back(from);
-  waypoints.insert(waypoints.end(), bridge.path.begin() + 1, bridge.path.end());
-  if (!to.isApprox(old[j])) waypoints.push_back(old[j]);
-  return waypoints;
+  return spliced(bridge.path);
 }
 
 /// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it), and
@@ -181,7 +209,8 @@ std::optional<JointPath> bridgeStretch(const JointPath& old, std::size_t i, std:
 VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>& known,
                            const std::shared_ptr<const CollisionChecker>& exact,
                            const JointLimits& limits, const PlannerOptions& options,
-                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr) {
+                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr,
+                           const StretchPush& push = {}) {
   // A stretch repaired on the exact checker is free, so a round after it suffices; one more
   // when the first round's bridges are on a relaxed checker.
   const int rounds = relaxed ? 4 : 3;
@@ -233,8 +262,8 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
       std::size_t j = i + 1;
       while (contains(check.invalidWaypoints, j)) ++j;
       ++result.invalidStretches;
-      const std::optional<JointPath> bridge =
-          bridgeStretch(old, i, j, round == 0 ? relaxed : nullptr, exact, limits, options);
+      const std::optional<Bridge> bridge =
+          bridgeStretch(old, i, j, round == 0 ? relaxed : nullptr, exact, limits, options, push);
       if (!bridge) {
         const PlanResult whole = planMotion(exact, limits, old.front(), old.back(), options);
         if (!whole.solved()) {
@@ -250,7 +279,8 @@ VerifiedPlan repairChecked(const JointPath& path, const std::optional<PathCheck>
         result.wholePathReplanned = true;
         break;
       }
-      std::for_each(bridge->begin(), bridge->end(), addNew);
+      std::for_each(bridge->waypoints.begin(), bridge->waypoints.end(), addNew);
+      result.gradientRepairs += bridge->pushed ? 1 : 0;
       i = j;
     }
     result.path = std::move(repaired);
@@ -327,7 +357,8 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
                            const JointLimits& limits, const Eigen::VectorXd& start,
                            const Eigen::VectorXd& goal, const PlannerOptions& options,
                            const PlannerOptions& chainOptions,
-                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr) {
+                           const std::shared_ptr<const CollisionChecker>& relaxed = nullptr,
+                           const StretchPush& push = {}) {
   std::chrono::nanoseconds planTime{0};
   bool substituteEnds = false;
   std::vector<PlanAttempt> attempts;
@@ -339,7 +370,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
     attempts.push_back(attemptOf(sourceName(source), attempt.plan, attempt.substituteEnds));
     if (attempt.plan.solved()) {
       VerifiedPlan result =
-          repairChecked(attempt.plan.path, std::nullopt, exact, limits, options, relaxed);
+          repairChecked(attempt.plan.path, std::nullopt, exact, limits, options, relaxed, push);
       result.attempts = std::move(attempts);
       result.planTime = planTime;
       result.simplifyTime = attempt.plan.simplifyTime;
@@ -470,12 +501,40 @@ VerifiedPlan planOnOptimisticHybrid(const std::shared_ptr<const Model>& model,
                                     const std::shared_ptr<RecordingChecker>& recorder,
                                     const std::shared_ptr<const CollisionChecker>& relaxed,
                                     const JointLimits& limits, const Eigen::VectorXd& start,
-                                    const Eigen::VectorXd& goal, const PlannerOptions& options) {
+                                    const Eigen::VectorXd& goal, const PlannerOptions& options,
+                                    const StretchPush& push) {
   const std::vector<CollisionSource> optimistic{
       std::make_shared<HybridChecker>(model, relaxed ? relaxed : recorder, kAskEveryCollision)};
   PlannerOptions hybridOptions = options;
   hybridOptions.range = optimisticHybridRange(options, limits);
-  return planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed);
+  return planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed,
+                       push);
+}
+
+/// Gradient repair's push for planVerifiedLearning: the model learns the stretch's exact labels
+/// (its states at the model's step, asked here of `recorder`: verification labels only the states
+/// up to each edge's first collision) and every other exact answer it got wrong so far (kept in
+/// `answers`), then pushes the stretch out of its collisions (nothing when it stays in them). No
+/// push (an empty function) unless options.verify.gradientRepair.
+StretchPush gradientPush(ProxyCollisionDetector& proxy,
+                         const std::shared_ptr<RecordingChecker>& recorder, Dataset& answers,
+                         const JointLimits& limits, const PlannerOptions& options) {
+  if (!options.verify.gradientRepair) return {};
+  return [&proxy, recorder, &answers, limits, pushOptions = gradientRepairOptions(options)](
+             const JointPath& stretch) -> std::optional<JointPath> {
+    (void)recorder->inCollisionBatch(statesAlongPath(stretch, pushOptions.modelResolution));
+    const Dataset recorded = recorder->take();
+    const Dataset missed = answersMissedBy(*proxy.model(), recorded);
+    append(answers, recorded);
+    if (missed.size() > 0) {
+      proxy.addObservations(missed);
+      proxy.learnObservations();
+    }
+    OptimizedTrajectory pushed = optimizeTrajectory(
+        *proxy.model(), limits, densePath(stretch, pushOptions.spacing), pushOptions);
+    if (!pushed.freeOnModel) return std::nullopt;
+    return std::move(pushed.path);
+  };
 }
 
 VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
@@ -493,9 +552,10 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
   roundOptions.verify.approximateShare =
       std::min(options.verify.approximateShare, options.verify.modelShare);
   const std::shared_ptr<const CountedChecker> relaxed = relaxedOracle(proxy, exact, options);
+  const StretchPush push = gradientPush(proxy, recorder, rounds.answers, limits, options);
   // Repairs `path` (its first check given when known), as planVerified does.
   const auto repair = [&](const JointPath& path, const std::optional<PathCheck>& check) {
-    VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options, relaxed);
+    VerifiedPlan repaired = repairChecked(path, check, recorder, limits, options, relaxed, push);
     repaired.plannedOn = repaired.wholePathReplanned ? exact->name() : sourceName(proxy.model());
     return repaired;
   };
@@ -514,7 +574,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
       break;
     }
     if (!attempt.plan.solved()) {
-      result = planOnOptimisticHybrid(model, recorder, relaxed, limits, start, goal, options);
+      result = planOnOptimisticHybrid(model, recorder, relaxed, limits, start, goal, options, push);
       break;
     }
     if (round == options.verify.learningRounds) {

@@ -40,6 +40,8 @@ struct MotionBenchOptions {
   /// the last plan's verification and repair that it got wrong
   /// (ProxyCollisionDetector::learnObservations: the scene stands still, so no oracle call).
   bool learnFromVerification = false;
+  /// The default method's repairs try gradient repair first (VerifyRepairOptions::gradientRepair).
+  bool gradientRepair = false;
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
   /// Where the self-collision model is kept and found again (pipeline::SelfModelOptions;
   /// empty: pipeline::defaultCacheDirectory()).

@@ -28,6 +28,7 @@ struct PlanOutcome {
   double pathLength = std::nan("");  ///< joint space; NaN unless solved
   std::size_t waypoints = 0;
   std::size_t repairedStretches = 0;
+  std::size_t gradientRepairs = 0;  ///< of those, freed by gradient repair (no replanning)
   /// plans on the model that verification found colliding and the model learned from before
   /// planning again (planVerifiedLearning)
   std::size_t relearned = 0;

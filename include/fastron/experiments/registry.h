@@ -47,6 +47,7 @@ struct ExperimentSettings {
   std::size_t queriesPerScene = 1;
   bool selfModel = false;
   bool learnFromVerification = false;
+  bool gradientRepair = false;  ///< motion-bench, optimize: VerifyRepairOptions::gradientRepair
   std::optional<std::size_t> samples, updates;  ///< motion-bench: each scene's training
   /// Where a long batch run (motion-bench) writes its rows so far, in results.csv's format, so
   /// that an interrupted run leaves them (empty: nowhere).

@@ -73,6 +73,11 @@ struct VerifyRepairOptions {
   /// round plans its bridges on it. Any other oracle could close what the exact checker leaves
   /// open.
   bool oracleRelaxesExact = false;
+  /// planVerifiedLearning: before a colliding stretch is replanned, the model learns the exact
+  /// answers it got wrong, pushes the stretch out along its collision cost's gradient
+  /// (optimizeTrajectory, gradientRepairOptions) and the result is kept when the exact checker
+  /// finds it free (docs/planning.md, "Gradient repair").
+  bool gradientRepair = false;
   /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
   /// 0: half the planner's range (optimisticHybridRange).
   double hybridRange = 0;

@@ -40,6 +40,9 @@ struct VerifiedPlan {
   std::chrono::nanoseconds verifyTime{0};  ///< exact checks of the plan, and of the repaired path
   std::chrono::nanoseconds repairTime{0};  ///< replanning of the invalid stretches
   std::size_t invalidStretches = 0;        ///< stretches cut out and replanned
+  /// of invalidStretches: those that gradient repair (options.verify.gradientRepair) freed
+  /// without replanning
+  std::size_t gradientRepairs = 0;
   /// planVerifiedLearning: plans on the model that verification found colliding, after each of
   /// which the model learned and planned again
   std::size_t relearned = 0;
