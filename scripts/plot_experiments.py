@@ -326,7 +326,7 @@ def plot_optimize(rows, out):
     left.axhline(0, color="black", lw=0.8)
     left.set_xlabel("share of the path's length")
     left.set_ylabel("model score f (> 0: collision)")
-    left.set_title("The score along the path, before and after optimising")
+    left.set_title("The score along the path, before and after optimising\n(on the model after the query)")
     left.legend(fontsize=7, ncol=2)
     methods = list(dict.fromkeys(r["method"] for r in rows))
     solved = [[r for r in rows if r["method"] == m and r["solved"] == "1"] for m in methods]

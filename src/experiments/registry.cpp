@@ -201,7 +201,7 @@ void addPlanningExperiments(std::vector<Experiment>& all) {
                  [](const ExperimentSettings& s, const Progress& progress) {
                    TrajectoryExperimentOptions o;
                    applyPlanning(s, o);
-                   o.trials = trialsOr(s, 10);
+                   o.trials = s.trials != 0 ? s.trials : (s.quick ? 3 : 10);
                    TrajectoryResults r = runTrajectories(o, progress);
                    std::string report = trajectoryReport(r, o);
                    return ExperimentOutput{

@@ -224,6 +224,25 @@ def main():
         scene = list(csv.DictReader(open(out / "scene.csv", newline="")))
         if len(scene) < 1000:
             fail("scene.csv holds too few of the cloud's points for a picture")
+    elif name == "optimize":
+        rate_columns(rows, ["accuracy", "tpr"])
+        if {r["method"] for r in rows} != {"Optimizer", "FCL", "Fastron"}:
+            fail(f"methods {sorted({r['method'] for r in rows})}")
+        for r in rows:
+            # Verified every 0.03 rad, a path may graze between those states: the audit at a
+            # third of the step reports it, for every method alike.
+            if r["colliding"] not in ("0", "1") or (r["colliding"] == "1" and r["solved"] != "1"):
+                fail(f"colliding must be 0 or 1, and 1 only for a solved path: {r}")
+            if r["method"] == "Optimizer" and not value(r, "rounds") >= 1:
+                fail(f"the optimiser ran no round: {r}")
+        optimised = [r for r in rows if r["method"] == "Optimizer"]
+        if not any(r["solved"] == "1" for r in optimised):
+            fail("the optimiser solved no query")
+        scores = list(csv.DictReader(open(out / "scores.csv", newline="")))
+        for trial in {r["trial"] for r in optimised if r["solved"] == "1"}:
+            before = [value(s, "score") for s in scores if s["trial"] == trial and s["path"] == "before"]
+            if not before or max(before) <= 0:
+                fail(f"query {trial}: the straight line must cross the model's collisions")
     elif name.startswith("static-"):
         check_sweep(rows, name.split("-")[1])
     else:

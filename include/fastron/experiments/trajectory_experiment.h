@@ -15,7 +15,7 @@
 namespace fastron::experiments {
 
 struct TrajectoryExperimentOptions {
-  std::size_t trials = 10;  ///< queries, each after the boxes moved
+  std::size_t trials = 10;  ///< queries, each after the boxes moved (--quick: 3)
   std::uint64_t seed = 1;
   bool quick = false;
   FeatureKind features = FeatureKind::Kinematic;
