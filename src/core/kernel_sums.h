@@ -27,6 +27,8 @@ struct SupportView {
 
 /// Support points summed per step: one AVX-512 register, two AVX2 or four SSE2 registers.
 inline constexpr std::size_t kSupportLanes = 16;
+/// The most features a gradient sum keeps accumulators for (kMaxFeatureDimension, feature_map.h).
+inline constexpr std::size_t kMaxFeatures = 192;
 /// Queries scored per pass over the support set by `four`.
 inline constexpr std::size_t kQueriesPerPass = 4;
 
@@ -36,6 +38,8 @@ struct KernelSums {
   /// f of four consecutive feature vectors of xs (4 * dim floats), written to out[0..3]; each
   /// score equals `one` of the same vector, bit for bit.
   void (*four)(const SupportView& support, const float* xs, float* out);
+  /// f of one feature vector x and its gradient with respect to x, written to dfdx (dim floats).
+  float (*gradient)(const SupportView& support, const float* x, float* dfdx);
 };
 
 // One namespace per compiled path, defined by kernel_sums_impl.h.

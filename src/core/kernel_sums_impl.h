@@ -200,6 +200,106 @@ float one(const SupportView& s, const float* x) {
                                                  : oneOfKernel<KernelType::Gaussian>(s, x);
 }
 
+/// k(r2) and dk/dr2 of every lane: for the rational quadratic one reciprocal of t serves both
+/// (k = t^-2, k' = -gamma t^-3).
+template <KernelType type>
+inline void kernelAndDerivative(Floats r2, float gamma, Floats& k, Floats& derivative) {
+  if constexpr (type == KernelType::RationalQuadratic) {
+    const Floats inverse = 1.0f / mulAdd(r2, 0.5f * gamma, 1.0f);
+    k = inverse * inverse;
+    derivative = (-gamma * k) * inverse;
+  } else {
+    k = expOfNonPositive(-gamma * r2);
+    derivative = -gamma * k;
+  }
+}
+
+/// f of one feature vector x and its gradient with respect to x (dim floats to dfdx), the kernel
+/// with point terms (B and D as in sumOneOfPoints): d/dx_c of w (W k(whole) + P sum_g k(r2_g)) is
+/// 2 w (W k'(whole) + P k'(r2 of c's block)) (x_c - s_c). Each feature's terms are summed per
+/// lane, as the scores are.
+template <KernelType type, std::size_t D, std::size_t B>
+float gradientOfPoints(const SupportView& s, const float* x, float* dfdx) {
+  const std::size_t dim = D != 0 ? D : s.dim;
+  const std::size_t block = B != 0 ? B : s.block;
+  constexpr std::size_t kFeatures = D != 0 ? D : kMaxFeatures;
+  constexpr std::size_t kBlocks = D != 0 && B != 0 ? D / B : kMaxFeatures;
+  const float twoW = 2 * s.wholeWeight, twoP = 2 * s.pointWeight;
+  Floats wholeSum = {}, pointSum = {}, slopes[kFeatures] = {};  // slopes: sum of coef (s_c - x_c)
+  for (std::size_t b = 0; b < s.padded; b += kWidth) {
+    Floats r2OfBlock[kBlocks], whole = {}, points = {}, k, derivative;
+    for (std::size_t g = 0; g < dim / block; ++g) {
+      Floats r2 = {};
+      for (std::size_t c = g * block; c < (g + 1) * block; ++c) {
+        const Floats d = load(s.soa + c * s.padded + b) - x[c];
+        r2 = mulAdd(d, d, r2);
+      }
+      r2OfBlock[g] = r2;
+      whole += r2;
+    }
+    const Floats w = load(s.weights + b);
+    kernelAndDerivative<type>(whole, s.gamma, k, derivative);
+    wholeSum = mulAdd(w, k, wholeSum);
+    const Floats wholeCoefficient = (twoW * w) * derivative;
+    for (std::size_t g = 0; g < dim / block; ++g) {
+      kernelAndDerivative<type>(r2OfBlock[g], s.gamma, k, derivative);
+      points += k;
+      const Floats coefficient = mulAdd(twoP * w, derivative, wholeCoefficient);
+      for (std::size_t c = g * block; c < (g + 1) * block; ++c)
+        slopes[c] = mulAdd(coefficient, load(s.soa + c * s.padded + b) - x[c], slopes[c]);
+    }
+    pointSum = mulAdd(w, points, pointSum);
+  }
+  for (std::size_t c = 0; c < dim; ++c) dfdx[c] = -laneSum(slopes[c]);
+  return s.wholeWeight * laneSum(wholeSum) + s.pointWeight * laneSum(pointSum);
+}
+
+/// The same for the one-term kernel: d/dx_c of w k(|x - s|^2) is 2 w k'(|x - s|^2) (x_c - s_c).
+template <KernelType type, std::size_t D>
+float gradientOfOne(const SupportView& s, const float* x, float* dfdx) {
+  const std::size_t dim = D != 0 ? D : s.dim;
+  constexpr std::size_t kFeatures = D != 0 ? D : kMaxFeatures;
+  Floats sum = {}, slopes[kFeatures] = {};
+  for (std::size_t b = 0; b < s.padded; b += kWidth) {
+    Floats r2 = {}, k, derivative;
+    for (std::size_t c = 0; c < dim; ++c) {
+      const Floats d = load(s.soa + c * s.padded + b) - x[c];
+      r2 = mulAdd(d, d, r2);
+    }
+    const Floats w = load(s.weights + b);
+    kernelAndDerivative<type>(r2, s.gamma, k, derivative);
+    sum = mulAdd(w, k, sum);
+    const Floats coefficient = (2.0f * w) * derivative;
+    for (std::size_t c = 0; c < dim; ++c)
+      slopes[c] = mulAdd(coefficient, load(s.soa + c * s.padded + b) - x[c], slopes[c]);
+  }
+  for (std::size_t c = 0; c < dim; ++c) dfdx[c] = -laneSum(slopes[c]);
+  return laneSum(sum);
+}
+
+template <KernelType type>
+float gradientOfKernel(const SupportView& s, const float* x, float* dfdx) {
+  if (s.block == 3 && s.dim == 9) return gradientOfPoints<type, 9, 3>(s, x, dfdx);
+  if (s.block == 3 && s.dim == 12) return gradientOfPoints<type, 12, 3>(s, x, dfdx);
+  if (s.block != 0) return gradientOfPoints<type, 0, 0>(s, x, dfdx);
+  switch (s.dim) {
+    case 2:
+      return gradientOfOne<type, 2>(s, x, dfdx);
+    case 7:
+      return gradientOfOne<type, 7>(s, x, dfdx);
+    case 12:
+      return gradientOfOne<type, 12>(s, x, dfdx);
+    default:
+      return gradientOfOne<type, 0>(s, x, dfdx);
+  }
+}
+
+float gradient(const SupportView& s, const float* x, float* dfdx) {
+  return s.type == KernelType::RationalQuadratic
+             ? gradientOfKernel<KernelType::RationalQuadratic>(s, x, dfdx)
+             : gradientOfKernel<KernelType::Gaussian>(s, x, dfdx);
+}
+
 template <KernelType type>
 void fourOfKernel(const SupportView& s, const float* xs, float* out) {
   if (s.block != 0) {
@@ -222,7 +322,7 @@ void four(const SupportView& s, const float* xs, float* out) {
 }  // namespace
 
 namespace FASTRON_SIMD_NAMESPACE {
-const KernelSums kKernelSums{&one, &four};
+const KernelSums kKernelSums{&one, &four, &gradient};
 }
 
 }  // namespace fastron::detail

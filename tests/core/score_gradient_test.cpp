@@ -6,7 +6,9 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/model.h"
+#include "fastron/core/simd.h"
 #include "finite_differences.h"
+#include "simd_path_guard.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -55,6 +57,36 @@ TEST(ScoreGradient, AgreesWithCentralDifferencesForEveryKernelOnBothPaths) {
       EXPECT_NEAR(fast.score, exact.score, 1e-5 * std::max(1.0, std::abs(exact.score)));
       ASSERT_LE((fast.gradient - exact.gradient).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
           << "float path, kernel " << static_cast<int>(c.type) << " block " << c.block;
+    }
+  }
+}
+
+// The kernel sums unroll the shapes of 2-, 7-joint and 3-, 4-point models (kernel_sums_impl.h):
+// every shape, one-term and with point terms, on every SIMD path, agrees with the double sum.
+TEST(ScoreGradient, EveryUnrolledShapeOnEverySimdPathAgreesWithTheDoubleSum) {
+  const test::SimdPathGuard guard;
+  struct Shape {
+    std::size_t dim;
+    std::uint32_t block;
+  };
+  for (const SimdPath path : supportedSimdPaths()) {
+    useSimdPath(path);
+    for (const Shape shape : {Shape{2, 0}, Shape{7, 0}, Shape{12, 0}, Shape{9, 3}, Shape{12, 3},
+                              Shape{5, 0}, Shape{8, 4}}) {
+      for (const KernelType type : {KernelType::RationalQuadratic, KernelType::Gaussian}) {
+        const Model model =
+            randomModel(shape.dim, {type, 4, shape.block, shape.block == 0 ? 0.0 : 0.5}, 21);
+        const Configurations q = test::uniformPoints(10, shape.dim, 22);
+        for (Eigen::Index i = 0; i < q.rows(); ++i) {
+          const Eigen::VectorXd row = q.row(i);
+          const Model::ScoreGradient exact = model.scoreGradientExact({row.data(), shape.dim});
+          const Model::ScoreGradient fast = model.scoreGradient({row.data(), shape.dim});
+          const double scale = std::max(exact.gradient.lpNorm<Eigen::Infinity>(), 1e-3);
+          EXPECT_NEAR(fast.score, exact.score, 1e-5 * std::max(1.0, std::abs(exact.score)));
+          ASSERT_LE((fast.gradient - exact.gradient).lpNorm<Eigen::Infinity>(), 1e-4 * scale)
+              << toString(path) << " dim " << shape.dim << " block " << shape.block;
+        }
+      }
     }
   }
 }

@@ -98,9 +98,9 @@ class Model {
   /// f(q) and its gradient with respect to the joint values: the kernel's derivative in feature
   /// space (every term: the whole vector's and each point's), through the features' Jacobian
   /// (joint scaling's scales, or the control points' Jacobian from forward kinematics, in double).
-  /// Analytic; the kernel terms summed in float over the query copies the scores read, chunk by
-  /// chunk (vectorised by Eigen), the chunks' sums in double. Throws InvalidArgument on a wrong
-  /// size or a non-finite value.
+  /// Analytic; the kernel terms summed in float over the query copies the scores read, in one
+  /// pass on the SIMD path in use (as `score`). Throws InvalidArgument on a wrong size or a
+  /// non-finite value.
   struct ScoreGradient {
     double score = 0;
     Eigen::VectorXd gradient;  ///< dim() values
@@ -127,6 +127,9 @@ class Model {
   /// support feature beyond float range.
   void buildQueryCopies();
 
+  /// f(q) on the float path, and df/dq into `gradient` (dim() values); `jacobian` is scratch of
+  /// featureDim() * dim() values. q is not checked.
+  double scoreGradientInto(const double* q, double* jacobian, double* gradient) const;
   /// The float copies, as the kernel sums of simd.h read them.
   detail::SupportView supportView() const;
   float scoreInputFloat(const float* x) const;
