@@ -176,10 +176,10 @@ BENCHMARK(BM_TaskSpaceQueryOnSimdPath)
     ->ArgsProduct({{300, 1000}, {1, 16}, {0, 1}, {0, 1, 2}})
     ->ArgNames({"S", "batch", "terms", "simd"});
 
-// Model::scoreGradients (double, analytic: the kernel's derivative through the points' Jacobian)
-// against Model::scoreBatch (float, SIMD) on the same 16 configurations of the same task-space
-// model (Baxter, the default kernel): gradient 0 times the scores, 1 the scores and gradients.
-// Time per configuration.
+// Model::scoreGradients (analytic: the kernel's derivative, summed in float on the SIMD path in
+// use, through the points' Jacobian) against Model::scoreBatch on the same 16 configurations of
+// the same task-space model (Baxter, the default kernel): gradient 0 times the scores, 1 the
+// scores and gradients. Time per batch of 16.
 void BM_ScoreGradientBatch(benchmark::State& state) {
   const Robot robot = loadRobot("baxter");
   const auto support = static_cast<std::size_t>(state.range(0));

@@ -199,8 +199,9 @@ void bindModel(py::module_& m) {
       .def("score", &scores, py::arg("q"),
            "f(q) for one configuration (d,) -> float, or for each row of (n, d) -> (n,).")
       .def("score_gradient", &scoreGradients, py::arg("q"),
-           "f(q) summed in double and its analytic gradient with respect to the joint values: "
-           "(float, (d,)) for one configuration (d,), ((n,), (n, d)) for each row of (n, d).")
+           "f(q) (summed in float, as score) and its analytic gradient with respect to the joint "
+           "values: (float, (d,)) for one configuration (d,), ((n,), (n, d)) for each row of "
+           "(n, d).")
       .def("in_collision", &inCollision, py::arg("q"),
            "f(q) > 0 for one configuration (d,) -> bool, or for each row of (n, d) -> (n,) bool.")
       .def(

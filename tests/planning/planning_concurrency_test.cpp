@@ -8,7 +8,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
+#include "fastron/planning/trajectory_optimization.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 
@@ -57,6 +59,54 @@ TEST(PlanningConcurrency, PlansOnSnapshotsWhileTheModelUpdates) {
   }
   proxy.stopBackground();
   EXPECT_GE(steps.load(), 3);
+}
+
+// Gradients and trajectory optimisation on snapshots from several threads while the background
+// thread publishes new models: a snapshot answers the same every time, whoever asks.
+TEST(PlanningConcurrency, GradientsAndOptimisationOnSnapshotsWhileTheModelUpdates) {
+  std::atomic<double> radius{0.3};
+  const auto moving = std::make_shared<const FunctionChecker>(
+      "moving disk", 2,
+      [&](const double* q) { return q[0] * q[0] + q[1] * q[1] < radius.load() * radius.load(); });
+  const JointLimits limits = JointLimits::unitBox(2);
+  ProxyCollisionDetector proxy(moving, limits,
+                               {.train = {.kernel = {.gamma = 30}, .beta = 10},
+                                .activeLearning = {.maxSamples = 200},
+                                .seed = 5,
+                                .labelThreads = 1});
+  proxy.initialize(1500);
+  std::atomic<int> steps{0};
+  proxy.startBackground([&](const StepReport&) {
+    steps.fetch_add(1);
+    radius.store(0.25 + 0.01 * (steps.load() % 5));
+  });
+  Eigen::VectorXd start(2), goal(2);
+  start << -0.8, 0.02;
+  goal << 0.8, 0.0;
+  const JointPath line = straightPath(start, goal, 0.05);
+  std::atomic<int> failures{0};
+  const auto work = [&](int rounds) {
+    for (int i = 0; i < rounds; ++i) {
+      const std::shared_ptr<const Model> snapshot = proxy.model();
+      const Configurations q = statesAlongPath(line, 0.1);
+      const Model::ScoreGradients batch = snapshot->scoreGradients(q);
+      const Model::ScoreGradients again = snapshot->scoreGradients(q);
+      if (batch.gradients != again.gradients || batch.scores != again.scores) failures.fetch_add(1);
+      const OptimizedTrajectory a = optimizeTrajectory(*snapshot, limits, line, {});
+      const OptimizedTrajectory b = optimizeTrajectory(*snapshot, limits, line, {});
+      if (a.path != b.path) failures.fetch_add(1);
+    }
+  };
+#ifdef FASTRON_SANITIZED
+  constexpr int kRounds = 3;
+#else
+  constexpr int kRounds = 20;
+#endif
+  std::thread other(work, kRounds);
+  work(kRounds);
+  other.join();
+  proxy.stopBackground();
+  EXPECT_EQ(failures.load(), 0);
 }
 
 }  // namespace
