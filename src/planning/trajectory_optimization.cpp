@@ -294,6 +294,10 @@ VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
                                     double resolution, const TrajectoryOptions& options,
                                     std::size_t rounds) {
   if (!exact) throw InvalidArgument("optimizeVerified: the exact checker is null");
+  if (!std::isfinite(resolution) || resolution <= 0) {
+    throw InvalidArgument("optimizeVerified: the resolution must be finite and > 0, got " +
+                          std::to_string(resolution));
+  }
   validate(options);
   VerifiedTrajectory result;
   if (exact->inCollision({start.data(), static_cast<std::size_t>(start.size())})) {

@@ -235,6 +235,9 @@ TEST(TrajectoryOptimisation, VerifiedOptimisationLearnsUntilTheExactCheckerAgree
   EXPECT_FALSE(out.costs.empty());
   const auto ends = optimizeVerified(proxy, diskChecker(), vec(0, 0), kGoal, 0.01, {});
   EXPECT_EQ(ends.status, PlanStatus::InvalidStart);
+  EXPECT_THAT(test::messageOf<InvalidArgument>(
+                  [&] { (void)optimizeVerified(proxy, diskChecker(), kStart, kGoal, 0, {}); }),
+              HasSubstr("resolution"));
 }
 
 TEST(TrajectoryOptimisation, GradientRepairReturnsOnlyPathsTheExactCheckerFindsFree) {

@@ -106,9 +106,12 @@ struct VerifiedTrajectory {
 
 /// From the straight line between `start` and `goal`: optimizes on the proxy's model, checks the
 /// path with `exact` at `resolution`, and while it collides (up to `rounds` times) lets the model
-/// learn the answers it got wrong (as planVerifiedLearning) and optimizes on from the last path.
-/// Never returns Solved on the model's word. Start and goal must be free under `exact` (else
-/// InvalidStart / InvalidGoal). Not while the proxy updates in the background.
+/// learn the answers it got wrong (as planVerifiedLearning) and optimizes again: from the last
+/// path when it was free on the model, from the straight line with other kicks when it stayed in
+/// the model's collisions. Never returns Solved on the model's word. Start and goal must be free
+/// under `exact` (else InvalidStart / InvalidGoal). Throws InvalidArgument on a null checker, a
+/// resolution that is not positive or bad options. Not while the proxy updates in the
+/// background.
 VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
                                     const std::shared_ptr<const CollisionChecker>& exact,
                                     const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
