@@ -312,13 +312,13 @@ def straight_path(start: ArrayLike, goal: ArrayLike, *, spacing: float = 0.05
                   ) -> npt.NDArray[np.float64]: ...
 def optimize_trajectory(model: Model, path: ArrayLike, *, margin: float = 1.0,
                         max_step: float = 0.03, smoothing: float = 0.005,
-                        max_iterations: int = 400, model_resolution: float = 0.06
-                        ) -> OptimizedTrajectory: ...
+                        max_iterations: int = 400, model_resolution: float = 0.06,
+                        time_limit: float = 0.0) -> OptimizedTrajectory: ...
 def optimize_verified(detector: ProxyCollisionDetector, exact: CollisionChecker, start: ArrayLike,
                       goal: ArrayLike, *, resolution: float = 0.02, spacing: float = 0.05,
                       margin: float = 1.0, max_step: float = 0.03, smoothing: float = 0.005,
                       max_iterations: int = 400, model_resolution: float = 0.06,
-                      rounds: int = 4) -> VerifiedTrajectory: ...
+                      time_limit: float = 0.0, rounds: int = 4) -> VerifiedTrajectory: ...
 def train_scene_model(robot: Robot, scene: Scene, features: Optional[FeatureMap] = None, *,
                       samples: int = 2000, updates: int = 1, seed: int = 1,
                       gamma: Optional[float] = None, beta: Optional[float] = None,

@@ -15,12 +15,14 @@ namespace fastron::python {
 namespace {
 
 TrajectoryOptions trajectoryOptions(double spacing, double margin, double maxStep, double smoothing,
-                                    std::size_t maxIterations, double modelResolution) {
+                                    std::size_t maxIterations, double modelResolution,
+                                    double timeLimit) {
   TrajectoryOptions options{.spacing = spacing,
                             .margin = margin,
                             .maxStep = maxStep,
                             .smoothing = smoothing,
                             .maxIterations = maxIterations,
+                            .timeLimit = timeLimit,
                             .modelResolution = modelResolution};
   validate(options);
   return options;
@@ -118,10 +120,11 @@ void bindTrajectories(py::module_& m) {
   m.def(
       "optimize_trajectory",
       [](const Model& model, py::handle path, double margin, double maxStep, double smoothing,
-         std::size_t maxIterations, double modelResolution) {
+         std::size_t maxIterations, double modelResolution, double timeLimit) {
         const JointPath initial = pathOf(path, model.dim());
-        const TrajectoryOptions options = trajectoryOptions(
-            kDefaults.spacing, margin, maxStep, smoothing, maxIterations, modelResolution);
+        const TrajectoryOptions options =
+            trajectoryOptions(kDefaults.spacing, margin, maxStep, smoothing, maxIterations,
+                              modelResolution, timeLimit);
         OptimizedTrajectory out;
         {
           py::gil_scoped_release released;
@@ -134,20 +137,22 @@ void bindTrajectories(py::module_& m) {
       py::arg("max_step") = kDefaults.maxStep, py::arg("smoothing") = kDefaults.smoothing,
       py::arg("max_iterations") = kDefaults.maxIterations,
       py::arg("model_resolution") = kDefaults.modelResolution,
+      py::arg("time_limit") = kDefaults.timeLimit,
       "Moves the interior waypoints of path (k, d), k >= 3, out of the model's collisions "
       "(CHOMP's covariant gradient descent on the collision cost, each step scaled to `max_step` "
       "joint units, `smoothing` of the way back to the straight line per iteration), within the "
-      "model's joint limits. The result is the model's word: check it with check_path.");
+      "model's joint limits, for at most `time_limit` seconds (0: no limit). The result is the "
+      "model's word: check it with check_path.");
   m.def(
       "optimize_verified",
       [](ProxyCollisionDetector& detector, const std::shared_ptr<CollisionChecker>& exact,
          py::handle start, py::handle goal, double resolution, double spacing, double margin,
          double maxStep, double smoothing, std::size_t maxIterations, double modelResolution,
-         std::size_t rounds) {
+         double timeLimit, std::size_t rounds) {
         const std::size_t dim = detector.limits().dim();
         const Eigen::VectorXd a = vector(start, dim, "start"), b = vector(goal, dim, "goal");
-        const TrajectoryOptions options =
-            trajectoryOptions(spacing, margin, maxStep, smoothing, maxIterations, modelResolution);
+        const TrajectoryOptions options = trajectoryOptions(
+            spacing, margin, maxStep, smoothing, maxIterations, modelResolution, timeLimit);
         VerifiedTrajectory out;
         {
           py::gil_scoped_release released;
@@ -168,10 +173,12 @@ void bindTrajectories(py::module_& m) {
       py::arg("margin") = kDefaults.margin, py::arg("max_step") = kDefaults.maxStep,
       py::arg("smoothing") = kDefaults.smoothing,
       py::arg("max_iterations") = kDefaults.maxIterations,
-      py::arg("model_resolution") = kDefaults.modelResolution, py::arg("rounds") = 4,
+      py::arg("model_resolution") = kDefaults.modelResolution,
+      py::arg("time_limit") = kDefaults.timeLimit, py::arg("rounds") = 4,
       "From the straight line between start and goal: optimises on the detector's model, checks "
       "the path with `exact` every `resolution`, and while it collides (up to `rounds` times) "
-      "lets the detector learn the answers its model got wrong and optimises on. solved is True "
+      "lets the detector learn the answers its model got wrong and optimises on, for at most "
+      "`time_limit` seconds in all (0: no limit). solved is True "
       "only when `exact` found the path free. Not while the detector updates in the background.");
 }
 

@@ -53,6 +53,8 @@ def test_the_optimiser_leaves_the_disc():
     assert misses_the_disc(out.path)
     with pytest.raises(fastron.InvalidArgument, match="max_step|maxStep"):
         fastron.optimize_trajectory(model, line, max_step=0)
+    with pytest.raises(fastron.InvalidArgument, match="timeLimit"):
+        fastron.optimize_trajectory(model, line, time_limit=-1)
     with pytest.raises(fastron.InvalidArgument, match="three waypoints"):
         fastron.optimize_trajectory(model, line[[0, -1]])
 

@@ -163,6 +163,10 @@ void validate(const TrajectoryOptions& o) {
   checkPositive(o.maxStep, "maxStep");
   checkPositive(o.modelResolution, "modelResolution");
   checkPositive(o.kick, "kick");
+  if (!std::isfinite(o.timeLimit) || o.timeLimit < 0) {
+    throw InvalidArgument("TrajectoryOptions::timeLimit must be finite and >= 0, got " +
+                          std::to_string(o.timeLimit));
+  }
   if (o.stallIterations == 0)
     throw InvalidArgument("TrajectoryOptions::stallIterations must be > 0, got 0");
   if (!std::isfinite(o.margin) || o.margin < 0) {
@@ -208,6 +212,7 @@ TrajectoryOptions gradientRepairOptions(const PlannerOptions& planner) {
   TrajectoryOptions options;
   options.modelResolution = modelStep(planner);
   options.maxIterations = 200;
+  options.timeLimit = planner.timeLimit * planner.verify.stretchShare;
   return options;
 }
 
@@ -249,6 +254,7 @@ OptimizedTrajectory optimizeTrajectory(const Model& model, const JointLimits& li
     const ModelFreedom freedom = freedomOnModel(cost.scores);
     out.freeOnModel = freedom != ModelFreedom::Colliding;
     if (freedom == ModelFreedom::Free || out.iterations == o.maxIterations) break;
+    if (o.timeLimit > 0 && Clock::now() - began > std::chrono::duration<double>(o.timeLimit)) break;
     // A path through the middle of a collision feels pushes that cancel (CHOMP's local minima):
     // when the cost has not fallen by 1% for stallIterations, a random smooth kick; unless only
     // the ends' neighbours still collide on the model, which no push frees.
@@ -314,6 +320,7 @@ VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
   const JointPath straight = straightPath(start, goal, options.spacing);
   JointPath path = straight;
   TrajectoryOptions roundOptions = options;
+  const auto began = Clock::now();
   for (;;) {
     const std::shared_ptr<const Model> model = proxy.model();
     OptimizedTrajectory optimized = optimizeTrajectory(*model, proxy.limits(), path, roundOptions);
@@ -326,9 +333,9 @@ VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
     const bool stuck = !optimized.freeOnModel;
     path = std::move(optimized.path);
     roundOptions.seed = options.seed + result.rounds;
-    auto began = Clock::now();
+    auto checkBegan = Clock::now();
     const PathCheck check = checkPathParallel(*recorder, path, resolution);
-    result.verifyTime += Clock::now() - began;
+    result.verifyTime += Clock::now() - checkBegan;
     if (check.valid()) {
       result.status = PlanStatus::Solved;
       break;
@@ -338,7 +345,15 @@ VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
                        std::to_string(result.rounds) + " optimisations";
       break;
     }
-    began = Clock::now();
+    const double left =
+        options.timeLimit - std::chrono::duration<double>(Clock::now() - began).count();
+    if (options.timeLimit > 0 && left <= 0) {
+      result.failure = "the path still collided under " + exact->name() +
+                       " when the time limit of " + std::to_string(options.timeLimit) + " s was up";
+      break;
+    }
+    roundOptions.timeLimit = options.timeLimit > 0 ? left : 0;
+    const auto learnBegan = Clock::now();
     const Dataset missed = answersMissedBy(*model, recorder->take());
     if (missed.size() == 0) {
       result.failure = "the model already agrees with every exact answer along the path";
@@ -346,7 +361,7 @@ VerifiedTrajectory optimizeVerified(ProxyCollisionDetector& proxy,
     }
     proxy.addObservations(missed);
     proxy.learnObservations();
-    result.learnTime += Clock::now() - began;
+    result.learnTime += Clock::now() - learnBegan;
     if (stuck) path = straight;
   }
   result.path = std::move(path);

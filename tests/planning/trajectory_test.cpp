@@ -209,6 +209,9 @@ TEST_F(Trajectory, BadOptimiserInputsAreRefused) {
   EXPECT_THAT(test::messageOf<InvalidArgument>(
                   [&] { (void)optimizeTrajectory(*model(), box, line, {.smoothing = 2}); }),
               HasSubstr("smoothing"));
+  EXPECT_THAT(test::messageOf<InvalidArgument>(
+                  [&] { (void)optimizeTrajectory(*model(), box, line, {.timeLimit = -1}); }),
+              HasSubstr("timeLimit"));
   EXPECT_THAT(test::messageOf<InvalidArgument>([&] {
                 (void)optimizeTrajectory(*model(), box, {kStart, kGoal}, {});
               }),
@@ -238,6 +241,10 @@ TEST(TrajectoryOptimisation, VerifiedOptimisationLearnsUntilTheExactCheckerAgree
   EXPECT_THAT(test::messageOf<InvalidArgument>(
                   [&] { (void)optimizeVerified(proxy, diskChecker(), kStart, kGoal, 0, {}); }),
               HasSubstr("resolution"));
+  // A time limit bounds every round and check together: a tiny one stops after the first check.
+  const auto bounded = optimizeVerified(proxy, smaller, kStart, kGoal, 0.01, {.timeLimit = 1e-9});
+  EXPECT_EQ(bounded.rounds, 1u);
+  EXPECT_LE(bounded.iterations, 1u);
 }
 
 TEST(TrajectoryOptimisation, GradientRepairReturnsOnlyPathsTheExactCheckerFindsFree) {

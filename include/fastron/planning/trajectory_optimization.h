@@ -44,6 +44,9 @@ struct TrajectoryOptions {
   std::size_t stallIterations = 30;
   double kick = 0.2;
   std::uint64_t seed = 1;  ///< of the kicks
+  /// Seconds an optimisation may take (optimizeVerified: all its rounds and checks together);
+  /// 0: no limit but maxIterations.
+  double timeLimit = 0;
   /// Step at which the path's edges are checked on the model before it is called free.
   double modelResolution = 0.06;
 };
@@ -61,8 +64,9 @@ JointPath straightPath(const Eigen::VectorXd& start, const Eigen::VectorXd& goal
 JointPath densePath(const JointPath& path, double spacing);
 
 /// The optimiser's settings for gradient repair (VerifyRepairOptions::gradientRepair): the
-/// defaults, the model's edge step of `planner` (modelStep), and fewer iterations (a stretch that
-/// does not come free soon is replanned).
+/// defaults, the model's edge step of `planner` (modelStep), fewer iterations and the time a
+/// stretch's bridge gets (stretchShare of the time limit): a stretch that does not come free soon
+/// is replanned.
 TrajectoryOptions gradientRepairOptions(const PlannerOptions& planner);
 
 struct OptimizedTrajectory {
@@ -87,7 +91,8 @@ struct OptimizedTrajectory {
 /// to maxStep, adds the smoothing step, and clamps to the joint limits; a stalled cost gets a
 /// random smooth kick (stallIterations, kick). Stops when the path is free on the model, when
 /// only the neighbours of an end still collide on it and the cost has stalled, or after
-/// maxIterations. The same inputs give the same path. Throws InvalidArgument on bad options,
+/// maxIterations or timeLimit. The same inputs give the same path (unless the time limit cuts it
+/// short). Throws InvalidArgument on bad options,
 /// waypoints of the wrong size or outside the limits.
 OptimizedTrajectory optimizeTrajectory(const Model& model, const JointLimits& limits,
                                        const JointPath& initial, const TrajectoryOptions& options);
