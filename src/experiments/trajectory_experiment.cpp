@@ -20,10 +20,6 @@ namespace {
 
 constexpr const char* kCase = "7dof-3boxes";
 
-double milliseconds(std::chrono::nanoseconds t) {
-  return std::chrono::duration<double, std::milli>(t).count();
-}
-
 /// Ends on opposite sides of the workspace, both free under `fcl`, whose straight line collides.
 std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> endsThroughAnObstacle(
     const JointLimits& limits, const CollisionChecker& fcl, Rng& rng, double resolution) {
@@ -93,16 +89,16 @@ TrajectoryResults runTrajectories(const TrajectoryExperimentOptions& o, const Pr
                          std::chrono::nanoseconds learn, std::size_t iterations, std::size_t rounds,
                          const JointPath& path, const VerifiedPlan& plan) {
       const bool colliding = solved && !checkPath(*audit, path, o.resolution / 3).valid();
-      out.results.add({std::to_string(trial), method, solved ? "1" : "0", cell(milliseconds(time)),
-                       cell(milliseconds(learn)), cell(milliseconds(plan.repairTime)),
-                       std::to_string(plan.invalidStretches), std::to_string(plan.gradientRepairs),
-                       std::to_string(iterations), std::to_string(rounds),
-                       cell(solved ? pathLength(path) : 0), colliding ? "1" : "0",
-                       std::to_string(model->supportCount()), cell(counts.accuracy()),
-                       cell(counts.tpr())});
+      out.results.add(
+          {std::to_string(trial), method, solved ? "1" : "0", cell(1e3 * inSeconds(time)),
+           cell(1e3 * inSeconds(learn)), cell(1e3 * inSeconds(plan.repairTime)),
+           std::to_string(plan.invalidStretches), std::to_string(plan.gradientRepairs),
+           std::to_string(iterations), std::to_string(rounds), cell(solved ? pathLength(path) : 0),
+           colliding ? "1" : "0", std::to_string(model->supportCount()), cell(counts.accuracy()),
+           cell(counts.tpr())});
     };
     const VerifiedTrajectory optimized =
-        optimizeVerified(proxy, fcl, start, goal, o.resolution, o.optimizer);
+        optimizeVerified(proxy, fcl, start, goal, o.resolution, o.optimizer, o.rounds);
     add("Optimizer", optimized.status == PlanStatus::Solved, optimized.totalTime(),
         optimized.learnTime, optimized.iterations, optimized.rounds, optimized.path, {});
     const std::shared_ptr<const Model> learned = proxy.model();
@@ -129,7 +125,8 @@ std::string trajectoryReport(const TrajectoryResults& r, const TrajectoryExperim
      << o.optimizer.spacing << " rad apart, margin " << o.optimizer.margin << ", step "
      << o.optimizer.maxStep << " rad, smoothing " << o.optimizer.smoothing
      << ") and is verified with FCL every " << o.resolution
-     << " rad, the model learning what verification finds (up to 4 times); it runs first, so "
+     << " rad, the model learning what verification finds (up to " << o.rounds
+     << " times); it runs first, so "
         "the others' model has learned its answers too. 'FCL' is RRT-Connect on FCL, 'Fastron' "
         "RRT-Connect on the model with verify and repair, both simplified ("
      << simplificationSentence(o.simplifyTime, o.simplification)

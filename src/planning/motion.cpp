@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 #include <string>
 
@@ -113,16 +114,19 @@ JointPath parsePathCsv(std::string_view text, const std::string& source,
   return path;
 }
 
+std::vector<std::size_t> edgeSegments(const JointPath& path, double resolution) {
+  std::vector<std::size_t> segments;
+  for (std::size_t e = 0; e + 1 < path.size(); ++e)
+    segments.push_back(segmentCount(path[e], path[e + 1], resolution));
+  return segments;
+}
+
 Configurations statesAlongPath(const JointPath& path, double resolution) {
   if (path.empty()) return {};
   const auto dim = path.front().size();
   checkWaypointSizes(path, static_cast<std::size_t>(dim));
-  std::vector<std::size_t> segments;
-  std::size_t count = 1;
-  for (std::size_t e = 0; e + 1 < path.size(); ++e) {
-    segments.push_back(segmentCount(path[e], path[e + 1], resolution));
-    count += segments.back();
-  }
+  const std::vector<std::size_t> segments = edgeSegments(path, resolution);
+  const std::size_t count = 1 + std::accumulate(segments.begin(), segments.end(), std::size_t{0});
   Configurations states(static_cast<Eigen::Index>(count), dim);
   Eigen::Index row = 0;
   for (std::size_t e = 0; e < segments.size(); ++e) {

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "fastron/core/error.h"
-#include "fastron/core/motion_states.h"
 #include "fastron/core/recording_checker.h"
 #include "fastron/planning/collision_cost.h"
 #include "fastron/planning/parallel_check.h"
@@ -63,55 +62,28 @@ enum class ModelFreedom {
   Colliding,
 };
 
-/// The states of a path at a resolution (as checkPath cuts its edges, in order), each the
-/// blend (1 - share) q_edge + share q_edge+1.
-struct EdgeStates {
-  Configurations states;
-  std::vector<Eigen::Index> edge;
-  std::vector<double> share;
-};
-
-EdgeStates edgeStates(const Configurations& rows, double resolution) {
-  EdgeStates out;
-  const auto dim = static_cast<std::size_t>(rows.cols());
-  std::size_t count = 1;
-  std::vector<std::size_t> segments;
-  for (Eigen::Index t = 0; t + 1 < rows.rows(); ++t) {
-    const Eigen::RowVectorXd a = rows.row(t), b = rows.row(t + 1);
-    segments.push_back(segmentCount(a.data(), b.data(), dim, resolution));
-    count += segments.back();
-  }
-  out.states.resize(static_cast<Eigen::Index>(count), rows.cols());
-  Eigen::Index i = 0;
-  for (Eigen::Index t = 0; t + 1 < rows.rows(); ++t) {
-    const auto n = segments[static_cast<std::size_t>(t)];
-    for (std::size_t k = 0; k < n; ++k, ++i) {
-      const double share = static_cast<double>(k) / static_cast<double>(n);
-      out.states.row(i) = (1 - share) * rows.row(t) + share * rows.row(t + 1);
-      out.edge.push_back(t);
-      out.share.push_back(share);
-    }
-  }
-  out.states.row(i) = rows.row(rows.rows() - 1);
-  out.edge.push_back(rows.rows() - 2);
-  out.share.push_back(1);
-  return out;
-}
-
 /// The collision cost of the path through every state at the resolution (a finer trapezoid
 /// integral than over the waypoints alone: a bend between two free waypoints can cross an
 /// obstacle), its gradient with respect to the waypoints, and the states' scores.
 PathCollisionCost costThroughEdges(const Model& model, const Configurations& rows,
                                    double resolution, double margin) {
-  const EdgeStates along = edgeStates(rows, resolution);
-  PathCollisionCost states = pathCollisionCost(model, along.states, margin);
+  const JointPath path = pathOf(rows);
+  PathCollisionCost states = pathCollisionCost(model, statesAlongPath(path, resolution), margin);
   PathCollisionCost out{states.cost, std::move(states.scores),
                         Configurations::Zero(rows.rows(), rows.cols())};
-  for (Eigen::Index i = 0; i < along.states.rows(); ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    out.gradient.row(along.edge[k]) += (1 - along.share[k]) * states.gradient.row(i);
-    out.gradient.row(along.edge[k] + 1) += along.share[k] * states.gradient.row(i);
+  // State i of edge e is (1 - i / n) q_e + (i / n) q_e+1 (statesAlongPath's order); the last
+  // state is the last waypoint.
+  Eigen::Index row = 0;
+  const std::vector<std::size_t> segments = edgeSegments(path, resolution);
+  for (std::size_t e = 0; e < segments.size(); ++e) {
+    const auto edge = static_cast<Eigen::Index>(e);
+    for (std::size_t i = 0; i < segments[e]; ++i, ++row) {
+      const double share = static_cast<double>(i) / static_cast<double>(segments[e]);
+      out.gradient.row(edge) += (1 - share) * states.gradient.row(row);
+      out.gradient.row(edge + 1) += share * states.gradient.row(row);
+    }
   }
+  out.gradient.row(rows.rows() - 1) += states.gradient.row(row);
   return out;
 }
 

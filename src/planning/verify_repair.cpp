@@ -144,8 +144,8 @@ struct Bridge {
   bool pushed = false;
 };
 
-/// Gradient repair: a path between the ends of a stretch (given as its first free state, its
-/// waypoints and its last free state) that a model finds free, or nothing.
+/// Gradient repair: a path between the ends of a stretch (given as the waypoints kept on either
+/// side and those between) that a model finds free, or nothing.
 using StretchPush = std::function<std::optional<JointPath>(const JointPath& stretch)>;
 
 /// The waypoints that replace the colliding stretch between waypoints i and j of `old` (after
@@ -157,35 +157,28 @@ using StretchPush = std::function<std::optional<JointPath>(const JointPath& stre
 /// were as long without it). It is planned on `relaxed` when given, unless that finds the stretch's
 /// first collision free (the robot against itself, when it checks the obstacles alone): its bridge
 /// would keep that collision for the next round to bridge again. With `push` (gradient repair), the
-/// stretch from the first free state to the last, through its waypoints, is first pushed out of
-/// collision on a model, and that path is kept when `exact` finds it free.
+/// stretch from the waypoint kept before it to the one kept after it is first pushed out of
+/// collision on a model, and that path is kept when `exact` finds it free (before the free states
+/// next to the collisions are looked for: a bridge alone needs them).
 std::optional<Bridge> bridgeStretch(const JointPath& old, std::size_t i, std::size_t j,
                                     const std::shared_ptr<const CollisionChecker>& relaxed,
                                     const std::shared_ptr<const CollisionChecker>& exact,
                                     const JointLimits& limits, const PlannerOptions& options,
                                     const StretchPush& push) {
+  if (push) {
+    // From the waypoints kept on either side: the free states next to the collisions lie on
+    // the obstacle's surface, where a model's smooth boundary may still say "collides".
+    const JointPath stretch(old.begin() + static_cast<std::ptrdiff_t>(i),
+                            old.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+    const std::optional<JointPath> pushed = push(stretch);
+    if (pushed && checkPathParallel(*exact, *pushed, options.resolution).valid())
+      return Bridge{JointPath(pushed->begin() + 1, pushed->end()), true};
+  }
   const FirstCollisionToward entry =
       firstCollisionToward(exact, old[i], old[i + 1], options.resolution);
   const Eigen::VectorXd& from = entry.lastFree;
   const Eigen::VectorXd to =
       firstCollisionToward(exact, old[j], old[j - 1], options.resolution).lastFree;
-  // Joins `bridge` (from `from` to `to`) to the waypoints kept on either side.
-  const auto spliced = [&](const JointPath& bridge) {
-    Bridge out;
-    if (!from.isApprox(old[i])) out.waypoints.push_back(from);
-    out.waypoints.insert(out.waypoints.end(), bridge.begin() + 1, bridge.end());
-    if (!to.isApprox(old[j])) out.waypoints.push_back(old[j]);
-    return out;
-  };
-  if (push) {
-    // From the waypoints kept on either side: the free states next to the collisions lie on
-    // the obstacle's surface, where a model's smooth boundary may still say "collides".
-    JointPath stretch(old.begin() + static_cast<std::ptrdiff_t>(i),
-                      old.begin() + static_cast<std::ptrdiff_t>(j) + 1);
-    const std::optional<JointPath> pushed = push(stretch);
-    if (pushed && checkPathParallel(*exact, *pushed, options.resolution).valid())
-      return Bridge{JointPath(pushed->begin() + 1, pushed->end()), true};
-  }
   const bool relaxedSeesIt = relaxed && !freeUnder(relaxed, entry.colliding);
   const std::shared_ptr<const CollisionChecker>& bridgeChecker = relaxedSeesIt ? relaxed : exact;
   PlannerOptions stretchOptions = options;
@@ -199,7 +192,12 @@ std::optional<Bridge> bridgeStretch(const JointPath& old, std::size_t i, std::si
                                  to, stretchOptions);
   if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
   if (!bridge.solved()) return std::nullopt;
-  return spliced(bridge.path);
+  // Joined to the waypoints kept on either side.
+  Bridge out;
+  if (!from.isApprox(old[i])) out.waypoints.push_back(from);
+  out.waypoints.insert(out.waypoints.end(), bridge.path.begin() + 1, bridge.path.end());
+  if (!to.isApprox(old[j])) out.waypoints.push_back(old[j]);
+  return out;
 }
 
 /// verifyAndRepair, whose first check of `path` is `known` when given (the caller made it), and

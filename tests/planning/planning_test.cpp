@@ -182,6 +182,7 @@ TEST(Motion, StatesAlongAPathAreTheCheckedStatesInOrder) {
   const double resolution = 0.09;
   const Configurations states = statesAlongPath(path, resolution);
   ASSERT_EQ(states.rows(), 1 + 6 + 1 + 6);  // ceil(0.5 / 0.09) = 6, a zero-length edge 1
+  EXPECT_EQ(edgeSegments(path, resolution), (std::vector<std::size_t>{6, 1, 6}));
   EXPECT_EQ(Eigen::VectorXd(states.row(0).transpose()), path.front());
   EXPECT_EQ(Eigen::VectorXd(states.row(states.rows() - 1).transpose()), path.back());
   for (Eigen::Index i = 1; i < states.rows(); ++i) {

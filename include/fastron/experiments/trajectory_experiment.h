@@ -22,6 +22,7 @@ struct TrajectoryExperimentOptions {
   double timeLimit = 10, resolution = 0.03, modelResolution = 0, simplifyTime = 0.1;
   PathSimplification simplification = PathSimplification::Full;
   TrajectoryOptions optimizer;
+  std::size_t rounds = 4;  ///< optimizeVerified's: times the model learns and optimises again
   /// The Fastron row's repairs try gradient repair first (VerifyRepairOptions::gradientRepair).
   bool gradientRepair = false;
 };

@@ -43,6 +43,10 @@ JointPath readPathCsv(const std::filesystem::path& file,
 JointPath parsePathCsv(std::string_view text, const std::string& source,
                        const std::vector<std::string>& jointNames);
 
+/// segmentCount of every edge of `path` at `resolution` (edge e joins waypoints e and e + 1): the
+/// states statesAlongPath puts on each edge, its first waypoint included.
+std::vector<std::size_t> edgeSegments(const JointPath& path, double resolution);
+
 /// Every state a check of `path` at `resolution` looks at, in the path's order: each waypoint,
 /// then the interior states of the edge that leaves it (segmentCount segments, as checkPath
 /// cuts them), and the last waypoint. One row per state.
