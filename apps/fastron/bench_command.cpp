@@ -123,9 +123,14 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
                "motion-bench: FCL checks every state of a motion instead of skipping what "
                "clearance bounds prove free (the same answers, slower; for comparison)");
   cmd.add_option("--range", o.settings.range,
-                 "motion-bench: longest tree edge of every method's planner, joint units "
-                 "(default: OMPL's, a fifth of the diagonal of the joint limits)")
+                 "motion-bench: longest tree edge of every method's planner to begin with, "
+                 "joint units (default: OMPL's, a fifth of the diagonal of the joint limits); "
+                 "RRT-Connect halves it after --range-stage iterations without a path")
       ->check(numberAbove(0));
+  cmd.add_option("--range-stage", o.settings.rangeStage,
+                 "motion-bench: RRT-Connect's iterations without a path before its range is "
+                 "halved, twice as many at each shorter range, down to an eighth, then the "
+                 "first range again (default 100; 0: the range stays)");
 }
 
 /// The options of every planning experiment: time, resolutions, simplification.

@@ -60,6 +60,7 @@ struct PlanOptions {
   unsigned learningRounds = PlannerOptions{}.verify.learningRounds;
   std::optional<double> gamma, beta;
   double resolution = 0.03, modelResolution = 0, timeLimit = 10, simplifyTime = 0.1, range = 0;
+  std::size_t rangeStage = PlannerOptions{}.rangeStage;
   std::uint64_t seed = 1;
   PathSimplification simplification = PathSimplification::Full;
 };
@@ -245,6 +246,7 @@ int runPlan(const PlanOptions& o) {
   const std::shared_ptr<const SceneChecker> exact = checkerFromOptions(o.scene, query.robot, scene);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
                                .range = o.range,
+                               .rangeStage = o.rangeStage,
                                .resolution = o.resolution,
                                .modelResolution = o.modelResolution,
                                .timeLimit = o.timeLimit,
@@ -329,9 +331,15 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--range", o->range,
-                  "longest tree edge in joint space (default: OMPL's, a fifth of the diagonal of "
-                  "the joint limits)")
+                  "longest tree edge in joint space to begin with (default: OMPL's, a fifth of "
+                  "the diagonal of the joint limits); RRT-Connect halves it after --range-stage "
+                  "iterations without a path")
       ->check(numberAbove(0));
+  cmd->add_option("--range-stage", o->rangeStage,
+                  "RRT-Connect: iterations without a path before its range is halved, twice as "
+                  "many at each shorter range, down to an eighth, then the first range again (0: "
+                  "the range stays)")
+      ->capture_default_str();
   cmd->add_option("--simplify-time", o->simplifyTime,
                   "seconds of OMPL path simplification (0: the planner's path as found)")
       ->capture_default_str()

@@ -249,6 +249,7 @@ class PlanResult:
     path: npt.NDArray[np.float64]
     seconds: float
     simplify_seconds: float
+    range: float
 
 class VerifiedPlan:
     status: str
@@ -273,12 +274,13 @@ Source = Union[Model, CollisionChecker]
 
 def plan(source: Source, start: ArrayLike, goal: ArrayLike, *,
          limits: Optional[JointLimits] = None, planner: str = "RRTConnect", range: float = 0.0,
-         resolution: float = 0.02, model_resolution: float = 0.0, time_limit: float = 10.0,
-         simplify_time: float = 0.1, simplification: str = "full") -> PlanResult: ...
+         range_stage: int = 100, resolution: float = 0.02, model_resolution: float = 0.0,
+         time_limit: float = 10.0, simplify_time: float = 0.1,
+         simplification: str = "full") -> PlanResult: ...
 def plan_verified(approximate: Union[Source, ProxyCollisionDetector], exact: CollisionChecker,
                   start: ArrayLike, goal: ArrayLike, *, limits: Optional[JointLimits] = None,
-                  planner: str = "RRTConnect", range: float = 0.0, resolution: float = 0.02,
-                  model_resolution: float = 0.0, time_limit: float = 10.0,
+                  planner: str = "RRTConnect", range: float = 0.0, range_stage: int = 100,
+                  resolution: float = 0.02, model_resolution: float = 0.0, time_limit: float = 10.0,
                   simplify_time: float = 0.1, simplification: str = "full",
                   learning_rounds: int = 0, static_scene: bool = False,
                   approximate_share: float = 0.1, model_share: Optional[float] = None,

@@ -18,12 +18,13 @@ namespace fastron::python {
 
 namespace {
 
-PlannerOptions plannerOptions(const std::string& planner, double range, double resolution,
-                              double modelResolution, double timeLimit, double simplifyTime,
-                              const std::string& simplification) {
+PlannerOptions plannerOptions(const std::string& planner, double range, std::size_t rangeStage,
+                              double resolution, double modelResolution, double timeLimit,
+                              double simplifyTime, const std::string& simplification) {
   PlannerOptions options;
   options.type = parsePlannerType(planner);
   options.range = range;
+  options.rangeStage = rangeStage;
   options.resolution = resolution;
   options.modelResolution = modelResolution;
   options.timeLimit = timeLimit;
@@ -94,7 +95,7 @@ CollisionSource sourceOf(py::handle source) {
 struct PythonPlan {
   std::string status;
   py::array_t<double> path;
-  double seconds = 0, simplifySeconds = 0;
+  double seconds = 0, simplifySeconds = 0, range = 0;
 };
 
 struct PythonVerifiedPlan {
@@ -146,6 +147,8 @@ void bindPlanResults(py::module_& m) {
       .def_readonly("path", &PythonPlan::path, "Waypoints (k, d), start to goal; empty if none.")
       .def_readonly("seconds", &PythonPlan::seconds)
       .def_readonly("simplify_seconds", &PythonPlan::simplifySeconds)
+      .def_readonly("range", &PythonPlan::range,
+                    "The planner's range when it stopped (0 for BIT*, which has none).")
       .def("__repr__", [](const PythonPlan& p) {
         return "PlanResult('" + p.status + "', " + std::to_string(p.path.shape(0)) + " waypoints)";
       });
@@ -195,32 +198,37 @@ void bindPlan(py::module_& m) {
   m.def(
       "plan",
       [](py::handle source, py::handle start, py::handle goal, std::optional<JointLimits> limits,
-         const std::string& planner, double range, double resolution, double modelResolution,
-         double timeLimit, double simplifyTime, const std::string& simplification) {
+         const std::string& planner, double range, std::size_t rangeStage, double resolution,
+         double modelResolution, double timeLimit, double simplifyTime,
+         const std::string& simplification) {
         const CollisionSource s = sourceOf(source);
         const JointLimits l = limitsOf(source, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
                               b = vector(goal, l.dim(), "goal");
-        const PlannerOptions options = plannerOptions(planner, range, resolution, modelResolution,
-                                                      timeLimit, simplifyTime, simplification);
+        const PlannerOptions options =
+            plannerOptions(planner, range, rangeStage, resolution, modelResolution, timeLimit,
+                           simplifyTime, simplification);
         PlanResult result;
         {
           py::gil_scoped_release released;
           result = planMotion(s, l, a, b, options);
         }
         return PythonPlan{std::string(toString(result.status)), pathArray(result.path, l.dim()),
-                          inSeconds(result.time), inSeconds(result.simplifyTime)};
+                          inSeconds(result.time), inSeconds(result.simplifyTime), result.range};
       },
       py::arg("source"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
-      py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
+      py::arg("range_stage") = PlannerOptions{}.rangeStage, py::arg("resolution") = 0.02,
+      py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
       py::arg("simplify_time") = 0.1, py::arg("simplification") = "full",
       "Plans from start to goal with OMPL (planner: 'RRT', 'RRTConnect', 'RRT*', 'BIT*') on a "
       "Model or a CollisionChecker, then shortens the path with OMPL's PathSimplifier for at most "
       "`simplify_time` seconds ('full': simplify, with B-spline smoothing, as MoveIt; "
       "'shortcuts': shortcutting and vertex reduction only, fewer checks). Edges are checked "
       "every `resolution`, on a model (or a checker answering from one) every "
-      "`model_resolution` (0: 3 times `resolution`).");
+      "`model_resolution` (0: 3 times `resolution`). RRT-Connect's `range` (0: OMPL's "
+      "default) is halved after `range_stage` iterations without a path, twice as many at each "
+      "shorter range, down to an eighth, then taken again (0: it stays).");
 }
 
 /// plan_verified: a plan on an approximate source, verified and repaired.
@@ -229,13 +237,15 @@ void bindPlanVerified(py::module_& m) {
       "plan_verified",
       [](py::handle approximate, const std::shared_ptr<CollisionChecker>& exact, py::handle start,
          py::handle goal, std::optional<JointLimits> limits, const std::string& planner,
-         double range, double resolution, double modelResolution, double timeLimit,
-         double simplifyTime, const std::string& simplification, unsigned learningRounds,
-         bool staticScene, double approximateShare, std::optional<double> modelShare,
-         double substituteShare, double stretchShare, std::size_t enclosedAfter,
-         std::optional<double> hybridRange, bool oracleRelaxesExact, bool gradientRepair) {
-        PlannerOptions options = plannerOptions(planner, range, resolution, modelResolution,
-                                                timeLimit, simplifyTime, simplification);
+         double range, std::size_t rangeStage, double resolution, double modelResolution,
+         double timeLimit, double simplifyTime, const std::string& simplification,
+         unsigned learningRounds, bool staticScene, double approximateShare,
+         std::optional<double> modelShare, double substituteShare, double stretchShare,
+         std::size_t enclosedAfter, std::optional<double> hybridRange, bool oracleRelaxesExact,
+         bool gradientRepair) {
+        PlannerOptions options =
+            plannerOptions(planner, range, rangeStage, resolution, modelResolution, timeLimit,
+                           simplifyTime, simplification);
         const bool learns = staticScene || learningRounds > 0;
         if (learns && !py::isinstance<ProxyCollisionDetector>(approximate)) {
           throw InvalidArgument(
@@ -270,7 +280,8 @@ void bindPlanVerified(py::module_& m) {
       },
       py::arg("approximate"), py::arg("exact"), py::arg("start"), py::arg("goal"), py::kw_only(),
       py::arg("limits") = py::none(), py::arg("planner") = "RRTConnect", py::arg("range") = 0.0,
-      py::arg("resolution") = 0.02, py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
+      py::arg("range_stage") = PlannerOptions{}.rangeStage, py::arg("resolution") = 0.02,
+      py::arg("model_resolution") = 0.0, py::arg("time_limit") = 10.0,
       py::arg("simplify_time") = 0.1, py::arg("simplification") = "full",
       py::arg("learning_rounds") = 0u, py::arg("static_scene") = false,
       py::arg("approximate_share") = PlannerOptions{}.verify.approximateShare,

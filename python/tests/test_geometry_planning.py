@@ -386,6 +386,24 @@ def test_planning_verified_paths_never_collide(baxter):
     assert on_model.path.shape[1] == 7
 
 
+def test_the_planners_range_is_halved_on_a_schedule_unless_told_to_stay():
+    square = fastron.JointLimits([-1, -1], [1, 1])
+    ompls = 0.2 * np.sqrt(8.0)  # OMPL's default: a fifth of the square's diagonal
+    start, goal = np.array([-0.8, -0.8]), np.array([0.8, -0.8])
+    open_square = fastron.FunctionChecker(lambda q: False, 2, "open")
+    easy = fastron.plan(open_square, start, goal, limits=square, simplify_time=0)
+    assert easy.solved and easy.range == pytest.approx(ompls)
+    # A goal walled in by a ring: no path, so the range goes down the schedule.
+    ring = fastron.FunctionChecker(
+        lambda q: bool(0.1 < np.hypot(q[0] - 0.8, q[1] + 0.8) < 0.2), 2, "ring")
+    walled = fastron.plan(ring, start, goal, limits=square, time_limit=0.3)
+    assert not walled.solved
+    assert any(walled.range == pytest.approx(ompls / 2**k) for k in range(4)), walled.range
+    stays = fastron.plan(ring, start, goal, limits=square, time_limit=0.3, range=0.3,
+                         range_stage=0)
+    assert stays.range == pytest.approx(0.3)
+
+
 def test_plan_verified_in_a_static_scene_on_a_relaxed_oracle(baxter):
     # static_scene: the model's plan, then a hybrid asking the detector's oracle (FCL without
     # self-collision, a relaxation of the exact checker) about the model's "collides", then the

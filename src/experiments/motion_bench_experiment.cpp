@@ -443,7 +443,7 @@ std::string reportPreamble(const MotionBenchOptions& o) {
      << " per scene (the request, then start/goal pairs drawn free under FCL). Edges checked "
         "every "
      << edgeSteps(o, "rad") << ", range "
-     << (o.range > 0 ? cell(o.range) + " rad" : std::string("OMPL's default")) << ", time limit "
+     << describeRange(plannerOptions(o, PlannerType::RrtConnect), "rad") << ", time limit "
      << o.timeLimit << " s, seed " << o.seed << (o.quick ? ", quick mode" : "") << ". "
      << simplificationSentence(o.simplifyTime, o.simplification)
      << " Plan times exclude training; the end-to-end lines add each scene's training, shared by "

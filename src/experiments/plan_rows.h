@@ -137,6 +137,9 @@ PlannerOptions plannerOptions(const auto& o, PlannerType type) {
                          .simplification = o.simplification,
                          .verify = {}};
   if constexpr (requires { o.range; }) options.range = o.range;  // where an experiment has one
+  if constexpr (requires { o.rangeStage; }) {
+    if (o.rangeStage) options.rangeStage = *o.rangeStage;
+  }
   if constexpr (requires { o.gradientRepair; }) options.verify.gradientRepair = o.gradientRepair;
   return options;
 }

@@ -207,37 +207,38 @@ void addPlanningExperiments(std::vector<Experiment>& all) {
                    return ExperimentOutput{
                        std::move(r.results), {{"scores.csv", std::move(r.scores)}}, report};
                  }});
-  all.push_back(
-      {"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
-       planningAnd({"problems", "robot", "package-path", "srdf", "range", "self-collision",
-                    "dense-checks", "self-model", "queries-per-scene", "learn-from-verification",
-                    "samples", "updates", "gamma", "beta", "gradient-repair"}),
-       [](const ExperimentSettings& s, const Progress& progress) {
-         if (s.problems.empty()) {
-           throw InvalidArgument(
-               "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
-               "requestNNNN.yaml files)");
-         }
-         MotionBenchOptions o;
-         applyPlanning(s, o);
-         o.problems = s.problems;
-         o.robot = s.robot;
-         o.packagePaths = s.packagePaths;
-         o.srdf = s.srdf;
-         o.resultsFile = s.resultsFile;
-         o.range = s.range;
-         o.selfCollision = s.selfCollision;
-         o.denseChecks = s.denseChecks;
-         o.queriesPerScene = s.queriesPerScene;
-         o.selfModel = s.selfModel;
-         o.learnFromVerification = s.learnFromVerification;
-         o.trainingPoints = s.samples;
-         o.updates = s.updates;
-         if (s.gamma > 0) o.gamma = s.gamma;
-         if (s.beta > 0) o.beta = s.beta;
-         const PlanRows plans = runMotionBench(o, progress);
-         return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
-       }});
+  all.push_back({"motion-bench", "MotionBenchMaker problems (MoveIt scenes and requests)",
+                 planningAnd({"problems", "robot", "package-path", "srdf", "range", "range-stage",
+                              "self-collision", "dense-checks", "self-model", "queries-per-scene",
+                              "learn-from-verification", "samples", "updates", "gamma", "beta",
+                              "gradient-repair"}),
+                 [](const ExperimentSettings& s, const Progress& progress) {
+                   if (s.problems.empty()) {
+                     throw InvalidArgument(
+                         "motion-bench needs --problems DIR (a folder of sceneNNNN.yaml and "
+                         "requestNNNN.yaml files)");
+                   }
+                   MotionBenchOptions o;
+                   applyPlanning(s, o);
+                   o.problems = s.problems;
+                   o.robot = s.robot;
+                   o.packagePaths = s.packagePaths;
+                   o.srdf = s.srdf;
+                   o.resultsFile = s.resultsFile;
+                   o.range = s.range;
+                   o.rangeStage = s.rangeStage;
+                   o.selfCollision = s.selfCollision;
+                   o.denseChecks = s.denseChecks;
+                   o.queriesPerScene = s.queriesPerScene;
+                   o.selfModel = s.selfModel;
+                   o.learnFromVerification = s.learnFromVerification;
+                   o.trainingPoints = s.samples;
+                   o.updates = s.updates;
+                   if (s.gamma > 0) o.gamma = s.gamma;
+                   if (s.beta > 0) o.beta = s.beta;
+                   const PlanRows plans = runMotionBench(o, progress);
+                   return ExperimentOutput{plans.table(), {}, motionBenchReport(plans, o)};
+                 }});
 }
 
 std::vector<Experiment> makeRegistry() {

@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "fastron/core/error.h"
 
@@ -70,8 +72,12 @@ std::vector<PlannerType> allPlannerTypes() {
 
 void validate(const PlannerOptions& options) {
   if (!(options.range >= 0) || !std::isfinite(options.range)) {
-    throw InvalidArgument("planner range must be 0 (OMPL's default) or positive, got " +
+    throw InvalidArgument("planner range must be 0 (automatic) or positive, got " +
                           std::to_string(options.range));
+  }
+  if (options.rangeHalvings > kMaxRangeHalvings) {
+    throw InvalidArgument("rangeHalvings must be at most " + std::to_string(kMaxRangeHalvings) +
+                          ", got " + std::to_string(options.rangeHalvings));
   }
   if (!(options.verify.hybridRange >= 0) || !std::isfinite(options.verify.hybridRange)) {
     throw InvalidArgument("hybridRange must be 0 (half the planner's range) or positive, got " +
@@ -134,6 +140,14 @@ class RrtConnectSeeingItsTrees : public og::RRTConnect {
   using og::RRTConnect::RRTConnect;
   bool aTreeHoldsOnlyItsRoot() const { return tStart_->size() <= 1 || tGoal_->size() <= 1; }
 };
+
+/// The range of an RRT, RRT-Connect or RRT* planner; 0 for another.
+double rangeOf(const ob::Planner& planner) {
+  if (const auto* p = dynamic_cast<const og::RRTConnect*>(&planner)) return p->getRange();
+  if (const auto* p = dynamic_cast<const og::RRT*>(&planner)) return p->getRange();
+  if (const auto* p = dynamic_cast<const og::RRTstar*>(&planner)) return p->getRange();
+  return 0;
+}
 
 bool answersFromAModel(const CollisionSource& source) {
   const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source);
@@ -222,6 +236,47 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
   return problem;
 }
 
+RangeSchedule::RangeSchedule(ob::Planner& planner, const PlannerOptions& options)
+    : planner_(options.rangeStage == 0 || options.rangeHalvings == 0
+                   ? nullptr
+                   : dynamic_cast<og::RRTConnect*>(&planner)),
+      stage_(options.rangeStage),
+      halvings_(options.rangeHalvings),
+      longest_(planner_ != nullptr ? planner_->getRange() : 0) {}
+
+ob::PlannerStatus RangeSchedule::solve(ob::Planner& planner,
+                                       const ob::PlannerTerminationCondition& stop) {
+  if (planner_ == nullptr) return planner.solve(stop);
+  for (;;) {
+    std::size_t iterations = 0;
+    bool stageOver = false;
+    // Evaluated once per iteration, after `stop` (which may count iterations itself).
+    const ob::PlannerStatus status =
+        planner.solve(ob::plannerOrTerminationCondition(stop, ob::PlannerTerminationCondition([&] {
+                                                          stageOver =
+                                                              ++iterations > (stage_ << step_);
+                                                          return stageOver;
+                                                        })));
+    if (!stageOver || status == ob::PlannerStatus::EXACT_SOLUTION) return status;
+    step_ = step_ == halvings_ ? 0 : step_ + 1;
+    planner_->setRange(std::ldexp(longest_, -static_cast<int>(step_)));
+  }
+}
+
+std::string describeRange(const PlannerOptions& options, const std::string& unit) {
+  std::ostringstream text;
+  if (options.range > 0) {
+    text << options.range << ' ' << unit;
+  } else {
+    text << "OMPL's default";
+  }
+  if (options.rangeStage == 0 || options.rangeHalvings == 0) return text.str();
+  text << ", halved after " << options.rangeStage
+       << " iterations without a path, and after twice as many at each shorter one, down to 1/"
+       << (1U << options.rangeHalvings) << " of it, then again from it";
+  return text.str();
+}
+
 double edgeResolution(const CollisionSource& source, const PlannerOptions& options) {
   return answersFromAModel(source) ? modelStep(options) : options.resolution;
 }
@@ -306,13 +361,18 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   planner->setup();
   // Not solve(double): that checks the time on a helper thread, started and joined per query.
   ob::PlannerTerminationCondition stop = ob::timedPlannerTerminationCondition(options.timeLimit);
+  // Not on a model: its plan is time-boxed and stops at an end it encloses (below), which
+  // long edges' failed extensions would hide until the shortest range.
+  const bool onAModel = std::holds_alternative<std::shared_ptr<const Model>>(source);
+  PlannerOptions scheduled = options;
+  if (onAModel) scheduled.rangeStage = 0;
+  RangeSchedule schedule(*planner, scheduled);
   std::size_t iterations = 0;
   // Only on a model: an exact checker's pocket may have a narrow way out that a few hundred
   // random directions miss, and a plan on a hybrid is the last before the exact checker.
-  const auto* rrtConnect =
-      options.enclosedAfter > 0 && std::holds_alternative<std::shared_ptr<const Model>>(source)
-          ? dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get())
-          : nullptr;
+  const auto* rrtConnect = options.enclosedAfter > 0 && onAModel
+                               ? dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get())
+                               : nullptr;
   if (rrtConnect != nullptr) {
     // Evaluated once per iteration of RRT-Connect's loop.
     stop = ob::plannerOrTerminationCondition(
@@ -320,7 +380,8 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
           return ++iterations > options.enclosedAfter && rrtConnect->aTreeHoldsOnlyItsRoot();
         }));
   }
-  const ob::PlannerStatus status = planner->solve(stop);
+  const ob::PlannerStatus status = schedule.solve(*planner, stop);
+  result.range = rangeOf(*planner);
   const auto problem = planner->getProblemDefinition();
   if (status != ob::PlannerStatus::EXACT_SOLUTION || !problem->hasExactSolution()) {
     return finish(PlanStatus::Timeout);

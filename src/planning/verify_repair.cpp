@@ -505,6 +505,10 @@ VerifiedPlan planOnOptimisticHybrid(const std::shared_ptr<const Model>& model,
       std::make_shared<HybridChecker>(model, relaxed ? relaxed : recorder, kAskEveryCollision)};
   PlannerOptions hybridOptions = options;
   hybridOptions.range = optimisticHybridRange(options, limits);
+  // From half the planner's range down to the planner's shortest (RangeSchedule), not below.
+  if (options.verify.hybridRange == 0 && options.rangeHalvings > 0) {
+    hybridOptions.rangeHalvings = options.rangeHalvings - 1;
+  }
   return planAndRepair(optimistic, recorder, limits, start, goal, options, hybridOptions, relaxed,
                        push);
 }

@@ -864,6 +864,71 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
   EXPECT_LE(longest, 0.1 + 1e-9);
 }
 
+// The range schedule: OMPL's default while RRT-Connect finds its path in the first rangeStage
+// iterations (an open square); without a path (a goal walled in by a ring) halved after
+// rangeStage, then 2, 4 ... times as many iterations, down to the first range over
+// 2^rangeHalvings, then the first again. rangeStage 0 keeps the range.
+TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
+  const JointLimits square = JointLimits::unitBox(2);
+  const double ompls = 0.2 * std::sqrt(8.0);  // a fifth of the square's diagonal
+  const auto open =
+      std::make_shared<FunctionChecker>("open", 2, [](const double*) { return false; });
+  const PlannerOptions automatic{.resolution = 0.01, .timeLimit = 2, .simplifyTime = 0};
+  const PlanResult easy = planMotion(open, square, kStart, kGoal, automatic);
+  ASSERT_TRUE(easy.solved());
+  EXPECT_NEAR(easy.range, ompls, 1e-12);
+
+  const auto ring = std::make_shared<FunctionChecker>("ring", 2, [](const double* q) {
+    const double r = std::hypot(q[0] - 0.8, q[1] + 0.8);
+    return r > 0.1 && r < 0.2;
+  });
+  const auto si = makeSpaceInformation(CollisionSource(ring), square, 0.01);
+  // The range after `total` iterations, counted by the planner's own stop condition.
+  const auto rangeAfter = [&](const PlannerOptions& options, std::size_t total) {
+    const auto planner = makePlanner(si, options);
+    planner->setProblemDefinition(makeProblemDefinition(si, kStart, kGoal, options.type));
+    planner->setup();
+    RangeSchedule schedule(*planner, options);
+    std::size_t iterations = 0;
+    const auto status = schedule.solve(
+        *planner, ompl::base::PlannerTerminationCondition([&] { return ++iterations > total; }));
+    EXPECT_NE(status, ompl::base::PlannerStatus::EXACT_SOLUTION);
+    return std::make_pair(planner->as<ompl::geometric::RRTConnect>()->getRange(),
+                          schedule.atShortest());
+  };
+  // Stages of 100, 200, 400 and 800 iterations.
+  EXPECT_NEAR(rangeAfter(automatic, 50).first, ompls, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 250).first, ompls / 2, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 650).first, ompls / 4, 1e-12);
+  const auto shortest = rangeAfter(automatic, 1450);
+  EXPECT_NEAR(shortest.first, ompls / 8, 1e-12);
+  EXPECT_TRUE(shortest.second);
+  const auto again = rangeAfter(automatic, 1550);
+  EXPECT_NEAR(again.first, ompls, 1e-12);
+  EXPECT_FALSE(again.second);
+
+  PlannerOptions twice = automatic;
+  twice.rangeHalvings = 2;
+  EXPECT_NEAR(rangeAfter(twice, 650).first, ompls / 4, 1e-12);
+  EXPECT_NEAR(rangeAfter(twice, 750).first, ompls, 1e-12);
+  PlannerOptions given = automatic;
+  given.range = 0.3;
+  EXPECT_DOUBLE_EQ(rangeAfter(given, 250).first, 0.15);
+  PlannerOptions stays = given;
+  stays.rangeStage = 0;
+  EXPECT_DOUBLE_EQ(rangeAfter(stays, 1450).first, 0.3);
+  EXPECT_TRUE(rangeAfter(stays, 10).second);
+  EXPECT_DOUBLE_EQ(planMotion(ring, square, kStart, kGoal, stays).range, 0.3);
+
+  EXPECT_EQ(describeRange(stays, "rad"), "0.3 rad");
+  EXPECT_EQ(describeRange(automatic, "rad"),
+            "OMPL's default, halved after 100 iterations without a path, and after twice as "
+            "many at each shorter one, down to 1/8 of it, then again from it");
+  PlannerOptions tooMany = automatic;
+  tooMany.rangeHalvings = kMaxRangeHalvings + 1;
+  EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(tooMany); }), HasSubstr("rangeHalvings"));
+}
+
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the
 // goal; free at the goal, colliding from 0.03 out): RRT-Connect's goal tree can never grow, so a
 // plan on the model stops after enclosedAfter iterations instead of searching until its time

@@ -60,10 +60,12 @@ struct MotionBenchOptions {
   /// Fastron's input (task-space features by default; joints for the paper's model).
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 10;
-  /// Longest tree edge of every method's RRT-Connect, joint units (0: OMPL's default, a fifth of
-  /// the diagonal of the joint limits: 3.3 rad in Baxter's 14 joints, where the exact baseline
-  /// failed; docs/log/2026-11-28-robots-of-other-makers.md, "Fourteen joints").
+  /// Longest tree edge of every method's RRT-Connect to begin with, joint units (0: OMPL's
+  /// default; PlannerOptions::range).
   double range = 0;
+  /// Iterations without a path before the range is halved (unset: PlannerOptions::rangeStage;
+  /// 0: the range stays).
+  std::optional<std::size_t> rangeStage;
   double resolution = 0.03;
   double modelResolution = 0;  ///< PlannerOptions::modelResolution (0: 3 x resolution)
   /// Seconds of OMPL path simplification per plan, for every checker alike (0: off, the paper).

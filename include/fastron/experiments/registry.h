@@ -27,6 +27,7 @@ struct ExperimentSettings {
   FeatureKind features = FeatureKind::Kinematic;
   double timeLimit = 0, resolution = 0;              ///< planning experiments
   double range = 0;                                  ///< motion-bench
+  std::optional<std::size_t> rangeStage;             ///< motion-bench
   double modelResolution = 0;                        ///< planning experiments
   double simplifyTime = -1;                          ///< planning experiments; < 0: default
   std::optional<PathSimplification> simplification;  ///< planning experiments; none: Full

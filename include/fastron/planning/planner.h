@@ -3,13 +3,16 @@
 // first solution, and one planning query from start to goal.
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <ompl/base/Planner.h>
+#include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
 
 #include "fastron/core/export.h"
 #include "fastron/planning/motion.h"
@@ -78,16 +81,31 @@ struct VerifyRepairOptions {
   /// (optimizeTrajectory, gradientRepairOptions) and the result is kept when the exact checker
   /// finds it free (docs/planning.md, "Gradient repair").
   bool gradientRepair = false;
-  /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan;
-  /// 0: half the planner's range (optimisticHybridRange).
+  /// planVerifiedLearning: the longest tree edge (joint units) of its optimistic hybrid's plan
+  /// to begin with; 0: half the planner's range (optimisticHybridRange), its schedule then
+  /// ending at the planner's shortest range (one halving fewer).
   double hybridRange = 0;
 };
+
+/// The most PlannerOptions::rangeHalvings accepts: a range 2^-20 of OMPL's default is shorter
+/// than any motion resolution.
+inline constexpr unsigned kMaxRangeHalvings = 20;
 
 struct PlannerOptions {
   // The planner's own settings.
   PlannerType type = PlannerType::RrtConnect;
-  double range = 0;          ///< longest tree edge (joint units); 0 = OMPL's default
-  double resolution = 0.02;  ///< longest step between checked states of an edge (joint units)
+  /// Longest tree edge (joint units) to begin with; 0: OMPL's default (a fifth of the diagonal
+  /// of the joint limits' box). RRT-Connect on a checker shortens it on a schedule
+  /// (RangeSchedule); on a Fastron model it stays (that plan is time-boxed and stops at an end the
+  /// model encloses, which failed long extensions would hide until the shortest range).
+  double range = 0;
+  /// RRT-Connect on a checker: iterations without a path before its range is halved, twice as
+  /// many at each shorter range (0: the range stays). Long edges find paths in open space at once;
+  /// among obstacles, and in many joints where a long edge moves every link at once, most of them
+  /// collide (docs/planning.md, "The planner's range").
+  std::size_t rangeStage = 100;
+  unsigned rangeHalvings = 3;  ///< the shortest range is the first over 2^rangeHalvings
+  double resolution = 0.02;    ///< longest step between checked states of an edge (joint units)
   /// The same step when planning on a Fastron model or a checker that answers from one
   /// (answersFromAModel); 0: kModelStepsPerStep times `resolution`. A path planned on a model is
   /// verified at `resolution` with the exact checker, so final paths keep that guarantee.
@@ -108,6 +126,35 @@ struct PlannerOptions {
   /// How the recipes around the planner share the time limit, repair and learn.
   VerifyRepairOptions verify;
 };
+
+/// RRT-Connect's range schedule (planMotion's): from its range R (PlannerOptions::range or OMPL's
+/// default), R/2, ..., R/2^rangeHalvings, the k-th halving after rangeStage 2^k iterations
+/// without a path (about the same length of edges at each range), then R again and round. The
+/// trees grown so far stay (a second solve() goes on from them, their edges checked already), so a
+/// stage adds to the search of the ones before. Round again rather than stay short: a robot
+/// whose way needs long edges (a torso's travel, in metres among radians) is not left with short
+/// ones. For another planner, or rangeStage 0, the range stays. Set up the planner before
+/// constructing it (its range is read then).
+class RangeSchedule {
+ public:
+  RangeSchedule(ompl::base::Planner& planner, const PlannerOptions& options);
+  /// planner.solve(stop), on the schedule: `stop` is also evaluated once per iteration.
+  ompl::base::PlannerStatus solve(ompl::base::Planner& planner,
+                                  const ompl::base::PlannerTerminationCondition& stop);
+  /// True at the shortest range, and always for a range that stays.
+  bool atShortest() const { return planner_ == nullptr || step_ == halvings_; }
+
+ private:
+  ompl::geometric::RRTConnect* planner_;  ///< null: the range stays
+  std::size_t stage_;
+  unsigned halvings_;
+  double longest_;
+  unsigned step_ = 0;  ///< the range is longest_ / 2^step_
+};
+
+/// For reports: "1.5 UNIT" or "OMPL's default", then the schedule (", halved after 100
+/// iterations without a path, ...").
+std::string describeRange(const PlannerOptions& options, const std::string& unit);
 
 /// The default model step, in steps of the exact checker (PlannerOptions::modelResolution).
 inline constexpr double kModelStepsPerStep = 3;
@@ -162,6 +209,8 @@ struct PlanResult {
   /// Configurations the source answered (ends, planning, simplification; a batch along an edge
   /// up to its first collision).
   std::uint64_t checks = 0;
+  /// The planner's range when it stopped (PlannerOptions::range; 0 for BIT*, which has none).
+  double range = 0;
   bool solved() const { return status == PlanStatus::Solved; }
 };
 
