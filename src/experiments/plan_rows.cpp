@@ -270,8 +270,14 @@ std::string ratioLine(const PlanRows& r, const RowFilter& where,
     md << (planner == planners.front() ? " " : "; ") << planner << ":";
     for (const std::string& method : methodsOf(r, where)) {
       if (method == "FCL") continue;
+      const double ratio = base / statistic(method);
+      // A side that solved nothing has no time: "n/a", not "nanx" (a script reads the line).
+      if (!std::isfinite(ratio)) {
+        md << ' ' << method << " n/a";
+        continue;
+      }
       char buffer[96];
-      std::snprintf(buffer, sizeof buffer, " %s %.1fx", method.c_str(), base / statistic(method));
+      std::snprintf(buffer, sizeof buffer, " %s %.1fx", method.c_str(), ratio);
       md << buffer;
     }
   }
