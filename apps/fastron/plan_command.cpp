@@ -100,9 +100,19 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
 /// The model of the scene's obstacles (pipeline::trainSceneModel), reported on one line.
 pipeline::SceneModel trainObstacleModel(const PlanOptions& o, const Robot& robot,
                                         const Scene& scene) {
-  const FeatureMap features = featuresFromOptions(o.features, robot);
+  // Control points left to the defaults: the model chooses between the automatic rules.
+  const ControlPointOptions& automatic = o.features.automatic;
+  const ControlPointOptions defaults;
+  const bool choose = o.features.controlLinks.empty() && automatic.rule == defaults.rule &&
+                      automatic.maxPoints == defaults.maxPoints &&
+                      automatic.minSpacing == defaults.minSpacing &&
+                      automatic.maxPerBody == defaults.maxPerBody;
+  const std::vector<pipeline::FeatureCandidate> candidates =
+      choose ? pipeline::automaticFeatureCandidates(robot, parseFeatureKind(o.features.kind))
+             : std::vector<pipeline::FeatureCandidate>{
+                   {"given", featuresFromOptions(o.features, robot)}};
   pipeline::SceneModel model =
-      pipeline::trainSceneModel(robot, scene, checkerOptionsFrom(o.scene), features,
+      pipeline::trainSceneModel(robot, scene, checkerOptionsFrom(o.scene), candidates,
                                 {.samples = o.samples,
                                  .updates = o.updates,
                                  .seed = o.seed,
@@ -113,7 +123,16 @@ pipeline::SceneModel trainObstacleModel(const PlanOptions& o, const Robot& robot
             << o.samples << " samples labelled by " << model.oracle->name() << " and " << o.updates
             << " active-learning updates in " << durationText(model.trainSeconds) << ", "
             << model.detector->model()->supportCount() << " support points, features "
-            << features.summary() << '\n';
+            << model.detector->features().summary();
+  if (!model.candidates.empty()) {
+    std::cout << ", control points of the " << model.candidates[model.chosen].name
+              << " rule (held-out accuracy, TPR:";
+    for (const pipeline::CandidateScore& c : model.candidates) {
+      std::cout << ' ' << c.name << ' ' << rate(c.accuracy) << ' ' << rate(c.tpr);
+    }
+    std::cout << ')';
+  }
+  std::cout << '\n';
   return model;
 }
 

@@ -25,14 +25,17 @@ void bindSceneModel(py::module_& m) {
          std::size_t samples, std::size_t updates, std::uint64_t seed, std::optional<double> gamma,
          std::optional<double> beta, bool selfCollision, double padding,
          const std::string& checker) {
-        const FeatureMap map = features ? *features : robotFeatures(robot, FeatureKind::Kinematic);
+        // No features given: the automatic rules' candidates, as `fastron plan` chooses.
+        const std::vector<pipeline::FeatureCandidate> candidates =
+            features ? std::vector<pipeline::FeatureCandidate>{{"given", *features}}
+                     : pipeline::automaticFeatureCandidates(robot, FeatureKind::Kinematic);
         pipeline::SceneModel model;
         {
           py::gil_scoped_release released;
           CheckerOptions checking;
           checking.selfCollision = selfCollision;
           checking.padding = padding;
-          model = pipeline::trainSceneModel(robot, scene, checking, map,
+          model = pipeline::trainSceneModel(robot, scene, checking, candidates,
                                             {samples, updates, seed, gamma, beta, checker});
         }
         return DetectorHolder(model.detector.release());
@@ -46,7 +49,9 @@ void bindSceneModel(py::module_& m) {
       "a ProxyCollisionDetector of the scene's obstacles alone (its oracle the exact checker "
       "`checker` (scene_checker_names()) without self-collision; `self_collision` and `padding` "
       "are the exact checker's), trained on `samples` labels and `updates` active-learning "
-      "updates, no band. Plan with it as "
+      "updates, no band. Without `features`, the control points of the spread and the cover "
+      "rules are both trained on the same labels and the one better on 500 held-out labels is "
+      "kept. Plan with it as "
       "`fastron plan` does: plan_verified(detector, exact, start, goal, static_scene=True, "
       "oracle_relaxes_exact=True).");
 }

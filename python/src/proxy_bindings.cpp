@@ -200,8 +200,10 @@ void bindDetector(py::module_& m) {
            "labels. relabel_support=False: a world that stands still, whose support points keep "
            "their labels: each step labels only its new points (the same model, fewer oracle "
            "calls).")
-      .def("initialize", &ProxyCollisionDetector::initialize, py::arg("samples"),
-           py::call_guard<py::gil_scoped_release>(),
+      .def("initialize",
+           static_cast<StepReport (ProxyCollisionDetector::*)(std::size_t)>(
+               &ProxyCollisionDetector::initialize),
+           py::arg("samples"), py::call_guard<py::gil_scoped_release>(),
            "Labels `samples` uniform configurations and trains the first model.")
       .def("step", &ProxyCollisionDetector::step, py::call_guard<py::gil_scoped_release>(),
            "One update for a changed world: active learning, relabelling, Algorithm 1. Raises "

@@ -178,6 +178,11 @@ std::string endToEndSpeedups(const PlanRows& r, const RowFilter& where, std::siz
 struct RobotModels {
   std::optional<std::uint64_t> checksum;  ///< none before the first problem's robot
   FeatureMap features;
+  /// The default method's: its first scene's model chooses among them on held-out labels
+  /// (pipeline::trainSceneModel), and the robot's other scenes train the one chosen (the choice
+  /// depends on the robot more than on the scene:
+  /// docs/log/2026-11-29-control-points-of-scene-models.md).
+  std::vector<pipeline::FeatureCandidate> candidates;
   std::shared_ptr<const Model> selfModel;  ///< with MotionBenchOptions::selfModel
   double selfTrainSeconds = 0;
 };
@@ -225,6 +230,7 @@ struct ProblemRun {
   ConfusionCounts paperQuality;
   pipeline::SceneModel obstacles;  ///< the default method's model
   double obstaclesSupport = 0;     ///< its |S| as trained (the split source's)
+  std::string obstacleFeatures;    ///< the name of its features' candidate
   Configurations test;             ///< fresh uniform configurations the models are scored on
   Labels truth, obstacleTruth;     ///< of `test`, by the audit and by the default model's oracle
   std::shared_ptr<const CollisionChecker> split;  ///< with a self-collision model
@@ -247,7 +253,8 @@ ProblemRun prepareProblem(const Problem& problem, std::size_t p,
   run.request = std::move(request);
   const Robot& robot = run.robot;
   if (const std::uint64_t checksum = kinematicsChecksum(robot); checksum != models.checksum) {
-    models = {checksum, robotFeatures(robot, o.features), nullptr, 0};
+    models = {checksum, robotFeatures(robot, o.features),
+              pipeline::automaticFeatureCandidates(robot, o.features), nullptr, 0};
     if (o.selfModel) learnSelfCollisions(robot, o, progress, models);
   }
   const CheckerOptions checking{.selfCollision = o.selfCollision,
@@ -276,13 +283,15 @@ ProblemRun prepareProblem(const Problem& problem, std::size_t p,
   // The default method's model (what `fastron plan` trains, pipeline::trainSceneModel): of this
   // scene's obstacles alone (self-collisions, when checked, left to verification and learned
   // from it). With the robot's self-collision model beside it, also the split source.
-  run.obstacles = pipeline::trainSceneModel(robot, scene, checking, models.features,
+  run.obstacles = pipeline::trainSceneModel(robot, scene, checking, models.candidates,
                                             {.samples = trainingSamples(o),
                                              .updates = trainingUpdates(o),
                                              .seed = o.seed + p,
                                              .gamma = o.gamma,
                                              .beta = o.beta,
                                              .checker = std::string(kDefaultSceneChecker)});
+  run.obstacleFeatures = models.candidates[run.obstacles.chosen].name;
+  models.candidates = {models.candidates[run.obstacles.chosen]};
   run.obstaclesSupport = static_cast<double>(run.obstacles.detector->model()->supportCount());
   run.obstacleTruth =  // of `test`, by the model's oracle
       o.selfCollision ? labelConfigurations(*run.obstacles.oracle, run.test, 1) : run.truth;
@@ -341,6 +350,8 @@ std::vector<PlanRow> planQuery(ProblemRun& run, const Problem& problem, std::siz
                     each.method,
                     outcomeOf(each, *run.audit, o.resolution),
                     {{"support", modelSupport},
+                     {"cover_rule",
+                      each.method == kDefaultMethod && run.obstacleFeatures == "cover" ? 1.0 : 0.0},
                      {"accuracy", modelQuality.accuracy()},
                      {"tpr", modelQuality.tpr()},
                      {"train_s", trainS},
@@ -561,10 +572,22 @@ std::string modelsPerScene(const PlanRows& r, const MotionBenchOptions& o, const
   char sample[160];
   std::snprintf(sample, sizeof sample, "against FCL on %zu fresh uniform configurations per scene",
                 testPoints(o));
+  const RowFilter firstOfDefault = firstQueryOf(where, kDefaultMethod);
+  std::size_t scenes = 0, cover = 0;
+  for (const PlanRow& row : r.rows) {
+    if (!firstOfDefault(row)) continue;
+    ++scenes;
+    if (row.figure("cover_rule") > 0) ++cover;
+  }
   out << "\nModels per scene:\n"
       << modelLine(
              r, where, kDefaultMethod,
              o.selfCollision ? "on the obstacles' labels, FCL without self-collision" : sample)
+      << "  (its control points chosen on the robot's first scene on "
+      << pipeline::SceneModelOptions{}.heldOut
+      << " held-out labels, that scene's training included, and kept for its others: the "
+         "spread rule's in "
+      << scenes - cover << " scenes, the cover rule's in " << cover << ")\n"
       << modelLine(r, where, "Fastron (paper)", sample);
   if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf(where, "Fastron split"))) {
     out << modelLine(r, where, "Fastron split",

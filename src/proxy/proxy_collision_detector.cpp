@@ -78,6 +78,31 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
                 Labels(labels.begin() + learned, labels.end()));
 }
 
+StepReport ProxyCollisionDetector::initialize(const Dataset& labelled) {
+  if (labelled.size() == 0) {
+    throw InvalidArgument("initialize: no labelled configurations to learn");
+  }
+  const std::size_t dim = features_.configurationDim();
+  if (labelled.dim() != dim ||
+      static_cast<std::size_t>(labelled.points.rows()) != labelled.size()) {
+    throw InvalidArgument("initialize: " + std::to_string(labelled.dim()) + " columns and " +
+                          std::to_string(labelled.points.rows()) + " rows for " +
+                          std::to_string(labelled.size()) + " labels; the model has " +
+                          std::to_string(dim) + " joints");
+  }
+  if (!labelled.points.allFinite()) {
+    throw InvalidArgument("initialize: configurations must be finite (found NaN or inf)");
+  }
+  const std::lock_guard lock(stepMutex_);
+  const auto start = Clock::now();
+  StepReport report;
+  report.added = labelled.size();
+  trainer_ = Trainer(features_, params_.train);
+  trainer_.addPoints(labelled.points, labelled.labels, onLabelThreads());
+  report.update = trainer_.update(params_.trainThreads);
+  return finish(report, start, Configurations(0, static_cast<Eigen::Index>(dim)), {});
+}
+
 LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const {
   return {.deadline = params_.labelDeadline.count() > 0 ? Clock::now() + params_.labelDeadline
                                                         : Clock::time_point::max(),

@@ -6,6 +6,8 @@
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
+#include "fastron/core/metrics.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
@@ -59,6 +61,77 @@ TEST(SceneModel, TheSameSeedGivesTheSameModelOfTheObstaclesAlone) {
   wider.gamma = 5;
   EXPECT_EQ(trainSceneModel(baxter, scene, {}, features, wider).detector->model()->kernel().gamma,
             5);
+}
+
+// Candidates learn one labelling, each makes its own update, and the one that scores best on
+// held-out labels is kept: a control point on Baxter's shoulder (it barely moves) cannot tell
+// where the arm meets the box, the automatic points can, whichever order they come in. One
+// candidate is the plain recipe.
+TEST(SceneModel, KeepsTheCandidateThatScoresBestOnHeldOutLabels) {
+  const Robot baxter = loadRobot("baxter");
+  const Scene scene = oneBox();
+  const FeatureMap automatic = robotFeatures(baxter, FeatureKind::Kinematic);
+  const FeatureMap shoulder =
+      robotFeatures(baxter, FeatureKind::Kinematic, {{"right_upper_shoulder", {0, 0, 0}}});
+  const SceneModelOptions options{.samples = 1500,
+                                  .updates = 1,
+                                  .seed = 2,
+                                  .gamma = {},
+                                  .beta = {},
+                                  .checker = std::string(kDefaultSceneChecker),
+                                  .heldOut = 400};
+  const std::vector<FeatureCandidate> both{{"shoulder", shoulder}, {"automatic", automatic}};
+  for (const bool reversed : {false, true}) {
+    const std::vector<FeatureCandidate> candidates =
+        reversed ? std::vector<FeatureCandidate>{both[1], both[0]} : both;
+    const SceneModel model = trainSceneModel(baxter, scene, {}, candidates, options);
+    ASSERT_EQ(model.candidates.size(), 2u);
+    EXPECT_EQ(model.candidates[0].name, candidates[0].name);
+    EXPECT_EQ(model.candidates[model.chosen].name, "automatic");
+    const CandidateScore& worse = model.candidates[1 - model.chosen];
+    const CandidateScore& kept = model.candidates[model.chosen];
+    EXPECT_GT(kept.accuracy + kept.tpr, worse.accuracy + worse.tpr);
+    EXPECT_EQ(model.detector->features().kinematics()->description().points,
+              automatic.kinematics()->description().points);
+    EXPECT_EQ(kept.support, model.detector->model()->supportCount());
+    EXPECT_GT(model.trainSeconds, 0);
+    // What the held-out labels said holds on fresh ones.
+    Rng rng(11);
+    const Configurations q = uniformConfigurations(baxter.limits(), 2000, rng);
+    const FclChecker fcl(baxter, scene);
+    Labels truth;
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      truth.push_back(fcl.inCollision(std::span<const double>(q.row(i).data(), 7)) ? 1 : -1);
+    }
+    EXPECT_GT(evaluate(*model.detector->model(), q, truth).accuracy(), 0.9);
+  }
+
+  const SceneModel one = trainSceneModel(baxter, scene, {}, {{"automatic", automatic}}, options);
+  const SceneModel plain = trainSceneModel(baxter, scene, {}, automatic, options);
+  EXPECT_TRUE(one.candidates.empty());
+  Rng rng(12);
+  const Configurations q = uniformConfigurations(baxter.limits(), 300, rng);
+  EXPECT_EQ(one.detector->model()->scoreBatch(q), plain.detector->model()->scoreBatch(q));
+  EXPECT_THROW(trainSceneModel(baxter, scene, {}, std::vector<FeatureCandidate>{}, options),
+               InvalidArgument);
+}
+
+// The automatic candidates: the spread rule's points (robotFeatures' own) and the cover rule's
+// where they differ; joint features alone for joints.
+TEST(SceneModel, AutomaticCandidatesAreTheSpreadAndCoverRulesPoints) {
+  const Robot arm = loadRobot("mobile-arm");
+  const std::vector<FeatureCandidate> candidates =
+      automaticFeatureCandidates(arm, FeatureKind::Kinematic);
+  ASSERT_EQ(candidates.size(), 2u);
+  EXPECT_EQ(candidates[0].name, "spread");
+  EXPECT_EQ(candidates[1].name, "cover");
+  EXPECT_EQ(candidates[0].features.kinematics()->description().points, defaultControlPoints(arm));
+  EXPECT_EQ(candidates[1].features.kinematics()->description().points,
+            defaultControlPoints(arm, {.rule = ControlPointRule::Cover}));
+  const std::vector<FeatureCandidate> joints =
+      automaticFeatureCandidates(arm, FeatureKind::JointScaling);
+  ASSERT_EQ(joints.size(), 1u);
+  EXPECT_EQ(joints[0].features.kind(), FeatureKind::JointScaling);
 }
 
 // Its plans are verified with the exact checker at the plan's resolution, as every final path

@@ -232,6 +232,45 @@ TEST(ProxyCollisionDetector, LearnsObservationsWithoutTheOracle) {
   }
 }
 
+// initialize(labelled): the first model from labels the caller has (one labelling shared by
+// models on other features), without the oracle; a step after it asks the oracle as usual.
+TEST(ProxyCollisionDetector, InitializesFromLabelsItIsGivenWithoutTheOracle) {
+  MovingBalls world(2, 4);
+  const auto checker = world.checker(2);
+  ProxyCollisionDetector proxy(checker, JointLimits::unitBox(2), params(30));
+  Dataset labelled;
+  labelled.points = test::uniformPoints(800, 2, 5);
+  for (Eigen::Index i = 0; i < labelled.points.rows(); ++i) {
+    labelled.labels.push_back(world.inCollision(labelled.points.row(i).data()) ? 1 : -1);
+  }
+  const StepReport report = proxy.initialize(labelled);
+  EXPECT_EQ(checker->callCount(), 0u) << "no oracle call";
+  EXPECT_EQ(report.added, labelled.size());
+  EXPECT_EQ(report.labelled, 0u);
+  EXPECT_EQ(report.modelVersion, 1u);
+  ASSERT_EQ(report.update.stopReason, StopReason::Converged);
+  for (std::size_t k = 0; k < labelled.size(); ++k) {
+    const Eigen::Index row = static_cast<Eigen::Index>(k);
+    EXPECT_EQ(proxy.model()->inCollision(labelled.points.row(row).data()), labelled.labels[k] > 0);
+  }
+  EXPECT_GT(accuracy(*proxy.model(), world, 2), 0.9);
+  proxy.step();
+  EXPECT_GT(checker->callCount(), 0u);
+
+  ProxyCollisionDetector fresh(checker, JointLimits::unitBox(2), params(30));
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(Dataset{}); }),
+              ::testing::HasSubstr("no labelled configurations"));
+  Dataset wide = labelled;
+  wide.points = test::uniformPoints(800, 3, 5);
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(wide); }),
+              ::testing::HasSubstr("3 columns"));
+  Dataset holed = labelled;
+  holed.points(4, 1) = std::nan("");
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(holed); }),
+              ::testing::HasSubstr("finite"));
+  EXPECT_THROW(fresh.model(), Error) << "a refused set leaves no model";
+}
+
 TEST(ProxyCollisionDetector, SameSeedSameModel) {
   auto run = [](std::uint64_t seed) {
     MovingBalls world(3, 5);

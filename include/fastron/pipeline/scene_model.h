@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
@@ -29,6 +31,21 @@ struct SceneModelOptions {
   std::uint64_t seed = 1;
   std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
   std::string checker{kDefaultSceneChecker};  ///< the oracle's backend (scene_checkers.h)
+  /// With several feature candidates: fresh labelled configurations that decide between them.
+  std::size_t heldOut = 500;
+};
+
+/// Features a scene model may learn on, named for reports ("spread", "cover").
+struct FeatureCandidate {
+  std::string name;
+  FeatureMap features;
+};
+
+/// A candidate's model on the held-out configurations.
+struct CandidateScore {
+  std::string name;
+  double accuracy = 0, tpr = 0;
+  std::size_t support = 0;
 };
 
 /// A model of a scene's obstacles and the checker it learned from.
@@ -38,8 +55,18 @@ struct SceneModel {
   /// left to verification).
   std::shared_ptr<const SceneChecker> oracle;
   std::unique_ptr<ProxyCollisionDetector> detector;  ///< no band: it plans without one
-  double trainSeconds = 0;                           ///< labelling and training
+  double trainSeconds = 0;  ///< labelling and training, every candidate's and the held-out labels
+  /// With several candidates: each one's score on the held-out configurations, in their order;
+  /// `chosen` indexes the one kept. Empty for a model of one set of features.
+  std::vector<CandidateScore> candidates;
+  std::size_t chosen = 0;
 };
+
+/// The robot's automatic features for a scene model: joint scaling alone, or the control
+/// points of the spread rule (robotFeatures' default) and of the cover rule when they differ. On
+/// the Panda the spread rule is as good or better, on the validation robots the cover rule far
+/// better (docs/log/2026-11-29-control-points-of-scene-models.md).
+std::vector<FeatureCandidate> automaticFeatureCandidates(const Robot& robot, FeatureKind kind);
 
 /// Trains the model of `scene`'s obstacles for `robot` on `features` (pipeline::robotProxyParams
 /// of their kind, for a scene that stands still, without a band): `options.samples` labelled
@@ -47,6 +74,13 @@ struct SceneModel {
 /// exact checker's: its padding is the oracle's too.
 SceneModel trainSceneModel(const Robot& robot, const Scene& scene, const CheckerOptions& checking,
                            const FeatureMap& features, const SceneModelOptions& options);
+/// The same on each of `candidates` (one: as above): `options.samples` uniform configurations
+/// labelled once and learned by every candidate, then each one's own `options.updates`; the one
+/// whose model scores the highest accuracy + TPR on `options.heldOut` fresh labelled
+/// configurations is kept, the first of equals. Throws InvalidArgument on no candidate.
+SceneModel trainSceneModel(const Robot& robot, const Scene& scene, const CheckerOptions& checking,
+                           const std::vector<FeatureCandidate>& candidates,
+                           const SceneModelOptions& options);
 
 /// The default method's plan: on the model, then on a hybrid asking the model's oracle about
 /// every "collides", then on `exact`; every path verified and repaired with `exact`

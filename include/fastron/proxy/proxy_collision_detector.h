@@ -133,6 +133,11 @@ class ProxyCollisionDetector {
 
   /// n uniform samples within the joint limits, labelled, then Algorithm 1.
   StepReport initialize(std::size_t n);
+  /// Algorithm 1 on configurations the caller has labelled already (e.g. one labelling shared by
+  /// models on other features): no oracle call, no calibration (the band is the model's own
+  /// boundary until a step calibrates one). Throws InvalidArgument on an empty set, a wrong
+  /// column count, a non-finite value or a label other than +1 / -1.
+  StepReport initialize(const Dataset& labelled);
 
   /// One cycle for a changed environment: Algorithm 2 on the current support set, relabel the
   /// support set, label the new points, Algorithm 1. Throws Error before initialize(), and
