@@ -582,13 +582,15 @@ std::string modelsPerScene(const PlanRows& r, const MotionBenchOptions& o, const
   out << "\nModels per scene:\n"
       << modelLine(
              r, where, kDefaultMethod,
-             o.selfCollision ? "on the obstacles' labels, FCL without self-collision" : sample)
-      << "  (its control points chosen on the robot's first scene on "
-      << pipeline::SceneModelOptions{}.heldOut
-      << " held-out labels, that scene's training included, and kept for its others: the "
-         "spread rule's in "
-      << scenes - cover << " scenes, the cover rule's in " << cover << ")\n"
-      << modelLine(r, where, "Fastron (paper)", sample);
+             o.selfCollision ? "on the obstacles' labels, FCL without self-collision" : sample);
+  if (o.features == FeatureKind::Kinematic) {
+    out << "  (its control points chosen on the robot's first scene on "
+        << pipeline::SceneModelOptions{}.heldOut
+        << " held-out labels, that scene's training included, and kept for its others: the "
+           "spread rule's in "
+        << scenes - cover << " scenes, the cover rule's in " << cover << ")\n";
+  }
+  out << modelLine(r, where, "Fastron (paper)", sample);
   if (std::any_of(r.rows.begin(), r.rows.end(), firstQueryOf(where, "Fastron split"))) {
     out << modelLine(r, where, "Fastron split",
                      "with the self-collision model, against FCL with self-collision")

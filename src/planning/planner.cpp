@@ -72,7 +72,7 @@ std::vector<PlannerType> allPlannerTypes() {
 
 void validate(const PlannerOptions& options) {
   if (!(options.range >= 0) || !std::isfinite(options.range)) {
-    throw InvalidArgument("planner range must be 0 (automatic) or positive, got " +
+    throw InvalidArgument("planner range must be 0 (OMPL's default) or positive, got " +
                           std::to_string(options.range));
   }
   if (options.rangeHalvings > kMaxRangeHalvings) {

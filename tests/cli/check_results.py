@@ -194,6 +194,14 @@ def main():
                 fail(f"no accuracy for a model: {row}")
         if "Models per scene:\n- Fastron: trained in" not in report:
             fail("report.md does not give the trained models' accuracy")
+        # The default method's control points: one rule per robot, the same in every scene.
+        chosen = {r["cover_rule"] for r in rows if r["method"] == "Fastron"}
+        if not chosen <= {"0", "1"} or len(chosen) != 1:
+            fail(f"the default method's control points are not one rule for the robot: {chosen}")
+        if any(r["cover_rule"] != "0" for r in rows if r["method"] != "Fastron"):
+            fail("only the default method chooses its control points")
+        if not re.search(r"the spread rule's in [0-9]+ scenes, the cover rule's in [0-9]+\)", report):
+            fail("report.md does not say which control points the default method kept")
         # Along FCL's own path of each request: rates, measured wherever FCL solved the request.
         rate_columns(rows, ["fcl_path_near_walls", "fcl_path_called_colliding"])
         for row in rows:
