@@ -13,6 +13,30 @@ namespace fastron {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
+
+/// Throws InvalidArgument, naming `what` ("observation"), unless `data` has `dim` columns, a row
+/// per label, finite values and labels +1 / -1.
+void checkLabelled(const Dataset& data, std::size_t dim, const std::string& what) {
+  if (data.dim() != dim || static_cast<std::size_t>(data.points.rows()) != data.size()) {
+    throw InvalidArgument(what + "s have " + std::to_string(data.dim()) + " columns and " +
+                          std::to_string(data.points.rows()) + " rows for " +
+                          std::to_string(data.size()) + " labels; the model has " +
+                          std::to_string(dim) + " joints");
+  }
+  if (!data.points.allFinite()) {
+    throw InvalidArgument(what + "s must be finite (found NaN or inf)");
+  }
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    if (data.labels[i] != 1 && data.labels[i] != -1) {
+      throw InvalidArgument(what + " " + std::to_string(i) + " has label " +
+                            std::to_string(data.labels[i]) + ", expected +1 or -1");
+    }
+  }
+}
+
+}  // namespace
+
 ProxyCollisionDetector::ProxyCollisionDetector(std::shared_ptr<const CollisionChecker> oracle,
                                                FeatureMap features, ProxyParams params)
     : oracle_(std::move(oracle)),
@@ -82,17 +106,8 @@ StepReport ProxyCollisionDetector::initialize(const Dataset& labelled) {
   if (labelled.size() == 0) {
     throw InvalidArgument("initialize: no labelled configurations to learn");
   }
-  const std::size_t dim = features_.configurationDim();
-  if (labelled.dim() != dim ||
-      static_cast<std::size_t>(labelled.points.rows()) != labelled.size()) {
-    throw InvalidArgument("initialize: " + std::to_string(labelled.dim()) + " columns and " +
-                          std::to_string(labelled.points.rows()) + " rows for " +
-                          std::to_string(labelled.size()) + " labels; the model has " +
-                          std::to_string(dim) + " joints");
-  }
-  if (!labelled.points.allFinite()) {
-    throw InvalidArgument("initialize: configurations must be finite (found NaN or inf)");
-  }
+  checkLabelled(labelled, features_.configurationDim(), "labelled configuration");
+  const auto dim = static_cast<Eigen::Index>(features_.configurationDim());
   const std::lock_guard lock(stepMutex_);
   const auto start = Clock::now();
   StepReport report;
@@ -100,7 +115,7 @@ StepReport ProxyCollisionDetector::initialize(const Dataset& labelled) {
   trainer_ = Trainer(features_, params_.train);
   trainer_.addPoints(labelled.points, labelled.labels, onLabelThreads());
   report.update = trainer_.update(params_.trainThreads);
-  return finish(report, start, Configurations(0, static_cast<Eigen::Index>(dim)), {});
+  return finish(report, start, Configurations(0, dim), {});
 }
 
 LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const {
@@ -237,23 +252,9 @@ StepReport ProxyCollisionDetector::learnObservations() {
 }
 
 void ProxyCollisionDetector::addObservations(const Dataset& answers) {
-  const std::size_t dim = features_.configurationDim();
   if (answers.size() == 0) return;
-  if (answers.dim() != dim || static_cast<std::size_t>(answers.points.rows()) != answers.size()) {
-    throw InvalidArgument("observations have " + std::to_string(answers.dim()) + " columns and " +
-                          std::to_string(answers.points.rows()) + " rows for " +
-                          std::to_string(answers.size()) + " labels; the model has " +
-                          std::to_string(dim) + " joints");
-  }
-  if (!answers.points.allFinite()) {
-    throw InvalidArgument("observations must be finite (found NaN or inf)");
-  }
-  for (std::size_t i = 0; i < answers.size(); ++i) {
-    if (answers.labels[i] != 1 && answers.labels[i] != -1) {
-      throw InvalidArgument("observation " + std::to_string(i) + " has label " +
-                            std::to_string(answers.labels[i]) + ", expected +1 or -1");
-    }
-  }
+  const std::size_t dim = features_.configurationDim();
+  checkLabelled(answers, dim, "observation");
   const std::lock_guard pending(pendingMutex_);
   const std::size_t room = params_.maxPendingObservations > pendingLabels_.size()
                                ? params_.maxPendingObservations - pendingLabels_.size()

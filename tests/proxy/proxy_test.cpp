@@ -263,11 +263,15 @@ TEST(ProxyCollisionDetector, InitializesFromLabelsItIsGivenWithoutTheOracle) {
   Dataset wide = labelled;
   wide.points = test::uniformPoints(800, 3, 5);
   EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(wide); }),
-              ::testing::HasSubstr("3 columns"));
+              ::testing::HasSubstr("labelled configurations have 3 columns"));
   Dataset holed = labelled;
   holed.points(4, 1) = std::nan("");
   EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(holed); }),
               ::testing::HasSubstr("finite"));
+  Dataset unlabelled = labelled;
+  unlabelled.labels[2] = 0;
+  EXPECT_THAT(test::messageOf<InvalidArgument>([&] { fresh.initialize(unlabelled); }),
+              ::testing::HasSubstr("labelled configuration 2 has label 0, expected +1 or -1"));
   EXPECT_THROW(fresh.model(), Error) << "a refused set leaves no model";
 }
 
