@@ -129,8 +129,8 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
       ->check(numberAbove(0));
   cmd.add_option("--range-stage", o.settings.rangeStage,
                  "motion-bench: RRT-Connect's iterations without a path before its range is "
-                 "halved, twice as many at each shorter range, down to an eighth, then the "
-                 "first range again (default 100; 0: the range stays)");
+                 "halved, down to an eighth, then the first range again, each round of ranges "
+                 "twice as long (default 100; 0: the range stays)");
 }
 
 /// The options of every planning experiment: time, resolutions, simplification.

@@ -355,8 +355,8 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                   "iterations without a path")
       ->check(numberAbove(0));
   cmd->add_option("--range-stage", o->rangeStage,
-                  "RRT-Connect: iterations without a path before its range is halved, twice as "
-                  "many at each shorter range, down to an eighth, then the first range again (0: "
+                  "RRT-Connect: iterations without a path before its range is halved, down to an "
+                  "eighth, then the first range again, each round of ranges twice as long (0: "
                   "the range stays)")
       ->capture_default_str();
   cmd->add_option("--simplify-time", o->simplifyTime,

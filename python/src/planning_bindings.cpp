@@ -227,8 +227,8 @@ void bindPlan(py::module_& m) {
       "'shortcuts': shortcutting and vertex reduction only, fewer checks). Edges are checked "
       "every `resolution`, on a model (or a checker answering from one) every "
       "`model_resolution` (0: 3 times `resolution`). RRT-Connect's `range` (0: OMPL's "
-      "default) is halved after `range_stage` iterations without a path, twice as many at each "
-      "shorter range, down to an eighth, then taken again (0: it stays).");
+      "default) is halved after `range_stage` iterations without a path, down to an eighth, "
+      "then taken again, each round of ranges twice as long (0: it stays).");
 }
 
 /// plan_verified: a plan on an approximate source, verified and repaired.

@@ -254,10 +254,11 @@ ob::PlannerStatus RangeSchedule::solve(ob::Planner& planner,
     const ob::PlannerStatus status =
         planner.solve(ob::plannerOrTerminationCondition(stop, ob::PlannerTerminationCondition([&] {
                                                           stageOver =
-                                                              ++iterations > (stage_ << step_);
+                                                              ++iterations > (stage_ << rounds_);
                                                           return stageOver;
                                                         })));
     if (!stageOver || status == ob::PlannerStatus::EXACT_SOLUTION) return status;
+    if (step_ == halvings_) ++rounds_;
     step_ = step_ == halvings_ ? 0 : step_ + 1;
     planner_->setRange(std::ldexp(longest_, -static_cast<int>(step_)));
   }
@@ -271,9 +272,9 @@ std::string describeRange(const PlannerOptions& options, const std::string& unit
     text << "OMPL's default";
   }
   if (options.rangeStage == 0 || options.rangeHalvings == 0) return text.str();
-  text << ", halved after " << options.rangeStage
-       << " iterations without a path, and after twice as many at each shorter one, down to 1/"
-       << (1U << options.rangeHalvings) << " of it, then again from it";
+  text << ", halved after " << options.rangeStage << " iterations without a path down to 1/"
+       << (1U << options.rangeHalvings)
+       << " of it, then again from it, each round twice as long as the one before";
   return text.str();
 }
 

@@ -865,9 +865,9 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
 }
 
 // The range schedule: OMPL's default while RRT-Connect finds its path in the first rangeStage
-// iterations (an open square); without a path (a goal walled in by a ring) halved after
-// rangeStage, then 2, 4 ... times as many iterations, down to the first range over
-// 2^rangeHalvings, then the first again. rangeStage 0 keeps the range.
+// iterations (an open square); without a path (a goal walled in by a ring) halved after every
+// rangeStage iterations down to the first range over 2^rangeHalvings, then the first again, each
+// round of ranges twice as long. rangeStage 0 keeps the range.
 TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
   const JointLimits square = JointLimits::unitBox(2);
   const double ompls = 0.2 * std::sqrt(8.0);  // a fifth of the square's diagonal
@@ -896,24 +896,29 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
     return std::make_pair(planner->as<ompl::geometric::RRTConnect>()->getRange(),
                           schedule.atShortest());
   };
-  // Stages of 100, 200, 400 and 800 iterations.
+  // A first round of 100 iterations per range, a second of 200 (from 400), a third of 400
+  // (from 1200).
   EXPECT_NEAR(rangeAfter(automatic, 50).first, ompls, 1e-12);
-  EXPECT_NEAR(rangeAfter(automatic, 250).first, ompls / 2, 1e-12);
-  EXPECT_NEAR(rangeAfter(automatic, 650).first, ompls / 4, 1e-12);
-  const auto shortest = rangeAfter(automatic, 1450);
+  EXPECT_NEAR(rangeAfter(automatic, 150).first, ompls / 2, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 250).first, ompls / 4, 1e-12);
+  const auto shortest = rangeAfter(automatic, 350);
   EXPECT_NEAR(shortest.first, ompls / 8, 1e-12);
   EXPECT_TRUE(shortest.second);
-  const auto again = rangeAfter(automatic, 1550);
+  const auto again = rangeAfter(automatic, 450);
   EXPECT_NEAR(again.first, ompls, 1e-12);
   EXPECT_FALSE(again.second);
+  EXPECT_NEAR(rangeAfter(automatic, 650).first, ompls / 2, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 850).first, ompls / 4, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 1100).first, ompls / 8, 1e-12);
+  EXPECT_NEAR(rangeAfter(automatic, 1300).first, ompls, 1e-12);
 
   PlannerOptions twice = automatic;
   twice.rangeHalvings = 2;
-  EXPECT_NEAR(rangeAfter(twice, 650).first, ompls / 4, 1e-12);
-  EXPECT_NEAR(rangeAfter(twice, 750).first, ompls, 1e-12);
+  EXPECT_NEAR(rangeAfter(twice, 250).first, ompls / 4, 1e-12);
+  EXPECT_NEAR(rangeAfter(twice, 350).first, ompls, 1e-12);
   PlannerOptions given = automatic;
   given.range = 0.3;
-  EXPECT_DOUBLE_EQ(rangeAfter(given, 250).first, 0.15);
+  EXPECT_DOUBLE_EQ(rangeAfter(given, 150).first, 0.15);
   PlannerOptions stays = given;
   stays.rangeStage = 0;
   EXPECT_DOUBLE_EQ(rangeAfter(stays, 1450).first, 0.3);
@@ -922,8 +927,8 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
 
   EXPECT_EQ(describeRange(stays, "rad"), "0.3 rad");
   EXPECT_EQ(describeRange(automatic, "rad"),
-            "OMPL's default, halved after 100 iterations without a path, and after twice as "
-            "many at each shorter one, down to 1/8 of it, then again from it");
+            "OMPL's default, halved after 100 iterations without a path down to 1/8 of it, then "
+            "again from it, each round twice as long as the one before");
   PlannerOptions tooMany = automatic;
   tooMany.rangeHalvings = kMaxRangeHalvings + 1;
   EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(tooMany); }), HasSubstr("rangeHalvings"));

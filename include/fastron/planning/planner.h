@@ -99,10 +99,10 @@ struct PlannerOptions {
   /// (RangeSchedule); on a Fastron model it stays (that plan is time-boxed and stops at an end the
   /// model encloses, which failed long extensions would hide until the shortest range).
   double range = 0;
-  /// RRT-Connect on a checker: iterations without a path before its range is halved, twice as
-  /// many at each shorter range (0: the range stays). Long edges find paths in open space at once;
-  /// among obstacles, and in many joints where a long edge moves every link at once, most of them
-  /// collide (docs/planning.md, "The planner's range").
+  /// RRT-Connect on a checker: iterations without a path before its range is halved, in the
+  /// first round of ranges; twice as many in each round after (0: the range stays). Long edges find
+  /// paths in open space at once; among obstacles, and in many joints where a long edge moves every
+  /// link at once, most of them collide (docs/planning.md, "The planner's range").
   std::size_t rangeStage = 100;
   unsigned rangeHalvings = 3;  ///< the shortest range is the first over 2^rangeHalvings
   double resolution = 0.02;    ///< longest step between checked states of an edge (joint units)
@@ -127,14 +127,14 @@ struct PlannerOptions {
   VerifyRepairOptions verify;
 };
 
-/// RRT-Connect's range schedule (planMotion's): from its range R (PlannerOptions::range or OMPL's
-/// default), R/2, ..., R/2^rangeHalvings, the k-th halving after rangeStage 2^k iterations
-/// without a path (about the same length of edges at each range), then R again and round. The
-/// trees grown so far stay (a second solve() goes on from them, their edges checked already), so a
-/// stage adds to the search of the ones before. Round again rather than stay short: a robot
-/// whose way needs long edges (a torso's travel, in metres among radians) is not left with short
-/// ones. For another planner, or rangeStage 0, the range stays. Set up the planner before
-/// constructing it (its range is read then).
+/// RRT-Connect's range schedule (planMotion's): its range R (PlannerOptions::range or OMPL's
+/// default), then R/2, ..., R/2^rangeHalvings, each for rangeStage iterations without a path,
+/// then R again, each round of ranges twice as long per range as the one before. The trees grown
+/// so far stay (a second solve() goes on from them, their edges checked already), so a stage adds
+/// to the search of the ones before. Every range gets the same share of the iterations: Baxter's
+/// two arms need the shortest, one of the Panda's bookshelf problems the longest
+/// (docs/log/2026-11-29-the-planners-range.md). For another planner, or rangeStage 0, the range
+/// stays. Set up the planner before constructing it (its range is read then).
 class RangeSchedule {
  public:
   RangeSchedule(ompl::base::Planner& planner, const PlannerOptions& options);
@@ -149,7 +149,8 @@ class RangeSchedule {
   std::size_t stage_;
   unsigned halvings_;
   double longest_;
-  unsigned step_ = 0;  ///< the range is longest_ / 2^step_
+  unsigned step_ = 0;    ///< the range is longest_ / 2^step_
+  unsigned rounds_ = 0;  ///< rounds of every range done: a stage is rangeStage 2^rounds_
 };
 
 /// For reports: "1.5 UNIT" or "OMPL's default", then the schedule (", halved after 100
