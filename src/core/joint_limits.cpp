@@ -1,6 +1,7 @@
 #include "fastron/core/joint_limits.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "fastron/core/error.h"
@@ -22,6 +23,16 @@ JointLimits::JointLimits(Eigen::VectorXd lower, Eigen::VectorXd upper)
   }
   scale_ = 2.0 / (upper_ - lower_).array();
   offset_ = -(upper_ + lower_).array() / (upper_ - lower_).array();
+  for (Eigen::Index j = 0; j < lower_.size(); ++j) {
+    // A span too narrow (subnormal) or too wide (beyond double) scales to inf or NaN features.
+    const double span = upper_[j] - lower_[j];
+    if (!std::isfinite(span) || !std::isfinite(scale_[j]) || !std::isfinite(offset_[j])) {
+      std::ostringstream message;
+      message << "joint limits of joint " << j << ": [" << lower_[j] << ", " << upper_[j]
+              << "] cannot be scaled to [-1, 1] (upper - lower = " << span << ")";
+      throw InvalidArgument(message.str());
+    }
+  }
 }
 
 JointLimits rangeOf(const Eigen::Ref<const Configurations>& q, std::string_view remedy) {

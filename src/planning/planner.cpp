@@ -247,16 +247,18 @@ RangeSchedule::RangeSchedule(ob::Planner& planner, const PlannerOptions& options
 ob::PlannerStatus RangeSchedule::solve(ob::Planner& planner,
                                        const ob::PlannerTerminationCondition& stop) {
   if (planner_ == nullptr) return planner.solve(stop);
+  // Stages stop growing at 2^30 times the first: no time limit lasts that many iterations, and
+  // the shift stays defined.
+  constexpr unsigned kMaxRounds = 30;
   for (;;) {
     std::size_t iterations = 0;
     bool stageOver = false;
     // Evaluated once per iteration, after `stop` (which may count iterations itself).
-    const ob::PlannerStatus status =
-        planner.solve(ob::plannerOrTerminationCondition(stop, ob::PlannerTerminationCondition([&] {
-                                                          stageOver =
-                                                              ++iterations > (stage_ << rounds_);
-                                                          return stageOver;
-                                                        })));
+    const ob::PlannerStatus status = planner.solve(ob::plannerOrTerminationCondition(
+        stop, ob::PlannerTerminationCondition([&] {
+          stageOver = ++iterations > (stage_ << std::min(rounds_, kMaxRounds));
+          return stageOver;
+        })));
     if (!stageOver || status == ob::PlannerStatus::EXACT_SOLUTION) return status;
     if (step_ == halvings_) ++rounds_;
     step_ = step_ == halvings_ ? 0 : step_ + 1;

@@ -105,6 +105,12 @@ TEST(JointLimits, RejectsBadLimitsAndConfigurations) {
   EXPECT_THROW(JointLimits(Eigen::Vector2d(0, 0), Eigen::Vector3d(1, 1, 1)), InvalidArgument);
   EXPECT_THROW(JointLimits(Eigen::Vector2d(0, std::nan("")), Eigen::Vector2d(1, 1)),
                InvalidArgument);
+  // Spans that scale to inf or NaN features: subnormal (a fuzzed model file's), beyond double.
+  EXPECT_THAT(test::messageOf<InvalidArgument>(
+                  [] { JointLimits(Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 2.59e-318)); }),
+              ::testing::HasSubstr("joint limits of joint 1"));
+  EXPECT_THROW(JointLimits(Eigen::Vector2d(-1e308, 0), Eigen::Vector2d(1e308, 1)), InvalidArgument);
+  EXPECT_NO_THROW(JointLimits(Eigen::Vector2d(0, -1e-300), Eigen::Vector2d(1e-300, 1e300)));
   const JointLimits limits = JointLimits::unitBox(2);
   EXPECT_THROW(limits.toInput(std::vector<double>{0.0}), InvalidArgument);
   EXPECT_THROW(limits.toInput(std::vector<double>{0.0, INFINITY}), InvalidArgument);

@@ -141,8 +141,6 @@ class RangeSchedule {
   /// planner.solve(stop), on the schedule: `stop` is also evaluated once per iteration.
   ompl::base::PlannerStatus solve(ompl::base::Planner& planner,
                                   const ompl::base::PlannerTerminationCondition& stop);
-  /// True at the shortest range, and always for a range that stays.
-  bool atShortest() const { return planner_ == nullptr || step_ == halvings_; }
 
  private:
   ompl::geometric::RRTConnect* planner_;  ///< null: the range stays
