@@ -101,12 +101,8 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
 pipeline::SceneModel trainObstacleModel(const PlanOptions& o, const Robot& robot,
                                         const Scene& scene) {
   // Control points left to the defaults: the model chooses between the automatic rules.
-  const ControlPointOptions& automatic = o.features.automatic;
-  const ControlPointOptions defaults;
-  const bool choose = o.features.controlLinks.empty() && automatic.rule == defaults.rule &&
-                      automatic.maxPoints == defaults.maxPoints &&
-                      automatic.minSpacing == defaults.minSpacing &&
-                      automatic.maxPerBody == defaults.maxPerBody;
+  const bool choose =
+      o.features.controlLinks.empty() && o.features.automatic == ControlPointOptions{};
   const std::vector<pipeline::FeatureCandidate> candidates =
       choose ? pipeline::automaticFeatureCandidates(robot, parseFeatureKind(o.features.kind))
              : std::vector<pipeline::FeatureCandidate>{

@@ -39,6 +39,8 @@ struct ControlPointOptions {
   /// and without the limit the mesh Panda's large hand took every point and left the forearm
   /// unseen.
   std::size_t maxPerBody = 3;
+
+  bool operator==(const ControlPointOptions&) const = default;
 };
 
 /// The control points a task-space model of `robot` uses by default. Candidates are the origins
