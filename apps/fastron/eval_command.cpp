@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -43,6 +44,9 @@ struct EvalOptions {
   std::uint64_t seed = 2;
   std::optional<double> resolution;  ///< with --path; default kPathResolution
   bool clearance = false, plot = true;
+  /// Point terms only: also the answers of the model's point field (point_field.h).
+  bool pointField = true;
+  PointFieldOptions field;
 };
 
 constexpr double kPathResolution = 0.03;  // fastron plan's default edge resolution
@@ -220,6 +224,34 @@ void printDataLine(const EvalOptions& o, const Dataset& data, const ConfusionCou
             << " in collision\n";
 }
 
+/// For a model of point terms only: its point field, how many of the samples the grids answered,
+/// that every answer equals the full sum's, and the field's query time. Returns that time.
+double printPointField(const EvalOptions& o, const Model& model, const Dataset& data) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto tabulated = model.withPointField(o.field);
+  const double build =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const PointField& field = *tabulated->pointField();
+  std::size_t decided = 0, equal = 0;
+  std::vector<float> x(model.featureDim());
+  for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
+    const double* q = data.points.row(i).data();
+    model.features().map(q, x.data());
+    decided += field.sign(x.data()) != 0;
+    equal += tabulated->inCollision(q) == (model.score(q) > 0);
+  }
+  const double query = experiments::meanSecondsPerCall(
+      data.points, [&](const double* q) { return tabulated->inCollision(q); }, kTimingSeconds);
+  const auto n = static_cast<double>(data.size());
+  std::cout << "point field " << field.grids().size() << " grids of " << field.spacing() * 100
+            << " cm cells, " << field.nodeCount() << " nodes ("
+            << field.memoryBytes() / (1024 * 1024) << " MiB), built in " << durationText(build)
+            << "; " << rate(static_cast<double>(decided) / n)
+            << " of the samples answered by the grids, the rest by the full sum; " << equal
+            << " of " << data.size() << " answers equal to the full sum's\n";
+  return query;
+}
+
 int runEval(const EvalOptions& o) {
   checkEvalOptions(o);
   std::optional<Robot> robot;
@@ -277,10 +309,19 @@ int runEval(const EvalOptions& o) {
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
             << ")\n";
+  std::optional<double> fieldQuery;
+  if (o.pointField && model.hasOnlyPointTerms()) {
+    fieldQuery = printPointField(o, model, data);
+    std::cout << "field query " << durationText(*fieldQuery)
+              << " per configuration: " << times(query / *fieldQuery)
+              << " faster than the full sum\n";
+  }
   if (exact) {
     const double seconds = experiments::meanSecondsPerCheck(data.points, *exact, kTimingSeconds);
     std::cout << std::left << std::setw(12) << "FK+" + exact->name() << durationText(seconds)
-              << " per configuration: the model is " << times(seconds / query) << " faster\n";
+              << " per configuration: the model is " << times(seconds / query) << " faster";
+    if (fieldQuery) std::cout << ", with its point field " << times(seconds / *fieldQuery);
+    std::cout << '\n';
   }
   if (alongPath) writeAlongPath(o, *alongPath);
   return 0;
@@ -324,6 +365,13 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0));
   cmd->add_option("--seed", o->seed, "with --scene: seed of the samples")->capture_default_str();
+  cmd->add_flag("!--no-point-field", o->pointField,
+                "a model of point terms only: skip its point field (grids that answer without "
+                "the full kernel sum)");
+  cmd->add_option("--field-spacing", o->field.spacing,
+                  "a model of point terms only: cell edge of its point field, metres")
+      ->capture_default_str()
+      ->check(numberAbove(0));
   cmd->callback([o, &exitCode] { exitCode = runEval(*o); });
 }
 

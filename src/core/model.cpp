@@ -143,6 +143,18 @@ double Model::score(std::span<const double> q) const {
   return score(q.data());
 }
 
+bool Model::inCollision(const double* q) const {
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): toFeatures fills it
+  std::array<float, kMaxFeatureDimension> x;
+  toFeatures(q, 1, x.data(), 0);
+  return pointField_ ? inCollisionByField(x.data()) : scoreInputFloat(x.data()) > 0;
+}
+
+bool Model::inCollision(std::span<const double> q) const {
+  checkConfiguration(q, dim());
+  return inCollision(q.data());
+}
+
 double Model::scoreExact(const double* q) const {
   checkConfiguration(std::span<const double>(q, dim()), dim());
   Eigen::VectorXd x(support_.cols());
@@ -189,6 +201,19 @@ void Model::scoreInGroups(const double* q, std::size_t n, Visit visit) const {
 }
 
 std::size_t Model::firstInCollision(const double* q, std::size_t n) const {
+  if (pointField_) {
+    // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): toFeatures fills what is read
+    std::array<float, kFeatureBatch * kMaxFeatureDimension> xs;
+    const std::size_t d = featureDim();
+    for (std::size_t i = 0; i < n; i += kFeatureBatch) {
+      const std::size_t batch = std::min(kFeatureBatch, n - i);
+      toFeatures(q + i * dim(), batch, xs.data(), i);
+      for (std::size_t k = 0; k < batch; ++k) {
+        if (inCollisionByField(xs.data() + k * d)) return i + k;
+      }
+    }
+    return n;
+  }
   std::size_t hit = n;
   scoreInGroups(q, n, [&](std::size_t first, std::size_t count, const float* f) {
     for (std::size_t k = 0; k < count; ++k) {

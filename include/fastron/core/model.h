@@ -13,6 +13,7 @@
 #include "fastron/core/export.h"
 #include "fastron/core/feature_map.h"
 #include "fastron/core/kernel.h"
+#include "fastron/core/point_field.h"
 #include "fastron/core/types.h"
 
 namespace FASTRON_API fastron {
@@ -73,15 +74,18 @@ class Model {
   /// non-finite value.
   double score(const double* q) const;
   double score(std::span<const double> q) const;
-  /// True when f(q) > 0, i.e. the model predicts a collision (label +1).
-  bool inCollision(const double* q) const { return score(q) > 0; }
-  bool inCollision(std::span<const double> q) const { return score(q) > 0; }
+  /// True when f(q) > 0, i.e. the model predicts a collision (label +1). A model with a point
+  /// field (withPointField) reads f from its grids where they decide the sign and sums every term
+  /// where they do not: the same answer as score(q) > 0.
+  bool inCollision(const double* q) const;
+  bool inCollision(std::span<const double> q) const;
 
   /// f(q) summed in double precision (the reference for the float path).
   double scoreExact(const double* q) const;
 
   /// Index of the first of n configurations (row by row in `q`, n * dim() values) that the model
-  /// predicts in collision, or n when it predicts all free. Computes the features of sixteen
+  /// predicts in collision, or n when it predicts all free (with a point field: as inCollision,
+  /// row by row). Computes the features of sixteen
   /// configurations at once, scores four per pass over the support set and stops after the pass
   /// with the first hit, so callers order the rows
   /// to find collisions early (e.g. bisection order along a motion).
@@ -115,6 +119,18 @@ class Model {
   };
   ScoreGradients scoreGradients(const Configurations& q) const;
 
+  /// Whether withPointField can tabulate this model: point terms of 3 features (Kernel::block 3,
+  /// the positions of control points) and no whole-vector term (wholeShare 0).
+  bool hasOnlyPointTerms() const;
+  /// A copy of this model whose collision answers (inCollision, firstInCollision) read its point
+  /// terms from grids where they decide the sign (point_field.h); score, scoreBatch and the
+  /// gradients still sum every term. Costs (grid nodes x |S|) kernel terms, shared with the
+  /// process's helper thread. Throws InvalidArgument on bad options, on a grid larger than
+  /// options.maxNodes, and unless hasOnlyPointTerms(), naming what the kernel has instead.
+  std::shared_ptr<const Model> withPointField(const PointFieldOptions& options = {}) const;
+  /// The grids of withPointField, or null.
+  const PointField* pointField() const { return pointField_.get(); }
+
  private:
   friend class Trainer;
   /// For the trainer, which holds the support features already (computed from the same
@@ -133,6 +149,10 @@ class Model {
   /// The float copies, as the kernel sums of simd.h read them.
   detail::SupportView supportView() const;
   float scoreInputFloat(const float* x) const;
+  /// The support set as one point term g sees it: 3 features from 3g, one term (point_field.cpp).
+  detail::SupportView termView(std::size_t g) const;
+  /// f(x) > 0 answered from the point field, refining its least certain terms (point_field.cpp).
+  bool inCollisionByField(const float* x) const;
   /// f of the first `count` (1 to 4) of four consecutive feature rows of xs (a short group
   /// padded by the caller), in one pass over the support set.
   void scoreGroup(const float* xs, std::size_t count, float* out) const;
@@ -158,6 +178,7 @@ class Model {
   AlignedFloats supportSoa_;  // dim() blocks of paddedCount_ values
   AlignedFloats weightsF_;    // paddedCount_ values
   std::uint64_t checksum_ = 0;
+  std::shared_ptr<const PointField> pointField_;  // null unless withPointField made this copy
 };
 
 /// A joint-space model from support points given in input space [-1, 1]^d, where the paper's SVM

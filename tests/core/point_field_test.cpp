@@ -1,0 +1,229 @@
+#include "fastron/core/point_field.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "fastron/core/error.h"
+#include "fastron/core/model.h"
+#include "fastron/core/trainer.h"
+#include "test_worlds.h"
+
+namespace fastron {
+namespace {
+
+/// A model of point terms only (block 3, no whole term) on `dim` joints of the unit box.
+std::shared_ptr<const Model> pointTermModel(std::size_t dim, std::size_t n, KernelType type,
+                                            double gamma, double beta) {
+  const Configurations q = test::uniformPoints(n, dim, 401);
+  TrainParams p;
+  p.kernel = {type, gamma, 3, 0};
+  p.beta = beta;
+  p.maxIterations = 1'000'000;
+  p.maxSupportPoints = n;
+  Trainer trainer(JointLimits::unitBox(dim), p);
+  const double radius = 0.45 * std::sqrt(static_cast<double>(dim) / 2.0);
+  trainer.addPoints(q, dim <= 9 ? test::BallWorld::random(dim, 5, radius, 402).label(q)
+                                : test::randomLabels(n, 402));
+  trainer.update();
+  return trainer.model();
+}
+
+/// The field's own verdict on q: +1, -1, or 0 when it leaves q to the full sum.
+int fieldSign(const Model& model, const double* q) {
+  std::array<float, kMaxFeatureDimension> x{};
+  model.features().map(q, x.data());
+  return model.pointField()->sign(x.data());
+}
+
+struct FieldCase {
+  std::size_t dim;
+  KernelType type;
+  double gamma, beta, spacing;
+  double decidedShare;  ///< the least share of queries the grids must answer themselves
+};
+
+class PointFieldAnswers : public ::testing::TestWithParam<FieldCase> {};
+
+// Every answer of a model with a field equals the full sum's sign (score > 0), on uniform queries
+// and on queries within float rounding of the decision boundary; most of them come from the
+// grids, and score itself is unchanged.
+TEST_P(PointFieldAnswers, AsTheFullSumDoes) {
+  const FieldCase c = GetParam();
+#ifdef FASTRON_SANITIZED
+  const std::size_t points = 600, queries = 3000;
+#else
+  const std::size_t points = 2000, queries = 20'000;
+#endif
+  const auto model = pointTermModel(c.dim, points, c.type, c.gamma, c.beta);
+  PointFieldOptions options;
+  options.spacing = c.spacing;
+  const auto tabulated = model->withPointField(options);
+  ASSERT_NE(tabulated->pointField(), nullptr);
+  EXPECT_EQ(model->pointField(), nullptr);
+  EXPECT_EQ(tabulated->pointField()->grids().size(), c.dim / 3);
+
+  const Configurations q = test::uniformPoints(queries, c.dim, 403);
+  std::size_t decided = 0, collides = 0;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const double* row = q.row(i).data();
+    const double score = model->score(row);
+    ASSERT_EQ(tabulated->score(row), score);
+    ASSERT_EQ(tabulated->inCollision(row), score > 0) << "query " << i << ", score " << score;
+    const int sign = fieldSign(*tabulated, row);
+    if (sign != 0) {
+      ASSERT_EQ(sign > 0, score > 0) << "query " << i;
+    }
+    decided += sign != 0;
+    collides += score > 0;
+  }
+  ASSERT_GT(collides, queries / 200) << "the model should predict some collisions";
+  EXPECT_GE(static_cast<double>(decided) / static_cast<double>(queries), c.decidedShare);
+
+  // Bisect segments between a colliding and a free query down to where the score changes sign:
+  // both ends lie within rounding of f = 0, where an estimate could err.
+  std::size_t boundary = 0;
+  for (Eigen::Index i = 0; i + 1 < q.rows() && boundary < 50; i += 2) {
+    Eigen::VectorXd a = q.row(i).transpose(), b = q.row(i + 1).transpose();
+    if ((model->score(a.data()) > 0) == (model->score(b.data()) > 0)) continue;
+    for (int step = 0; step < 60; ++step) {
+      const Eigen::VectorXd mid = 0.5 * (a + b);
+      ((model->score(mid.data()) > 0) == (model->score(a.data()) > 0) ? a : b) = mid;
+    }
+    for (const Eigen::VectorXd* end : {&a, &b}) {
+      ASSERT_EQ(tabulated->inCollision(end->data()), model->score(end->data()) > 0)
+          << "boundary query near segment " << i;
+    }
+    ++boundary;
+  }
+  EXPECT_GE(boundary, 10u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Kernels, PointFieldAnswers,
+    ::testing::Values(FieldCase{3, KernelType::RationalQuadratic, 10, 1, 0.04, 0.9},
+                      FieldCase{6, KernelType::RationalQuadratic, 10, 10, 0.05, 0.8},
+                      FieldCase{9, KernelType::Gaussian, 10, 1, 0.05, 0.8},
+                      FieldCase{6, KernelType::Gaussian, 30, 30, 0.04, 0.8},
+                      FieldCase{27, KernelType::RationalQuadratic, 3, 1, 0.05, 0.5}),
+    [](const auto& info) {
+      return std::to_string(info.param.dim) + "d_" + std::string(toString(info.param.type)) +
+             "_beta" + std::to_string(static_cast<int>(info.param.beta));
+    });
+
+TEST(PointField, FirstInCollisionEqualsTheFullSums) {
+  const auto model = pointTermModel(6, 1000, KernelType::RationalQuadratic, 10, 1);
+  const auto tabulated = model->withPointField();
+  const Configurations q = test::uniformPoints(400, 6, 404);
+  for (const std::size_t n : {0u, 1u, 5u, 17u, 40u, 400u}) {
+    for (std::size_t offset = 0; offset + n <= 400; offset += 41) {
+      const double* rows = q.row(static_cast<Eigen::Index>(offset)).data();
+      EXPECT_EQ(tabulated->firstInCollision(rows, n), model->firstInCollision(rows, n))
+          << "n " << n << ", offset " << offset;
+      if (n == 0) break;
+    }
+  }
+}
+
+// One support point: the field is a single bump, the boundary a sphere around it.
+TEST(PointField, OneSupportPoint) {
+  Configurations s(1, 3);
+  s << 0.2, -0.1, 0.3;
+  const Model model(FeatureMap::jointScaling(JointLimits::unitBox(3)),
+                    {KernelType::RationalQuadratic, 20, 3, 0}, s,
+                    Eigen::VectorXd::Constant(1, 1.0));
+  const auto tabulated = model.withPointField();
+  const Configurations q = test::uniformPoints(5000, 3, 405);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    ASSERT_EQ(tabulated->inCollision(q.row(i).data()), model.score(q.row(i).data()) > 0);
+  }
+  // A lone positive weight: every configuration scores above 0, and the grids say so.
+  EXPECT_EQ(fieldSign(*tabulated, s.row(0).data()), 1);
+}
+
+// Queries beyond the box that the samples reached are left to the full sum.
+TEST(PointField, QueriesOutsideTheGridsAreLeftToTheFullSum) {
+  const auto model = pointTermModel(3, 800, KernelType::RationalQuadratic, 10, 1);
+  PointFieldOptions options;
+  options.samples = 1;  // a box of two cells around one configuration
+  const auto tabulated = model->withPointField(options);
+  const PointField::Grid& grid = tabulated->pointField()->grids()[0];
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(grid.cells[a], 2u);
+  const Configurations q = test::uniformPoints(2000, 3, 406);
+  std::size_t outside = 0;
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    ASSERT_EQ(tabulated->inCollision(q.row(i).data()), model->score(q.row(i).data()) > 0);
+    outside += fieldSign(*tabulated, q.row(i).data()) == 0;
+  }
+  EXPECT_GT(outside, 1900u);
+}
+
+TEST(PointField, RefusesModelsItCannotTabulateAndBadOptions) {
+  const Configurations s = test::uniformPoints(5, 6, 407);
+  const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(5, -1, 1);
+  const FeatureMap map = FeatureMap::jointScaling(JointLimits::unitBox(6));
+  const auto refuses = [&](const Kernel& kernel, const std::string& words) {
+    const Model model(map, kernel, s, w);
+    EXPECT_FALSE(model.hasOnlyPointTerms());
+    try {
+      (void)model.withPointField();
+      ADD_FAILURE() << "expected a refusal naming " << words;
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refuses({KernelType::RationalQuadratic, 10, 3, 0.5}, "share 0.5");
+  refuses({KernelType::RationalQuadratic, 10, 0, 0}, "one term");
+  refuses({KernelType::RationalQuadratic, 10, 2, 0}, "2 features");
+
+  const Model model(map, {KernelType::RationalQuadratic, 10, 3, 0}, s, w);
+  EXPECT_TRUE(model.hasOnlyPointTerms());
+  const auto refusesOptions = [&](PointFieldOptions options, const std::string& words) {
+    try {
+      (void)model.withPointField(options);
+      ADD_FAILURE() << "expected a refusal naming " << words;
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  PointFieldOptions o;
+  o.spacing = 0;
+  refusesOptions(o, "spacing");
+  o.spacing = std::nan("");
+  refusesOptions(o, "spacing");
+  o = {};
+  o.errorFactor = 0.5;
+  refusesOptions(o, "errorFactor");
+  o = {};
+  o.samples = 0;
+  refusesOptions(o, "samples");
+  o = {};
+  o.spacing = 0.001;  // 2000^3 nodes per term
+  refusesOptions(o, "maxNodes");
+}
+
+// A field is part of an immutable model: many threads answer from it at once.
+TEST(PointField, ThreadsQueryOneFieldAtOnce) {
+  const auto tabulated =
+      pointTermModel(6, 800, KernelType::RationalQuadratic, 10, 1)->withPointField();
+  const Configurations q = test::uniformPoints(4000, 6, 408);
+  std::vector<char> expected(4000);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) expected[i] = tabulated->inCollision(q.row(i).data());
+  std::array<std::size_t, 4> wrong{};
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < wrong.size(); ++t) {
+    threads.emplace_back([&, t] {
+      for (Eigen::Index i = 0; i < q.rows(); ++i) {
+        wrong[t] += tabulated->inCollision(q.row(i).data()) != static_cast<bool>(expected[i]);
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (const std::size_t w : wrong) EXPECT_EQ(w, 0u);
+}
+
+}  // namespace
+}  // namespace fastron
