@@ -1,6 +1,6 @@
 """Type stubs of the fastron extension module (see docs/python.md)."""
 import os
-from typing import Callable, Mapping, Optional, Sequence, Tuple, Union, overload
+from typing import Callable, Dict, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -57,6 +57,8 @@ class Model:
     kernel: str
     kernel_block: int
     kernel_whole_share: float
+    has_only_point_terms: bool
+    point_field: Optional[Dict[str, Union[int, float]]]
     support_points: npt.NDArray[np.float64]
     support_features: npt.NDArray[np.float64]
     weights: npt.NDArray[np.float64]
@@ -70,6 +72,8 @@ class Model:
     def score_gradient(self, q: ArrayLike) -> Tuple[Union[float, npt.NDArray[np.float64]], npt.NDArray[np.float64]]: ...
     def in_collision(self, q: ArrayLike) -> Union[bool, npt.NDArray[np.bool_]]: ...
     def first_in_collision(self, q: ArrayLike) -> Optional[int]: ...
+    def with_point_field(self, *, spacing: float = 0.04, samples: int = 20000, seed: int = 1,
+                         error_factor: float = 2.0) -> Model: ...
     def save(self, path: Path) -> None: ...
 
 def train(X: ArrayLike, y: ArrayLike, *, features: Optional[FeatureMap] = None,

@@ -58,13 +58,17 @@ py::tuple scoreGradients(const Model& model, py::handle q) {
 py::object inCollision(const Model& model, py::handle q) {
   const ConfigurationRows rows = configurations(q, model.dim(), "q");
   if (rows.single) return py::bool_(model.inCollision(rows.row(0)));
-  std::vector<double> f(rows.rows);
-  {
-    py::gil_scoped_release released;
-    model.scoreBatch(rows.data, rows.rows, f.data());
-  }
   py::array_t<bool> out(static_cast<py::ssize_t>(rows.rows));
-  std::transform(f.begin(), f.end(), out.mutable_data(), [](double v) { return v > 0; });
+  bool* hits = out.mutable_data();
+  py::gil_scoped_release released;
+  if (model.pointField()) {  // the grids answer one configuration at a time
+    for (std::size_t i = 0; i < rows.rows; ++i)
+      hits[i] = model.inCollision(rows.data + i * rows.cols);
+    return out;
+  }
+  std::vector<double> f(rows.rows);
+  model.scoreBatch(rows.data, rows.rows, f.data());
+  std::transform(f.begin(), f.end(), hits, [](double v) { return v > 0; });
   return out;
 }
 
@@ -218,6 +222,43 @@ void bindModel(py::module_& m) {
           },
           py::arg("q"),
           "Index of the first row of (n, d) predicted in collision, or None when all are free.")
+      .def_property_readonly("has_only_point_terms", &Model::hasOnlyPointTerms,
+                             "Whether with_point_field can tabulate the model: point terms of 3 "
+                             "features and no whole-vector term.")
+      .def(
+          "with_point_field",
+          [](const Model& model, double spacing, std::size_t samples, std::uint64_t seed,
+             double errorFactor) {
+            PointFieldOptions options;
+            options.spacing = spacing;
+            options.samples = samples;
+            options.seed = seed;
+            options.errorFactor = errorFactor;
+            py::gil_scoped_release released;
+            return std::const_pointer_cast<Model>(model.withPointField(options));
+          },
+          py::kw_only(), py::arg("spacing") = PointFieldOptions{}.spacing,
+          py::arg("samples") = PointFieldOptions{}.samples,
+          py::arg("seed") = PointFieldOptions{}.seed,
+          py::arg("error_factor") = PointFieldOptions{}.errorFactor,
+          "A copy whose collision answers (in_collision, first_in_collision) read the point terms "
+          "from grids of `spacing` metres where they decide the sign, and sum every term where "
+          "not: the same answers, faster for large support sets (docs/performance.md). score "
+          "still sums every term. Raises ValueError unless has_only_point_terms.")
+      .def_property_readonly(
+          "point_field",
+          [](const Model& model) -> py::object {
+            const PointField* field = model.pointField();
+            if (!field) return py::none();
+            py::dict d;
+            d["grids"] = field->grids().size();
+            d["spacing"] = field->spacing();
+            d["nodes"] = field->nodeCount();
+            d["memory_bytes"] = field->memoryBytes();
+            return d;
+          },
+          "None, or the grids of with_point_field: {'grids', 'spacing', 'nodes', "
+          "'memory_bytes'}.")
       .def(
           "save",
           [](const Model& model, const std::filesystem::path& path) { saveModel(model, path); },

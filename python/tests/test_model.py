@@ -157,6 +157,28 @@ def test_task_space_model_equals_the_command(tmp_path, fastron_command, baxter, 
     assert np.array_equal(from_command.score(q), from_python.score(q))
 
 
+def test_a_point_field_answers_as_the_full_sum(baxter, baxter_fcl):
+    x = uniform(baxter.limits, 3000, seed=11)
+    model, _ = fastron.train(x, baxter_fcl.in_collision(x), features=fastron.robot_features(baxter),
+                             kernel_whole_share=0)
+    assert model.has_only_point_terms and model.point_field is None
+    tabulated = model.with_point_field(spacing=0.05)
+    field = tabulated.point_field
+    assert field["grids"] == model.feature_dim // 3 and field["spacing"] == 0.05
+    assert field["nodes"] > 0 and 4 * field["nodes"] < field["memory_bytes"] < 8 * field["nodes"]
+    q = uniform(baxter.limits, 2000, seed=12)
+    assert np.array_equal(tabulated.in_collision(q), model.score(q) > 0)
+    assert np.array_equal(tabulated.score(q), model.score(q))
+    assert tabulated.first_in_collision(q) == model.first_in_collision(q)
+    with pytest.raises(fastron.InvalidArgument, match="spacing"):
+        model.with_point_field(spacing=0)
+    default, _ = fastron.train(x[:500], baxter_fcl.in_collision(x[:500]),
+                               features=fastron.robot_features(baxter))
+    assert not default.has_only_point_terms
+    with pytest.raises(fastron.InvalidArgument, match="whole vector's, share 0.5"):
+        default.with_point_field()
+
+
 def test_save_and_load(tmp_path, baxter, baxter_fcl):
     x = uniform(baxter.limits, 1000, seed=7)
     model, _ = fastron.train(x, baxter_fcl.in_collision(x), features=fastron.robot_features(baxter))
