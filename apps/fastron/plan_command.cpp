@@ -91,9 +91,14 @@ std::string contactAt(const SceneChecker& exact, const Eigen::VectorXd& q) {
 /// A model file read for `robot`, reported on one line under `label`.
 std::shared_ptr<const Model> readModel(const std::string& path, const Robot& robot,
                                        const char* label) {
-  auto model = std::make_shared<const Model>(loadModelFor(path, robot));
+  const auto model = withFastestAnswers(std::make_shared<const Model>(loadModelFor(path, robot)));
   std::cout << label << path << ", " << model->supportCount() << " support points, features "
-            << model->features().summary() << '\n';
+            << model->features().summary();
+  if (const PointField* field = model->pointField()) {
+    std::cout << ", answered by a point field of " << field->grids().size() << " grids of "
+              << field->spacing() * 100 << " cm cells";
+  }
+  std::cout << '\n';
   return model;
 }
 

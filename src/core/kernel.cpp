@@ -33,6 +33,10 @@ void validate(const Kernel& kernel, std::size_t featureDim) {
 
 std::string describeTerms(const Kernel& kernel, std::size_t featureDim) {
   if (kernel.block == 0) return "one term";
+  if (kernel.wholeShare == 0) {
+    return "a term per " + std::to_string(kernel.block) + " features (" +
+           std::to_string(kernel.pointTerms(featureDim)) + "), no whole-vector term";
+  }
   char share[32];
   std::snprintf(share, sizeof share, "%g", kernel.wholeShare);
   return "a term per " + std::to_string(kernel.block) + " features (" +

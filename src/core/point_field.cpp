@@ -196,6 +196,14 @@ std::shared_ptr<const Model> Model::withPointField(const PointFieldOptions& opti
   return copy;
 }
 
+std::shared_ptr<const Model> withFastestAnswers(std::shared_ptr<const Model> model) {
+  if (!model || !model->hasOnlyPointTerms() || model->supportCount() < kPointFieldMinSupport ||
+      model->pointField()) {
+    return model;
+  }
+  return model->withPointField();
+}
+
 detail::SupportView Model::termView(std::size_t g) const {
   detail::SupportView term = supportView();
   term.soa += 3 * g * term.padded;

@@ -71,6 +71,7 @@ TEST(Kernel, PointTermsAreTheWeightedMeanOfTheBlocksAndTheWholeVector) {
   EXPECT_EQ(describeTerms(one, 6), "one term");
   EXPECT_EQ(describeTerms(points, 6),
             "a term per 3 features (2) and the whole vector's, share 0.2");
+  EXPECT_EQ(describeTerms(gaussian, 6), "a term per 2 features (3), no whole-vector term");
 }
 
 TEST(Kernel, PointTermsMustDivideTheFeaturesAndShareIsAFraction) {

@@ -205,6 +205,28 @@ TEST(PointField, RefusesModelsItCannotTabulateAndBadOptions) {
   refusesOptions(o, "maxNodes");
 }
 
+// The field is given where it pays: point terms only and enough support points.
+TEST(PointField, FastestAnswersTabulateLargeModelsOfPointTermsOnly) {
+  // Random labels in 12 dimensions: most points become support points.
+  const auto large = pointTermModel(12, 600, KernelType::RationalQuadratic, 10, 1);
+  ASSERT_GE(large->supportCount(), kPointFieldMinSupport);
+  EXPECT_NE(withFastestAnswers(large)->pointField(), nullptr);
+  const auto tabulated = withFastestAnswers(large);
+  EXPECT_EQ(withFastestAnswers(tabulated), tabulated);  // already tabulated: itself
+  const Configurations s = test::uniformPoints(kPointFieldMinSupport - 1, 6, 409);
+  const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(s.rows(), -1, 1);
+  const FeatureMap map = FeatureMap::jointScaling(JointLimits::unitBox(6));
+  const auto small =
+      std::make_shared<const Model>(map, Kernel{KernelType::RationalQuadratic, 10, 3, 0}, s, w);
+  EXPECT_EQ(withFastestAnswers(small), small);
+  const Configurations s2 = test::uniformPoints(kPointFieldMinSupport, 6, 410);
+  const auto whole =
+      std::make_shared<const Model>(map, Kernel{KernelType::RationalQuadratic, 10, 3, 0.5}, s2,
+                                    Eigen::VectorXd::LinSpaced(s2.rows(), -1, 1));
+  EXPECT_EQ(withFastestAnswers(whole), whole);
+  EXPECT_EQ(withFastestAnswers(nullptr), nullptr);
+}
+
 // A field is part of an immutable model: many threads answer from it at once.
 TEST(PointField, ThreadsQueryOneFieldAtOnce) {
   const auto tabulated =

@@ -117,7 +117,8 @@ void validate(const Kernel& kernel);
 /// the whole term's share be in [0, 1].
 void validate(const Kernel& kernel, std::size_t featureDim);
 
-/// "one term" or "a term per 3 features (4) and the whole vector's, share 0.2": for reports.
+/// "one term", "a term per 3 features (4) and the whole vector's, share 0.2" or "a term per 3
+/// features (4), no whole-vector term": for reports.
 std::string describeTerms(const Kernel& kernel, std::size_t featureDim);
 
 /// "rq" or "gaussian".

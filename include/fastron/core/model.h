@@ -181,6 +181,16 @@ class Model {
   std::shared_ptr<const PointField> pointField_;  // null unless withPointField made this copy
 };
 
+/// The fewest support points at which withFastestAnswers gives a model its point field: below,
+/// the full sum of a few hundred terms answers about as fast as the grids, and the grids would
+/// only cost their build (docs/performance.md, "Answers from tabulated point terms").
+inline constexpr std::size_t kPointFieldMinSupport = 200;
+
+/// `model` with its point field (Model::withPointField, default options) when it has point terms
+/// only and at least kPointFieldMinSupport support points, else `model` itself: the same answers,
+/// the fastest way this library has to give them.
+std::shared_ptr<const Model> withFastestAnswers(std::shared_ptr<const Model> model);
+
 /// A joint-space model from support points given in input space [-1, 1]^d, where the paper's SVM
 /// baselines train.
 std::shared_ptr<const Model> jointSpaceModel(const JointLimits& limits, Kernel kernel,
