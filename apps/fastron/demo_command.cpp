@@ -97,6 +97,11 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(numberAbove(0, true));
   addSimplificationOption(*cmd, [o](PathSimplification s) { o->demo.simplification = s; });
+  cmd->add_option("--kernel-whole-share", o->demo.wholeShare,
+                  "fk: the whole feature vector's share of the kernel (default 0.5); 0: point "
+                  "terms alone, answered by a point field")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--gamma", o->demo.gamma, "fk: kernel width (default 40)")->check(numberAbove(0));
   cmd->add_option("--band-miss-rate", o->demo.band.missRate,
                   "Hybrid: colliding configurations the model may answer free (calibrated rate)")
       ->check(CLI::Range(0.0, 1.0))

@@ -111,8 +111,9 @@ void maxOverNeighbours(std::vector<float>& values, const std::uint32_t cells[3])
 /// curvature changes sign inside a cell (F = x^3 about its centre) the centre's error vanishes
 /// and others' do not; the neighbours' centres see the curvature around it. Slabs of z go to this
 /// thread and the helper.
-void tabulate(PointField::Grid& grid, const detail::SupportView& view, double spacing,
-              double errorFactor, float roundingFloor) {
+void tabulate(PointField::Grid& grid, const detail::SupportView& view,
+              const PointFieldOptions& options, float roundingFloor) {
+  const double spacing = options.spacing, errorFactor = options.errorFactor;
   const std::size_t cx = grid.cells[0], cy = grid.cells[1], cz = grid.cells[2];
   const std::size_t nx = cx + 1, nxy = nx * (cy + 1);
   grid.nodes.assign(nxy * (cz + 1), 0.0f);
@@ -142,7 +143,7 @@ void tabulate(PointField::Grid& grid, const detail::SupportView& view, double sp
     }
   };
   {
-    detail::HelperSession helper(true);
+    detail::HelperSession helper(options.threads != 1);
     helper.run(cz + 1, nodeSlab);
     helper.run(cz, cellSlab);
   }
@@ -188,7 +189,7 @@ std::shared_ptr<const Model> Model::withPointField(const PointFieldOptions& opti
   }
   const float roundingFloor = 4 * FLT_EPSILON * static_cast<float>(weights_.cwiseAbs().sum());
   for (std::size_t g = 0; g < terms; ++g) {
-    tabulate(grids[g], termView(g), options.spacing, options.errorFactor, roundingFloor);
+    tabulate(grids[g], termView(g), options, roundingFloor);
   }
   auto copy = std::make_shared<Model>(*this);
   copy->pointField_ =

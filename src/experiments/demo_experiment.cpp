@@ -26,6 +26,9 @@ ProxyParams demoProxyParams(const DemoOptions& o) {
   ProxyParams params = proxyParams(caseFor("7dof-3boxes"), o.seed, o.features);
   params.labelThreads = 1;
   params.band = o.band;
+  if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
+  if (o.gamma) params.train.kernel.gamma = *o.gamma;
+  params.pointField = true;  // models of point terms alone answer from their grids
   return params;
 }
 
@@ -217,7 +220,17 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
       line, sizeof line, "- query time: Fastron %s, FK+GJK %s, FK+FCL %s (FCL / Fastron: %.1fx)\n",
       durationText(r.fastronQuerySeconds).c_str(), durationText(r.gjkQuerySeconds).c_str(),
       durationText(r.fclQuerySeconds).c_str(), r.fclQuerySeconds / r.fastronQuerySeconds);
-  md << line << "\n## Planning (RRT-Connect)\n\n";
+  md << line;
+  if (r.model) {
+    md << "- kernel: " << toString(r.model->kernel().type) << ", gamma " << r.model->kernel().gamma
+       << ", " << describeTerms(r.model->kernel(), r.model->featureDim());
+    if (const PointField* field = r.model->pointField()) {
+      md << "; answers from a point field of " << field->grids().size() << " grids of "
+         << field->spacing() * 100 << " cm cells (Fastron's query time above)";
+    }
+    md << '\n';
+  }
+  md << "\n## Planning (RRT-Connect)\n\n";
   if (r.blockedTicks > 0) {
     md << r.blockedTicks << " of " << o.ticks
        << " ticks planned nothing: the boxes left no free start or goal on a side of the "

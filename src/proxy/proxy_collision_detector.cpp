@@ -66,8 +66,13 @@ ProxyCollisionDetector::~ProxyCollisionDetector() {
 
 StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point start,
                                           const Configurations& heldOut,
-                                          const Labels& heldOutLabels) {
+                                          const Labels& heldOutLabels, unsigned threads) {
   std::shared_ptr<const Model> next = trainer_.model();  // built outside the lock
+  if (params_.pointField && next->hasOnlyPointTerms()) {
+    PointFieldOptions field;
+    field.threads = threads;
+    next = next->withPointField(field);
+  }
   if (!heldOutLabels.empty()) {
     report.calibration = calibrateBand(next->scoreBatch(heldOut), heldOutLabels, params_.band);
   }
@@ -99,7 +104,7 @@ StepReport ProxyCollisionDetector::initialize(std::size_t n) {
   trainer_.addPoints(q.topRows(learned), {labels.data(), n}, onLabelThreads());
   report.update = trainer_.update(params_.trainThreads);
   return finish(report, start, q.bottomRows(static_cast<Eigen::Index>(calibration)),
-                Labels(labels.begin() + learned, labels.end()));
+                Labels(labels.begin() + learned, labels.end()), params_.trainThreads);
 }
 
 StepReport ProxyCollisionDetector::initialize(const Dataset& labelled) {
@@ -115,7 +120,7 @@ StepReport ProxyCollisionDetector::initialize(const Dataset& labelled) {
   trainer_ = Trainer(features_, params_.train);
   trainer_.addPoints(labelled.points, labelled.labels, onLabelThreads());
   report.update = trainer_.update(params_.trainThreads);
-  return finish(report, start, Configurations(0, dim), {});
+  return finish(report, start, Configurations(0, dim), {}, params_.trainThreads);
 }
 
 LabelGuard ProxyCollisionDetector::labelGuard(const std::stop_token& stop) const {
@@ -195,7 +200,7 @@ StepReport ProxyCollisionDetector::runStep(const std::stop_token& stop, unsigned
   report.update = trainer_.update(trainOnTwoCores ? trainThreads : 1);
   if (!trainOnTwoCores) awaitHeldOut();
   dropLearnedObservations(report.observed);
-  return finish(report, start, calibration, heldOutLabels);
+  return finish(report, start, calibration, heldOutLabels, trainOnTwoCores ? trainThreads : 1);
 }
 
 ChunkRunner ProxyCollisionDetector::onLabelThreads() const {
@@ -248,7 +253,7 @@ StepReport ProxyCollisionDetector::learnObservations() {
   }
   report.calibration = calibratedModel().calibration;  // kept: nothing new was held out
   report.update = trainer_.update(params_.trainThreads);
-  return finish(report, start, Configurations(0, 0), {});
+  return finish(report, start, Configurations(0, 0), {}, params_.trainThreads);
 }
 
 void ProxyCollisionDetector::addObservations(const Dataset& answers) {

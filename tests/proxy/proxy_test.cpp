@@ -294,6 +294,32 @@ TEST(ProxyCollisionDetector, SameSeedSameModel) {
               a->supportConfigurations() != c->supportConfigurations());
 }
 
+// With ProxyParams::pointField, each published model of point terms only carries its point field
+// and answers as the full sum.
+TEST(ProxyCollisionDetector, PublishesModelsOfPointTermsWithTheirPointField) {
+  MovingBalls world(3, 7);
+  ProxyParams p = params(30);
+  p.train.kernel.block = 3;
+  p.train.kernel.wholeShare = 0;
+  p.pointField = true;
+  ProxyCollisionDetector proxy(world.checker(3), JointLimits::unitBox(3), p);
+  proxy.initialize(3000);
+  for (int t = 0; t < 3; ++t) {
+    world.move(0.02);
+    proxy.step();
+    const auto model = proxy.model();
+    ASSERT_NE(model->pointField(), nullptr) << "step " << t;
+    const Configurations q = test::uniformPoints(2000, 3, 70 + t);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      ASSERT_EQ(model->inCollision(q.row(i).data()), model->score(q.row(i).data()) > 0);
+    }
+  }
+  p.pointField = false;  // the same pipeline without: no field
+  ProxyCollisionDetector plain(world.checker(3), JointLimits::unitBox(3), p);
+  plain.initialize(3000);
+  EXPECT_EQ(plain.model()->pointField(), nullptr);
+}
+
 // In a world that stands still the support set's labels cannot change: without relabelling it,
 // steps make the same model with as many fewer oracle calls as the support set has points.
 TEST(ProxyCollisionDetector, AWorldThatStandsStillNeedsNoRelabelling) {

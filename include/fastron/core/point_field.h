@@ -39,6 +39,9 @@ struct PointFieldOptions {
   double errorFactor = 2;
   /// The most grid nodes over every point's grid (memory: 8 bytes per node).
   std::size_t maxNodes = std::size_t{1} << 25;
+  /// 1: the calling thread builds the grids alone (a background update, beside a planner on the
+  /// other core); any other value: the process's helper thread takes half of them.
+  unsigned threads = 0;
 };
 
 /// Throws InvalidArgument naming the field: spacing and errorFactor finite and positive (factor

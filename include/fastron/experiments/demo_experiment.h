@@ -2,6 +2,7 @@
 // `fastron demo`: the paper in one run (Baxter's 7-joint arm among three moving boxes).
 
 #include <memory>
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -35,6 +36,10 @@ struct DemoOptions {
   bool learnFromVerification = true;
   /// What the band of the Hybrid method (Fastron with FCL inside the band) is calibrated to.
   BandTargets band{};
+  /// Task-space features: the whole vector's share of the kernel (Kernel::wholeShare) and its
+  /// width; unset: the defaults (0.5, 40). A share of 0 leaves point terms alone, and every
+  /// model is published with its point field (ProxyParams::pointField).
+  std::optional<double> wholeShare, gamma;
 };
 
 /// `fastron demo`: the paper in one run.

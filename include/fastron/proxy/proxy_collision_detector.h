@@ -75,6 +75,11 @@ struct ProxyParams {
   std::size_t repeatedLabels = 8;
   /// After a failed background step, the wait before the next attempt.
   std::chrono::nanoseconds faultRetryPeriod = std::chrono::milliseconds(100);
+  /// Each model of point terms only is published with its point field (Model::withPointField,
+  /// default options), built on the thread of the update (with the helper thread where Algorithm
+  /// 1 shares it): its collision answers then cost grid reads instead of |S| kernel terms. Other
+  /// models are published as they are.
+  bool pointField = false;
 };
 
 /// The pipeline tuned for each kind of features: defaultTrainParams(kind, selfCollisionLabels);
@@ -209,9 +214,10 @@ class ProxyCollisionDetector {
   ChunkRunner onLabelThreads() const;
   /// Forgets the first `count` waiting observations (learned by a step that succeeded).
   void dropLearnedObservations(std::size_t count);
-  /// Builds the trained model, calibrates its band on the held-out points and publishes both.
+  /// Builds the trained model (with its point field when params_.pointField asks, on `threads`:
+  /// PointFieldOptions::threads), calibrates its band on the held-out points and publishes both.
   StepReport finish(StepReport report, std::chrono::steady_clock::time_point start,
-                    const Configurations& heldOut, const Labels& heldOutLabels);
+                    const Configurations& heldOut, const Labels& heldOutLabels, unsigned threads);
 
   std::shared_ptr<const CollisionChecker> oracle_;
   FeatureMap features_;
