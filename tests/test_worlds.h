@@ -2,10 +2,13 @@
 // Analytic collision worlds for tests: exact labels without any geometry library.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "fastron/core/model.h"
+#include "fastron/core/trainer.h"
 #include "fastron/core/types.h"
 
 namespace fastron::test {
@@ -67,6 +70,27 @@ inline Labels randomLabels(std::size_t n, std::uint64_t seed) {
   Labels y(n);
   for (auto& v : y) v = coin(rng) ? 1 : -1;
   return y;
+}
+
+/// A model of `kernel` and `beta` trained to convergence on n uniform points of [-1, 1]^d (seed)
+/// labelled by a random world of 5 balls (seed + 1) up to `maxBallDim` dimensions, where balls
+/// fill a good share of the space, and by random labels above it, where they would fill almost
+/// nothing.
+inline std::shared_ptr<const Model> trainedOnBalls(std::size_t dim, std::size_t n, Kernel kernel,
+                                                   double beta, std::uint64_t seed,
+                                                   std::size_t maxBallDim) {
+  const Configurations q = uniformPoints(n, dim, seed);
+  TrainParams p;
+  p.kernel = kernel;
+  p.beta = beta;
+  p.maxIterations = 1'000'000;
+  p.maxSupportPoints = n;
+  Trainer trainer(JointLimits::unitBox(dim), p);
+  const double radius = 0.45 * std::sqrt(static_cast<double>(dim) / 2.0);
+  trainer.addPoints(q, dim <= maxBallDim ? BallWorld::random(dim, 5, radius, seed + 1).label(q)
+                                         : randomLabels(n, seed + 1));
+  trainer.update();
+  return trainer.model();
 }
 
 }  // namespace fastron::test

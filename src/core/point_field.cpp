@@ -4,6 +4,8 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <string>
@@ -75,15 +77,24 @@ void fieldAlongRow(const detail::SupportView& view, const std::array<float, 3>& 
   }
 }
 
-/// The box that the samples' point g reaches, widened by a cell on every side.
-PointField::Grid gridAround(const Eigen::MatrixXd& features, std::size_t g, double spacing) {
+/// The box that the samples' point g reaches, widened by a cell on every side; its nodes are
+/// added to `nodes` (counted in double: a tiny spacing must not overflow the count).
+PointField::Grid gridAround(const Eigen::MatrixXd& features, std::size_t g, double spacing,
+                            double& nodes) {
   PointField::Grid grid;
   grid.inverseSpacing = static_cast<float>(1.0 / spacing);
+  double product = 1;
+  std::array<double, 3> cells{};
   for (int a = 0; a < 3; ++a) {
     const auto column = features.col(static_cast<Eigen::Index>(3 * g) + a);
     const double lo = column.minCoeff(), hi = column.maxCoeff();
     grid.origin[a] = static_cast<float>(lo - spacing);
-    grid.cells[a] = static_cast<std::uint32_t>(std::ceil((hi - lo) / spacing)) + 2;
+    cells[a] = std::ceil((hi - lo) / spacing) + 2;
+    product *= cells[a] + 1;
+  }
+  nodes += product;
+  if (nodes <= static_cast<double>(std::numeric_limits<std::uint32_t>::max())) {
+    for (int a = 0; a < 3; ++a) grid.cells[a] = static_cast<std::uint32_t>(cells[a]);
   }
   return grid;
 }
@@ -176,15 +187,15 @@ std::shared_ptr<const Model> Model::withPointField(const PointFieldOptions& opti
 
   const std::size_t terms = featureDim() / 3;
   std::vector<PointField::Grid> grids;
-  std::size_t nodes = 0;
+  double nodes = 0;
   for (std::size_t g = 0; g < terms; ++g) {
-    grids.push_back(gridAround(features, g, options.spacing));
-    const auto& c = grids.back().cells;
-    nodes += std::size_t{c[0] + 1} * (c[1] + 1) * (c[2] + 1);
+    grids.push_back(gridAround(features, g, options.spacing, nodes));
   }
-  if (nodes > options.maxNodes) {
+  if (nodes > static_cast<double>(options.maxNodes)) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", nodes);
     throw InvalidArgument("a point field of spacing " + std::to_string(options.spacing) +
-                          " needs " + std::to_string(nodes) + " grid nodes, more than maxNodes " +
+                          " needs " + count + " grid nodes, more than maxNodes " +
                           std::to_string(options.maxNodes) + ": choose a larger spacing");
   }
   const float roundingFloor = 4 * FLT_EPSILON * static_cast<float>(weights_.cwiseAbs().sum());
@@ -225,19 +236,20 @@ bool Model::inCollisionByField(const float* x) const {
       value += values[g];
       bound += bounds[g];
     }
+    if (value > bound) return true;
+    if (value < -bound) return false;
     // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
     // share of the full one); the rounding floor stays with it.
     std::array<std::uint8_t, kMaxFeatureDimension / 3> order;
     std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms), 0);
     std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms),
               [&](std::uint8_t a, std::uint8_t b) { return bounds[a] > bounds[b]; });
-    for (std::size_t k = 0;; ++k) {
-      if (value > bound) return true;
-      if (value < -bound) return false;
-      if (k == terms) break;
+    for (std::size_t k = 0; k < terms; ++k) {
       const std::size_t g = order[k];
       value += detail::activeKernelSums().one(termView(g), x + 3 * g) - values[g];
       bound -= bounds[g] - field.roundingFloor();
+      if (value > bound) return true;
+      if (value < -bound) return false;
     }
   }
   return scoreInputFloat(x) > 0;

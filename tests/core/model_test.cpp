@@ -15,20 +15,7 @@ namespace {
 std::shared_ptr<const Model> trainedModel(std::size_t dim, std::size_t n, KernelType type,
                                           double gamma, double beta, std::uint32_t block = 0,
                                           double wholeShare = 0) {
-  const Configurations q = test::uniformPoints(n, dim, 101);
-  TrainParams p;
-  p.kernel = {type, gamma, block, wholeShare};
-  p.beta = beta;
-  p.maxIterations = 1'000'000;
-  p.maxSupportPoints = n;
-  Trainer trainer(JointLimits::unitBox(dim), p);
-  // Balls fill a good share of low-dimensional spaces; in high dimensions they would fill almost
-  // nothing, so random labels stand in.
-  const double radius = 0.45 * std::sqrt(static_cast<double>(dim) / 2.0);
-  trainer.addPoints(q, dim <= 7 ? test::BallWorld::random(dim, 5, radius, 102).label(q)
-                                : test::randomLabels(n, 102));
-  trainer.update();
-  return trainer.model();
+  return test::trainedOnBalls(dim, n, {type, gamma, block, wholeShare}, beta, 101, 7);
 }
 
 struct AgreementCase {

@@ -9,7 +9,6 @@
 
 #include "fastron/core/error.h"
 #include "fastron/core/model.h"
-#include "fastron/core/trainer.h"
 #include "test_worlds.h"
 
 namespace fastron {
@@ -18,18 +17,7 @@ namespace {
 /// A model of point terms only (block 3, no whole term) on `dim` joints of the unit box.
 std::shared_ptr<const Model> pointTermModel(std::size_t dim, std::size_t n, KernelType type,
                                             double gamma, double beta) {
-  const Configurations q = test::uniformPoints(n, dim, 401);
-  TrainParams p;
-  p.kernel = {type, gamma, 3, 0};
-  p.beta = beta;
-  p.maxIterations = 1'000'000;
-  p.maxSupportPoints = n;
-  Trainer trainer(JointLimits::unitBox(dim), p);
-  const double radius = 0.45 * std::sqrt(static_cast<double>(dim) / 2.0);
-  trainer.addPoints(q, dim <= 9 ? test::BallWorld::random(dim, 5, radius, 402).label(q)
-                                : test::randomLabels(n, 402));
-  trainer.update();
-  return trainer.model();
+  return test::trainedOnBalls(dim, n, {type, gamma, 3, 0}, beta, 401, 9);
 }
 
 /// The field's own verdict on q: +1, -1, or 0 when it leaves q to the full sum.
@@ -202,6 +190,8 @@ TEST(PointField, RefusesModelsItCannotTabulateAndBadOptions) {
   refusesOptions(o, "samples");
   o = {};
   o.spacing = 0.001;  // 2000^3 nodes per term
+  refusesOptions(o, "maxNodes");
+  o.spacing = 1e-12;  // more nodes than any integer type counts
   refusesOptions(o, "maxNodes");
 }
 

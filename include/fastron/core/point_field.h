@@ -56,8 +56,10 @@ class PointField {
     float origin[3] = {0, 0, 0};
     float inverseSpacing = 1;
     std::uint32_t cells[3] = {0, 0, 0};
-    std::vector<float> nodes;   ///< F_g at the nodes
-    std::vector<float> bounds;  ///< per cell: errorFactor x the interpolation error at its centre
+    std::vector<float> nodes;  ///< F_g at the nodes
+    /// Per cell: errorFactor x the largest interpolation error at the centres of the cell and its
+    /// neighbours, plus the rounding floor.
+    std::vector<float> bounds;
   };
 
   PointField(std::vector<Grid> grids, float roundingFloor, double spacing);
