@@ -80,6 +80,10 @@ void addFeatureOptions(CLI::App& cmd, FeatureOptions& options) {
   cmd.add_option("--control-per-body", options.automatic.maxPerBody,
                  "fk: at most this many automatic control points on one rigid body (0: no limit)")
       ->capture_default_str();
+  cmd.add_flag("--control-geometry", options.automatic.alongGeometry,
+               "fk: automatic control points may also lie along each link's collision geometry "
+               "(its bounding box's centre and the ends of its longest side), not only at link "
+               "origins: for --kernel-whole-share 0");
   cmd.add_option("--control-rule", options.automatic.rule,
                  "fk: how automatic control points are chosen: spread (the points that move "
                  "most) or cover (spread along the chain)")

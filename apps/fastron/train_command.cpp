@@ -42,7 +42,8 @@ struct TrainOptions {
   double holdout = 0;
   std::uint64_t seed = 1;
   bool secondCandidate = true;
-  bool featuresGiven = false;  ///< --features on the command line
+  bool featuresGiven = false;       ///< --features on the command line
+  bool controlPointsGiven = false;  ///< any --control-* option on the command line
 };
 
 /// --robot with --self-collision and neither --scene nor --data: a model of the robot's
@@ -160,6 +161,11 @@ int trainOnScene(const TrainOptions& o) {
   // self-collision model learned once").
   FeatureOptions featureOptions = o.features;
   if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
+  // A scene's obstacles learned to held-out targets: point terms, whose points must lie wherever
+  // a link can touch (pipeline::heldOutControlPoints).
+  if (!o.scene.selfCollision && o.heldOut.samplesPerRound > 0 && !o.controlPointsGiven) {
+    featureOptions.automatic = pipeline::heldOutControlPoints();
+  }
   const FeatureMap features = featuresFromOptions(featureOptions, robot);
   ProxyParams params;
   params.train = withOptions(sceneTrainParams(features.kind(), o.scene.selfCollision), o);
@@ -183,7 +189,7 @@ int trainOnScene(const TrainOptions& o) {
     options.checker = o.scene.checker;
     // The other candidates were measured with automatic task-space control points.
     if (o.secondCandidate && o.features.controlLinks.empty())
-      options.automatic = o.features.automatic;
+      options.automatic = featureOptions.automatic;
     options.candidateBeta = o.beta;
     options.seed = o.seed;
     const pipeline::HeldOutModel made =
@@ -296,7 +302,9 @@ void addSceneTrainingOptions(CLI::App& cmd, TrainOptions& o) {
   cmd.add_option("--held-out", o.heldOut.samplesPerRound,
                  "with --scene: fresh labelled configurations per round on which the model "
                  "is measured; below the targets it learns them and is measured on new ones "
-                 "(0: no rounds)")
+                 "(0: no rounds). With rounds, fk features and no --self-collision: point terms "
+                 "alone and up to 10 automatic control points along the links' geometry (unless "
+                 "a --control-* option is given), answered by a point field")
       ->capture_default_str();
   cmd.add_option("--target-accuracy", o.heldOut.accuracy,
                  "with --scene: held-out accuracy to reach")
@@ -380,6 +388,11 @@ void addTrainCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->callback([o, cmd, &exitCode] {
     o->featuresGiven = cmd->count("--features") > 0;
+    o->controlPointsGiven = false;
+    for (const char* name : {"--control-points", "--control-spacing", "--control-per-body",
+                             "--control-rule", "--control-geometry"}) {
+      o->controlPointsGiven = o->controlPointsGiven || cmd->count(name) > 0;
+    }
     exitCode = runTrain(*o);
   });
 }

@@ -257,8 +257,8 @@ void bindFeaturesAndModels(py::module_& m) {
   m.def(
       "robot_features",
       [](const Robot& robot, const std::string& kind, const std::vector<std::string>& points,
-         std::size_t maxPoints, double minSpacing, std::size_t maxPerBody,
-         const std::string& rule) {
+         std::size_t maxPoints, double minSpacing, std::size_t maxPerBody, const std::string& rule,
+         bool alongGeometry) {
         const FeatureKind parsed = parseFeatureKind(kind);
         if (parsed == FeatureKind::JointScaling) return robotFeatures(robot, parsed);
         if (rule != "spread" && rule != "cover")
@@ -268,7 +268,8 @@ void bindFeaturesAndModels(py::module_& m) {
             .rule = rule == "cover" ? ControlPointRule::Cover : ControlPointRule::Spread,
             .maxPoints = maxPoints,
             .minSpacing = minSpacing,
-            .maxPerBody = maxPerBody};
+            .maxPerBody = maxPerBody,
+            .alongGeometry = alongGeometry};
         return robotFeatures(robot, parsed,
                              points.empty() ? defaultControlPoints(robot, options)
                                             : namedControlPoints(robot, points));
@@ -278,10 +279,12 @@ void bindFeaturesAndModels(py::module_& m) {
       py::arg("max_points") = ControlPointOptions{}.maxPoints,
       py::arg("min_spacing") = ControlPointOptions{}.minSpacing,
       py::arg("max_per_body") = ControlPointOptions{}.maxPerBody, py::arg("rule") = "spread",
+      py::arg("along_geometry") = false,
       "The features a model of `robot` learns on: 'fk' (world positions of control points: "
       "'LINK' or 'LINK@X:Y:Z'; default: chosen automatically, at most max_points of them, "
       "min_spacing metres apart on average, max_per_body on one rigid body; 0 = no limit; rule "
-      "'spread' (the points that move most) or 'cover' (spread along the chain)) or "
+      "'spread' (the points that move most) or 'cover' (spread along the chain); "
+      "along_geometry: also candidates along each link's collision geometry) or "
       "'joints' (joint scaling).");
   m.def(
       "load_model",

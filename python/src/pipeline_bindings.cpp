@@ -66,7 +66,15 @@ void bindHeldOutModel(py::module_& m) {
          std::size_t maxSamples, const std::vector<double>& margins, bool selfCollision,
          std::optional<double> gamma, std::optional<double> beta, bool otherCandidates,
          std::uint64_t seed, const std::string& checker) {
-        const FeatureMap map = robotFeatures(robot, parseFeatureKind(features));
+        const FeatureKind kind = parseFeatureKind(features);
+        // As fastron train --robot --scene: control points for a point-terms model of obstacles
+        // (pipeline::heldOutControlPoints).
+        const ControlPointOptions automatic =
+            selfCollision ? ControlPointOptions{} : pipeline::heldOutControlPoints();
+        const FeatureMap map =
+            kind == FeatureKind::Kinematic
+                ? robotFeatures(robot, kind, defaultControlPoints(robot, automatic))
+                : robotFeatures(robot, kind);
         TrainParams params = sceneTrainParams(map.kind(), selfCollision);
         if (gamma) params.kernel.gamma = *gamma;
         if (beta) params.beta = *beta;
@@ -76,7 +84,7 @@ void bindHeldOutModel(py::module_& m) {
         options.margins = margins;
         options.selfCollision = selfCollision;
         options.checker = checker;
-        if (otherCandidates) options.automatic = ControlPointOptions{};
+        if (otherCandidates) options.automatic = automatic;
         options.candidateBeta = beta;
         options.seed = seed;
         pipeline::HeldOutModel made;

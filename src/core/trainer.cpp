@@ -164,7 +164,7 @@ TrainParams sceneTrainParams(FeatureKind kind, bool selfCollisionLabels) {
   params.maxIterations = 20000;
   params.maxSupportPoints = kRobotSupportCap;
   if (kind == FeatureKind::Kinematic && !selfCollisionLabels) {
-    params.kernel.gamma = 60;
+    params.kernel = {KernelType::RationalQuadratic, 60, 3, 0};
     params.beta = 40;
   }
   return params;

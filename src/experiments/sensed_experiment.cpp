@@ -152,10 +152,12 @@ SensedResults runSensed(const SensedOptions& o, const Progress& progress) {
                 Eigen::Isometry3d::Identity(), std::nullopt});
     const auto onCloud = makeSceneChecker("fcl", robot, sensed);
     const auto onTruth = makeSceneChecker("fcl", robot, truth);
-    // The kernel of the models of a scene's obstacles (sceneTrainParams): a cloud is just that.
+    // The width and bias of the models of a scene's obstacles (sceneTrainParams): a cloud is
+    // just that. The terms stay the pipeline's (a whole-vector term beside the points'): point
+    // terms alone need points along the links' geometry, which would cost these updates' rate.
     ProxyParams params = pipeline::withoutBand(proxyParams(c, seed, o.features));
     const TrainParams ofScenes = sceneTrainParams(o.features, false);
-    params.train.kernel = ofScenes.kernel;
+    params.train.kernel.gamma = ofScenes.kernel.gamma;
     params.train.beta = ofScenes.beta;
     if (o.gamma > 0) params.train.kernel.gamma = o.gamma;
     if (o.beta > 0) params.train.beta = o.beta;

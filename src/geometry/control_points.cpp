@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -73,7 +74,40 @@ std::size_t rigidBodyOf(const Robot& robot, std::size_t link) {
   }
 }
 
-std::vector<Candidate> candidatePoints(const Robot& robot) {
+/// Axis-aligned box, in the link's frame, around the link's collision shapes, a mesh by its
+/// vertices (linkBounds takes a mesh's box about its own origin, larger for an off-centre mesh
+/// such as the mesh Panda's forearm); empty when the link has none.
+Eigen::AlignedBox3d tightLinkBounds(const Robot& robot, int link) {
+  Eigen::AlignedBox3d bounds;
+  for (const LinkShape& s : robot.shapes()) {
+    if (s.link != link) continue;
+    Eigen::AlignedBox3d own;
+    if (const auto* mesh = std::get_if<Mesh>(&s.shape)) {
+      for (const Eigen::Vector3d& v : mesh->mesh->vertices) own.extend(v);
+    } else {
+      const Eigen::Vector3d half = halfExtents(s.shape);
+      own.extend(-half);
+      own.extend(half);
+    }
+    if (own.isEmpty()) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      bounds.extend(s.origin * own.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+    }
+  }
+  return bounds;
+}
+
+/// The centres of the two faces of `bounds` at the ends of its longest side.
+std::array<Eigen::Vector3d, 2> ends(const Eigen::AlignedBox3d& bounds) {
+  Eigen::Index axis = 0;
+  bounds.sizes().maxCoeff(&axis);
+  std::array<Eigen::Vector3d, 2> out{bounds.center(), bounds.center()};
+  out[0][axis] = bounds.min()[axis];
+  out[1][axis] = bounds.max()[axis];
+  return out;
+}
+
+std::vector<Candidate> candidatePoints(const Robot& robot, bool alongGeometry) {
   std::vector<Candidate> candidates;
   const auto& links = robot.links();
   const auto add = [&](std::size_t link, const Eigen::Vector3d& offset) {
@@ -89,6 +123,11 @@ std::vector<Candidate> candidatePoints(const Robot& robot) {
           return joint.movable() && isAncestor(robot, static_cast<int>(l), joint.parent);
         });
     if (!hasMovingDescendant) add(l, farEnd(bounds));
+    if (alongGeometry) {
+      const Eigen::AlignedBox3d tight = tightLinkBounds(robot, static_cast<int>(l));
+      add(l, tight.center());
+      for (const Eigen::Vector3d& end : ends(tight)) add(l, end);
+    }
   }
   return candidates;
 }
@@ -176,7 +215,7 @@ std::vector<ControlPoint> defaultControlPoints(const Robot& robot,
     throw InvalidArgument("control point spacing must be finite and >= 0, got " +
                           std::to_string(options.minSpacing));
   }
-  std::vector<Candidate> candidates = candidatePoints(robot);
+  std::vector<Candidate> candidates = candidatePoints(robot, options.alongGeometry);
   place(robot, candidates);
   std::erase_if(candidates, [](const Candidate& c) { return c.spread < kStaticTolerance; });
   const std::vector<const Candidate*> chosen = options.rule == ControlPointRule::Spread

@@ -24,6 +24,11 @@ std::vector<double> increasingMargins(const std::vector<double>& margins) {
   return used;
 }
 
+ControlPointOptions heldOutControlPoints() {
+  return {
+      .rule = ControlPointRule::Spread, .maxPoints = 10, .maxPerBody = 0, .alongGeometry = true};
+}
+
 std::vector<ModelCandidate> moreControlPointCandidates(const Robot& robot,
                                                        const FeatureMap& features,
                                                        const ControlPointOptions& automatic,

@@ -292,6 +292,34 @@ TEST(ControlPoints, TheCoverRuleSpreadsPointsAlongTheChain) {
       defaultControlPoints(mobile, {.rule = ControlPointRule::Cover, .minSpacing = 10}).size(), 1u);
 }
 
+// Points along the links' geometry: the mesh Panda's forearm (panda_link5, whose mesh runs from
+// z = -0.265 to 0.052 in its frame) gets points away from its origin, inside its mesh's box,
+// which the origins alone never give; without the option every offset point is a leaf's far end.
+TEST(ControlPoints, PointsAlongTheGeometryReachAlongLongLinks) {
+  const Robot panda = loadRobot("panda-mesh");
+  const auto onForearm = [](const std::vector<ControlPoint>& points) {
+    std::vector<Eigen::Vector3d> offsets;
+    for (const ControlPoint& p : points) {
+      if (p.link == "panda_link5" && !p.offset.isZero()) offsets.push_back(p.offset);
+    }
+    return offsets;
+  };
+  EXPECT_TRUE(onForearm(defaultControlPoints(panda, {.maxPoints = 10, .maxPerBody = 0})).empty());
+  const std::vector<ControlPoint> along =
+      defaultControlPoints(panda, {.maxPoints = 10, .maxPerBody = 0, .alongGeometry = true});
+  EXPECT_EQ(along.size(), 10u);
+  const std::vector<Eigen::Vector3d> forearm = onForearm(along);
+  ASSERT_FALSE(forearm.empty());
+  for (const Eigen::Vector3d& offset : forearm) {
+    EXPECT_GE(offset.z(), -0.266);  // inside the mesh's own box, not its symmetric one
+    EXPECT_LE(offset.z(), 0.053);
+    EXPECT_GE(offset.y(), -0.056);
+    EXPECT_LE(offset.y(), 0.131);
+  }
+  EXPECT_EQ(along,
+            defaultControlPoints(panda, {.maxPoints = 10, .maxPerBody = 0, .alongGeometry = true}));
+}
+
 TEST(ControlPoints, RefusesUnknownLinksAndNoPoints) {
   const Robot baxter = loadRobot("baxter");
   EXPECT_THAT(messageOf<InvalidArgument>([&] { namedControlPoints(baxter, {"no_such_link"}); }),

@@ -63,8 +63,12 @@ inline constexpr std::size_t kRobotSupportCap = 5000;
 inline constexpr std::size_t kSceneSamples = 16000;
 /// For the most accurate model of a scene that stands still, learned at once from kSceneSamples
 /// uniform samples and held-out rounds (`fastron train --scene`, trainToHeldOutTargets):
-/// defaultTrainParams with an iteration limit of 20000 and a cap of 5000 support points, and gamma
-/// 60 and beta 40 for task-space features without self-collision labels. Uniform samples of a scene
+/// defaultTrainParams with an iteration limit of 20000 and a cap of 5000 support points, and for
+/// task-space features without self-collision labels point terms alone (no whole-vector term),
+/// gamma 60 and beta 40: with control points along the links' geometry
+/// (pipeline::heldOutControlPoints) such a model is as accurate as one with the whole term, and
+/// its point field answers 3.7-12x faster than FK+FCL where the whole term's sum answered
+/// 0.5-5.8x (docs/performance.md, "Answers from tabulated point terms"). Uniform samples of a scene
 /// are 1-9% colliding, and the colliding class needs a larger bias than updates under change (whose
 /// Algorithm 2 samples lie near the boundary); the narrower kernel finds more of the thin colliding
 /// regions (shelves) once the rounds have supplied the samples it needs. The mesh Panda in the 20

@@ -51,6 +51,15 @@ struct HeldOutModel {
   std::string oracle;                      ///< the labels' checker, by its name() ("FCL")
 };
 
+/// The automatic control points of the models trainHeldOutModel makes for `fastron train --robot
+/// R --scene S` and Python's train_held_out_model: up to 10 by the spread rule, candidates along
+/// every link's collision geometry too, no limit per rigid body. Their kernel has point terms
+/// alone (sceneTrainParams), which a point field answers with one grid read per point, so points
+/// cost little, and terms of single points need points wherever a link can touch: the mesh
+/// Panda's box scene went from TPR 0.884 with points at link origins to 0.963 with these
+/// (docs/performance.md, "Answers from tabulated point terms").
+ControlPointOptions heldOutControlPoints();
+
 /// Margins without zeros; throws InvalidArgument naming the pair unless they increase.
 std::vector<double> increasingMargins(const std::vector<double>& margins);
 
