@@ -161,9 +161,9 @@ int trainOnScene(const TrainOptions& o) {
   // self-collision model learned once").
   FeatureOptions featureOptions = o.features;
   if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
-  // A scene's obstacles learned to held-out targets: point terms, whose points must lie wherever
-  // a link can touch (pipeline::heldOutControlPoints).
-  if (!o.scene.selfCollision && o.heldOut.samplesPerRound > 0 && !o.controlPointsGiven) {
+  // A scene's obstacles: point terms (sceneTrainParams), whose points must lie wherever a link can
+  // touch (pipeline::heldOutControlPoints).
+  if (!o.scene.selfCollision && !o.controlPointsGiven) {
     featureOptions.automatic = pipeline::heldOutControlPoints();
   }
   const FeatureMap features = featuresFromOptions(featureOptions, robot);
@@ -302,9 +302,9 @@ void addSceneTrainingOptions(CLI::App& cmd, TrainOptions& o) {
   cmd.add_option("--held-out", o.heldOut.samplesPerRound,
                  "with --scene: fresh labelled configurations per round on which the model "
                  "is measured; below the targets it learns them and is measured on new ones "
-                 "(0: no rounds). With rounds, fk features and no --self-collision: point terms "
-                 "alone and up to 10 automatic control points along the links' geometry (unless "
-                 "a --control-* option is given), answered by a point field")
+                 "(0: no rounds). With fk features and no --self-collision the kernel has point "
+                 "terms alone on up to 10 automatic control points along the links' geometry "
+                 "(unless a --control-* option is given), answered by a point field")
       ->capture_default_str();
   cmd.add_option("--target-accuracy", o.heldOut.accuracy,
                  "with --scene: held-out accuracy to reach")
