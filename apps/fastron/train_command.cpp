@@ -163,8 +163,8 @@ int trainOnScene(const TrainOptions& o) {
   if (selfAlone && !o.featuresGiven) featureOptions.kind = "joints";
   // A scene's obstacles: point terms (sceneTrainParams), whose points must lie wherever a link can
   // touch (pipeline::heldOutControlPoints).
-  if (!o.scene.selfCollision && !o.controlPointsGiven) {
-    featureOptions.automatic = pipeline::heldOutControlPoints();
+  if (!o.controlPointsGiven) {
+    featureOptions.automatic = pipeline::heldOutControlPoints(o.scene.selfCollision);
   }
   const FeatureMap features = featuresFromOptions(featureOptions, robot);
   ProxyParams params;

@@ -69,8 +69,7 @@ void bindHeldOutModel(py::module_& m) {
         const FeatureKind kind = parseFeatureKind(features);
         // As fastron train --robot --scene: control points for a point-terms model of obstacles
         // (pipeline::heldOutControlPoints).
-        const ControlPointOptions automatic =
-            selfCollision ? ControlPointOptions{} : pipeline::heldOutControlPoints();
+        const ControlPointOptions automatic = pipeline::heldOutControlPoints(selfCollision);
         const FeatureMap map =
             kind == FeatureKind::Kinematic
                 ? robotFeatures(robot, kind, defaultControlPoints(robot, automatic))

@@ -229,7 +229,8 @@ detail::SupportView Model::termView(std::size_t g) const {
 bool Model::inCollisionByField(const float* x) const {
   const PointField& field = *pointField_;
   const std::size_t terms = field.grids().size();
-  std::array<float, kMaxFeatureDimension / 3> values, bounds;
+  static_assert(kMaxPointTerms * 3 == kMaxFeatureDimension);
+  std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
     float value = 0, bound = 0;
     for (std::size_t g = 0; g < terms; ++g) {
@@ -240,7 +241,7 @@ bool Model::inCollisionByField(const float* x) const {
     if (value < -bound) return false;
     // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
     // share of the full one); the rounding floor stays with it.
-    std::array<std::uint8_t, kMaxFeatureDimension / 3> order;
+    std::array<std::uint8_t, kMaxPointTerms> order;
     std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms), 0);
     std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms),
               [&](std::uint8_t a, std::uint8_t b) { return bounds[a] > bounds[b]; });

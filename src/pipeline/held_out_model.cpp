@@ -24,7 +24,8 @@ std::vector<double> increasingMargins(const std::vector<double>& margins) {
   return used;
 }
 
-ControlPointOptions heldOutControlPoints() {
+ControlPointOptions heldOutControlPoints(bool selfCollision) {
+  if (selfCollision) return {};
   return {
       .rule = ControlPointRule::Spread, .maxPoints = 10, .maxPerBody = 0, .alongGeometry = true};
 }

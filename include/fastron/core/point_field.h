@@ -23,6 +23,9 @@
 
 namespace FASTRON_API fastron {
 
+/// The most point terms a model has (kMaxFeatureDimension / 3), hence a field's grids.
+inline constexpr std::size_t kMaxPointTerms = 64;
+
 /// How a PointField is built. The defaults measured best on the shipped and generated robots
 /// (docs/performance.md): 4 cm cells.
 struct PointFieldOptions {
@@ -76,13 +79,12 @@ class PointField {
   /// +1 (collides) or -1 (free) when the grids alone decide the sign of f(x), 0 when they do
   /// not (Model::inCollision then refines the least certain terms with their exact sums).
   int sign(const float* x) const {
+    float values[kMaxPointTerms], bounds[kMaxPointTerms];
+    if (!estimateTerms(x, values, bounds)) return 0;
     float value = 0, bound = 0;
-    for (const Grid& grid : grids_) {
-      float v = 0, b = 0;
-      if (!interpolate(grid, x, v, b)) return 0;
-      value += v;
-      bound += b;
-      x += 3;
+    for (std::size_t g = 0; g < grids_.size(); ++g) {
+      value += values[g];
+      bound += bounds[g];
     }
     if (value > bound) return 1;
     if (value < -bound) return -1;

@@ -57,8 +57,10 @@ struct HeldOutModel {
 /// alone (sceneTrainParams), which a point field answers with one grid read per point, so points
 /// cost little, and terms of single points need points wherever a link can touch: the mesh
 /// Panda's box scene went from TPR 0.884 with points at link origins to 0.963 with these
-/// (docs/performance.md, "Answers from tabulated point terms").
-ControlPointOptions heldOutControlPoints();
+/// (docs/performance.md, "Answers from tabulated point terms"). With `selfCollision` labels the
+/// kernel keeps one term (sceneTrainParams), and the points are the defaults
+/// (ControlPointOptions{}).
+ControlPointOptions heldOutControlPoints(bool selfCollision = false);
 
 /// Margins without zeros; throws InvalidArgument naming the pair unless they increase.
 std::vector<double> increasingMargins(const std::vector<double>& margins);
