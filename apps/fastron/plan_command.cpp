@@ -65,14 +65,15 @@ struct PlanOptions {
   PathSimplification simplification = PathSimplification::Full;
 };
 
-/// "Fastron: no path within the time limit (1.70 ms, 812 checks); Fastron+FCL: solved (48.2 ms,
-/// 20311 checks, of which simplify 3.58 ms)": where the planning time went.
+/// "Fastron: no path within the time limit (1.70 ms, 812 checks in 0.61 ms); Fastron+FCL: solved
+/// (48.2 ms, 20311 checks in 40.1 ms, of which simplify 3.58 ms)": where the planning time went.
 std::string attemptsText(const std::vector<PlanAttempt>& attempts) {
   std::ostringstream text;
   for (std::size_t i = 0; i < attempts.size(); ++i) {
     const PlanAttempt& a = attempts[i];
     text << (i > 0 ? "; " : "") << a.source << ": " << toString(a.status) << " ("
-         << durationText(inSeconds(a.time)) << ", " << a.checks << " checks";
+         << durationText(inSeconds(a.time)) << ", " << a.checks << " checks in "
+         << durationText(inSeconds(a.checkTime));
     if (a.simplifyTime.count() > 0)
       text << ", of which simplify " << durationText(inSeconds(a.simplifyTime));
     if (a.substituteEnds) text << ", between substitute ends";

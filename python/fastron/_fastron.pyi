@@ -269,7 +269,7 @@ class VerifiedPlan:
     gradient_repairs: int
     relearned: int
     whole_path_replanned: bool
-    attempts: list[tuple[str, str, float, int]]
+    attempts: list[tuple[str, str, float, int, float]]
     exact_checks: int
     relaxed_checks: int
     exact_answers: tuple[npt.NDArray[np.float64], npt.NDArray[np.int8]]

@@ -106,15 +106,15 @@ struct PythonVerifiedPlan {
   bool wholePathReplanned = false;
   py::array_t<double> exactX;
   py::array_t<std::int8_t> exactY;
-  py::list attempts;  // (source, status, seconds, checks) per plan before verification
+  py::list attempts;  // (source, status, seconds, checks, check seconds) per plan
   std::uint64_t exactChecks = 0, relaxedChecks = 0;
 };
 
 py::list attemptsOf(const VerifiedPlan& plan) {
   py::list attempts;
   for (const PlanAttempt& a : plan.attempts) {
-    attempts.append(
-        py::make_tuple(a.source, std::string(toString(a.status)), inSeconds(a.time), a.checks));
+    attempts.append(py::make_tuple(a.source, std::string(toString(a.status)), inSeconds(a.time),
+                                   a.checks, inSeconds(a.checkTime)));
   }
   return attempts;
 }
@@ -176,9 +176,11 @@ void bindPlanResults(py::module_& m) {
                     "Paths on the model that verification found colliding and the detector "
                     "learned from before planning again (learning_rounds).")
       .def_readonly("whole_path_replanned", &PythonVerifiedPlan::wholePathReplanned)
-      .def_readonly("attempts", &PythonVerifiedPlan::attempts,
-                    "Where the planning time went: (source, status, seconds, checks) of every plan "
-                    "before verification, in order (the model, its hybrid, the exact checker).")
+      .def_readonly(
+          "attempts", &PythonVerifiedPlan::attempts,
+          "Where the planning time went: (source, status, seconds, checks, seconds of those "
+          "checks) of every plan before verification, in order (the model, its hybrid, "
+          "the exact checker).")
       .def_readonly("exact_checks", &PythonVerifiedPlan::exactChecks,
                     "Configurations the exact checker answered for this plan.")
       .def_readonly("relaxed_checks", &PythonVerifiedPlan::relaxedChecks,

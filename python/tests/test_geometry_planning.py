@@ -435,6 +435,7 @@ def test_plan_verified_in_a_static_scene_on_a_relaxed_oracle(baxter):
             assert plan.whole_path_replanned or plan.attempts[-1][0] == plan.planned_on
             assert sum(a[2] for a in plan.attempts) <= plan.plan_seconds + 1e-9
             assert all(a[3] > 0 for a in plan.attempts)  # each asked its source something
+            assert all(0 < a[4] <= a[2] for a in plan.attempts)  # and took time answering
             assert plan.exact_checks > 0  # verification at least
         assert plan.relearned == 0
     assert solved >= 2

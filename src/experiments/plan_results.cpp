@@ -49,7 +49,7 @@ Table PlanRows::table() const {
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
         "total_s", "path_length", "waypoints", "stretches", "gradient_repairs", "relearned", "relearn_s", "fallback",
         "exact_ends", "collides_fcl", "exact_share", "attempts", "failed_plan_s", "plan_checks",
-        "exact_checks", "relaxed_checks", "planned_on"}) {
+        "plan_check_s", "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
   }
   // clang-format on
@@ -86,6 +86,7 @@ Table PlanRows::table() const {
         std::to_string(o.attempts),
         cell(o.failedPlanSeconds),
         std::to_string(o.planChecks),
+        cell(o.planCheckSeconds),
         std::to_string(o.exactChecks),
         std::to_string(o.relaxedChecks),
         o.plannedOn};

@@ -35,6 +35,7 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   for (const PlanAttempt& attempt : plan.attempts) {
     if (attempt.status != PlanStatus::Solved) o.failedPlanSeconds += inSeconds(attempt.time);
     o.planChecks += attempt.checks;
+    o.planCheckSeconds += inSeconds(attempt.checkTime);
   }
   o.exactChecks = plan.exactChecks;
   o.relaxedChecks = plan.relaxedChecks;
@@ -218,10 +219,10 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
 std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
                           const std::vector<std::string>& planners) {
   std::ostringstream md;
-  md << "| Planner | Method | Plan | of which attempts that failed | of which simplify | Verify | "
-        "Repair | Plans before verification | Their sources' checks | Exact checks | Oracle "
-        "checks |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "| Planner | Method | Plan | of which attempts that failed | of which simplify | of which "
+        "their sources' checks (share) | Verify | Repair | Plans before verification | Their "
+        "sources' checks | Exact checks | Oracle checks |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
     for (const std::string& method : methodsOf(r, where)) {
       const auto ok = select(r, where, [&](const PlanRow& row) {
@@ -236,10 +237,19 @@ std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
           median([](const PlanOutcome& o) { return static_cast<double>(o.planChecks); }),
           median([](const PlanOutcome& o) { return static_cast<double>(o.exactChecks); }),
           median([](const PlanOutcome& o) { return static_cast<double>(o.relaxedChecks); }));
+      // The median of each plan's share, not a ratio of medians (a plan's checks and its time
+      // go together).
+      char checkShare[32];
+      std::snprintf(checkShare, sizeof checkShare, "%.0f%%",
+                    100 * median([](const PlanOutcome& o) {
+                      return o.planSeconds > 0 ? o.planCheckSeconds / o.planSeconds : 0.0;
+                    }));
       md << "| " << planner << " | " << method << " | "
          << durationText(median([](const PlanOutcome& o) { return o.planSeconds; })) << " | "
          << durationText(median([](const PlanOutcome& o) { return o.failedPlanSeconds; })) << " | "
          << durationText(median([](const PlanOutcome& o) { return o.simplifySeconds; })) << " | "
+         << durationText(median([](const PlanOutcome& o) { return o.planCheckSeconds; })) << " ("
+         << checkShare << ") | "
          << durationText(median([](const PlanOutcome& o) { return o.verifySeconds; })) << " | "
          << durationText(median([](const PlanOutcome& o) { return o.repairSeconds; })) << " | "
          << counts << " |\n";

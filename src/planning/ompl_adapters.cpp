@@ -2,6 +2,7 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
+#include <chrono>
 #include <optional>
 #include <span>
 #include <string>
@@ -63,44 +64,54 @@ std::size_t sourceDof(const CollisionSource& source) {
 
 namespace {
 
-AnsweredCount orNew(AnsweredCount answered) {
-  return answered ? std::move(answered) : std::make_shared<std::atomic<std::uint64_t>>(0);
+SharedSourceUse orNew(SharedSourceUse use) {
+  return use ? std::move(use) : std::make_shared<SourceUseCounter>();
 }
 
-/// firstCollision, adding the rows the source answered (up to the first collision) to `answered`.
+/// firstCollision, adding the rows the source answered (up to the first collision) and the time
+/// it took to `use`.
 std::size_t firstCollisionCounted(const CollisionSource& source, const double* states,
-                                  std::size_t n, std::size_t dim,
-                                  std::atomic<std::uint64_t>& answered) {
+                                  std::size_t n, std::size_t dim, SourceUseCounter& use) {
+  const auto began = std::chrono::steady_clock::now();
   const std::size_t first = firstCollision(source, states, n, dim);
-  answered.fetch_add(first < n ? first + 1 : n, std::memory_order_relaxed);
+  use.add(first < n ? first + 1 : n, std::chrono::steady_clock::now() - began);
   return first;
 }
 
 }  // namespace
 
+void SourceUseCounter::add(std::uint64_t answered, std::chrono::nanoseconds time) {
+  answered_.fetch_add(answered, std::memory_order_relaxed);
+  nanoseconds_.fetch_add(time.count(), std::memory_order_relaxed);
+}
+
+SourceUse SourceUseCounter::total() const {
+  return {answered_.load(std::memory_order_relaxed),
+          std::chrono::nanoseconds(nanoseconds_.load(std::memory_order_relaxed))};
+}
+
 CollisionValidityChecker::CollisionValidityChecker(const ompl::base::SpaceInformationPtr& si,
-                                                   CollisionSource source, AnsweredCount answered)
+                                                   CollisionSource source, SharedSourceUse use)
     : ompl::base::StateValidityChecker(si),
       source_(std::move(source)),
-      answered_(orNew(std::move(answered))) {}
+      use_(orNew(std::move(use))) {}
 
 bool CollisionValidityChecker::isValid(const ompl::base::State* state) const {
-  return firstCollisionCounted(source_, valuesOf(state), 1, si_->getStateDimension(), *answered_) ==
-         1;
+  return firstCollisionCounted(source_, valuesOf(state), 1, si_->getStateDimension(), *use_) == 1;
 }
 
 ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si,
                                                      CollisionSource source, double resolution,
-                                                     AnsweredCount answered)
+                                                     SharedSourceUse use)
     : ompl::base::MotionValidator(si),
       source_(std::move(source)),
       resolution_(resolution),
-      answered_(orNew(std::move(answered))),
+      use_(orNew(std::move(use))),
       ends_(si->getStateDimension()) {}
 
 std::size_t ResolutionMotionValidator::ask(const double* states, std::size_t n,
                                            std::size_t dim) const {
-  return firstCollisionCounted(source_, states, n, dim, *answered_);
+  return firstCollisionCounted(source_, states, n, dim, *use_);
 }
 
 bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
@@ -115,8 +126,9 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
     const std::optional<bool> endCollides = ends_.find(b);
     bool valid = false;
     if (!endCollides || !*endCollides) {  // the whole motion at once (`b` looked at again)
+      const auto began = std::chrono::steady_clock::now();
       const CollisionChecker::MotionCheck answer = (*checker)->motionCollision(a, b, n);
-      answered_->fetch_add(answer.looked, std::memory_order_relaxed);
+      use_->add(answer.looked, std::chrono::steady_clock::now() - began);
       if (answer.collidingState == 0 || answer.collidingState == n)
         ends_.remember(b, answer.collidingState == n);
       valid = answer.collidingState == 0;
@@ -191,18 +203,17 @@ ompl::base::SpaceInformationPtr makeSpaceInformation(const CollisionSource& sour
   }
   space->setBounds(bounds);
   auto si = std::make_shared<ompl::base::SpaceInformation>(space);
-  const auto answered = std::make_shared<std::atomic<std::uint64_t>>(0);
-  si->setStateValidityChecker(std::make_shared<CollisionValidityChecker>(si, source, answered));
-  si->setMotionValidator(
-      std::make_shared<ResolutionMotionValidator>(si, source, resolution, answered));
+  const auto use = std::make_shared<SourceUseCounter>();
+  si->setStateValidityChecker(std::make_shared<CollisionValidityChecker>(si, source, use));
+  si->setMotionValidator(std::make_shared<ResolutionMotionValidator>(si, source, resolution, use));
   si->setup();
   return si;
 }
 
-std::uint64_t answeredBySource(const ompl::base::SpaceInformationPtr& si) {
+SourceUse sourceUse(const ompl::base::SpaceInformationPtr& si) {
   const auto* checker =
       dynamic_cast<const CollisionValidityChecker*>(si->getStateValidityChecker().get());
-  return checker != nullptr ? checker->answered()->load(std::memory_order_relaxed) : 0;
+  return checker != nullptr ? checker->use()->total() : SourceUse{};
 }
 
 }  // namespace fastron

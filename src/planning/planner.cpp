@@ -343,21 +343,23 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   const auto began = std::chrono::steady_clock::now();
   const auto si = makeSpaceInformation(source, limits, edgeResolution(source, options));
   PlanResult result;
-  std::uint64_t endsAsked = 0;
+  SourceUseCounter ends;  // the planner's own questions are counted by si's adapters
   const auto finish = [&](PlanStatus status) {
     result.status = status;
     result.time = std::chrono::steady_clock::now() - began;
-    result.checks = endsAsked + answeredBySource(si);
+    const SourceUse planner = sourceUse(si), asked = ends.total();
+    result.checks = asked.answered + planner.answered;
+    result.checkTime = asked.time + planner.time;
     return result;
   };
-  ++endsAsked;
-  if (firstCollision(source, start.data(), 1, limits.dim()) == 0) {
-    return finish(PlanStatus::InvalidStart);
-  }
-  ++endsAsked;
-  if (firstCollision(source, goal.data(), 1, limits.dim()) == 0) {
-    return finish(PlanStatus::InvalidGoal);
-  }
+  const auto collides = [&](const Eigen::VectorXd& end) {
+    const auto asked = std::chrono::steady_clock::now();
+    const bool answer = firstCollision(source, end.data(), 1, limits.dim()) == 0;
+    ends.add(1, std::chrono::steady_clock::now() - asked);
+    return answer;
+  };
+  if (collides(start)) return finish(PlanStatus::InvalidStart);
+  if (collides(goal)) return finish(PlanStatus::InvalidGoal);
 
   const auto planner = makePlanner(si, options);
   planner->setProblemDefinition(makeProblemDefinition(si, start, goal, options.type));

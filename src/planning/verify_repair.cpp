@@ -309,8 +309,8 @@ struct ApproximatePlan {
 };
 
 PlanAttempt attemptOf(std::string source, const PlanResult& plan, bool substituteEnds = false) {
-  return {std::move(source), plan.status, plan.time,
-          plan.simplifyTime, plan.checks, substituteEnds};
+  return {std::move(source), plan.status,    plan.time,     plan.simplifyTime,
+          plan.checks,       plan.checkTime, substituteEnds};
 }
 
 ApproximatePlan planApproximately(const CollisionSource& approximate,

@@ -1127,6 +1127,27 @@ TEST_F(Planning, CountsTheConfigurationsItsSourceAnswered) {
   EXPECT_EQ(wall->callCount(), 1u);
 }
 
+// A plan times its source's answers: with a source that takes 20 µs an answer they are most of
+// the plan's time (the planner's own work is a few µs a state), never more than all of it.
+TEST_F(Planning, TimesItsSourcesAnswers) {
+  const auto slowWall = std::make_shared<FunctionChecker>("slow wall", 2, [](const double* q) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(20);
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    return inWall(q);
+  });
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 5, .simplifyTime = 0.1};
+  const PlanResult plan = planMotion(slowWall, JointLimits::unitBox(2), kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved());
+  EXPECT_GE(plan.checkTime, std::chrono::microseconds(20) * plan.checks);
+  EXPECT_LE(plan.checkTime, plan.time);
+  EXPECT_GT(plan.checkTime.count(), 0.5 * static_cast<double>(plan.time.count()));
+  const PlanResult blocked =
+      planMotion(slowWall, JointLimits::unitBox(2), vec({0, 0}), kGoal, options);
+  EXPECT_EQ(blocked.checks, 1u);  // the start alone, timed too
+  EXPECT_GE(blocked.checkTime, std::chrono::microseconds(20));
+}
+
 // A source that closes the wall's gap finds nothing in its share of the time; the optimistic
 // hybrid after it (its "collides" confirmed by the exact checker) finds the path, which
 // verification finds free. Every question the hybrid asked of the exact checker is counted and

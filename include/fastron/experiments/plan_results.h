@@ -43,6 +43,9 @@ struct PlanOutcome {
   std::uint64_t exactChecks = 0, relaxedChecks = 0;  ///< as in VerifiedPlan
   /// Configurations the attempts' sources answered (a model's, a hybrid's, FCL's own plan).
   std::uint64_t planChecks = 0;
+  /// Of planSeconds: those sources answering them (PlanAttempt::checkTime); the rest is the
+  /// planner's own work (sampling, nearest neighbours, simplification's bookkeeping).
+  double planCheckSeconds = 0;
   std::string plannedOn;  ///< the source whose path was verified (VerifiedPlan::plannedOn)
 };
 
@@ -81,7 +84,7 @@ struct PlanRows {
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
   /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, attempts,
-  /// failed_plan_s, plan_checks, exact_checks, relaxed_checks, planned_on), then the
+  /// failed_plan_s, plan_checks, plan_check_s, exact_checks, relaxed_checks, planned_on), then the
   /// figures; then a row per skipped query (status "skipped: " and the error, no method, NaN
   /// figures). Throws InvalidArgument when the rows do not share their query and figure columns.
   Table table() const;

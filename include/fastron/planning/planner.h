@@ -208,6 +208,9 @@ struct PlanResult {
   /// Configurations the source answered (ends, planning, simplification; a batch along an edge
   /// up to its first collision).
   std::uint64_t checks = 0;
+  /// Of `time`: the source answering those (the clock read around each question, see
+  /// SourceUseCounter).
+  std::chrono::nanoseconds checkTime{0};
   /// The planner's range when it stopped (PlannerOptions::range; 0 for BIT*, which has none).
   double range = 0;
   bool solved() const { return status == PlanStatus::Solved; }

@@ -24,6 +24,7 @@ struct PlanAttempt {
   std::chrono::nanoseconds time{0};          ///< simplification included
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
   std::uint64_t checks = 0;                  ///< PlanResult::checks
+  std::chrono::nanoseconds checkTime{0};     ///< PlanResult::checkTime: of `time`, answering them
   /// It planned between substitute ends (VerifiedPlan::substituteEnds).
   bool substituteEnds = false;
 };
