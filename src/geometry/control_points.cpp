@@ -17,18 +17,16 @@ namespace {
 constexpr std::size_t kSampleCount = 64;  // configurations the automatic choice looks at
 constexpr double kStaticTolerance = 1e-3;
 
-/// Axis-aligned box, in the link's frame, around the link's collision shapes; empty when the link
-/// has none.
+/// Axis-aligned box, in the link's frame, around the link's collision shapes (a mesh by its
+/// vertices); empty when the link has none.
 Eigen::AlignedBox3d linkBounds(const Robot& robot, int link) {
   Eigen::AlignedBox3d bounds;
   for (const LinkShape& s : robot.shapes()) {
     if (s.link != link) continue;
-    const Eigen::Vector3d half = halfExtents(s.shape);
+    const Eigen::AlignedBox3d own = shapeBounds(s.shape);
+    if (own.isEmpty()) continue;
     for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d c((corner & 1) ? half.x() : -half.x(),
-                              (corner & 2) ? half.y() : -half.y(),
-                              (corner & 4) ? half.z() : -half.z());
-      bounds.extend(s.origin * c);
+      bounds.extend(s.origin * own.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
     }
   }
   return bounds;
@@ -74,29 +72,6 @@ std::size_t rigidBodyOf(const Robot& robot, std::size_t link) {
   }
 }
 
-/// Axis-aligned box, in the link's frame, around the link's collision shapes, a mesh by its
-/// vertices (linkBounds takes a mesh's box about its own origin, larger for an off-centre mesh
-/// such as the mesh Panda's forearm); empty when the link has none.
-Eigen::AlignedBox3d tightLinkBounds(const Robot& robot, int link) {
-  Eigen::AlignedBox3d bounds;
-  for (const LinkShape& s : robot.shapes()) {
-    if (s.link != link) continue;
-    Eigen::AlignedBox3d own;
-    if (const auto* mesh = std::get_if<Mesh>(&s.shape)) {
-      for (const Eigen::Vector3d& v : mesh->mesh->vertices) own.extend(v);
-    } else {
-      const Eigen::Vector3d half = halfExtents(s.shape);
-      own.extend(-half);
-      own.extend(half);
-    }
-    if (own.isEmpty()) continue;
-    for (int corner = 0; corner < 8; ++corner) {
-      bounds.extend(s.origin * own.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
-    }
-  }
-  return bounds;
-}
-
 /// The centres of the two faces of `bounds` at the ends of its longest side.
 std::array<Eigen::Vector3d, 2> ends(const Eigen::AlignedBox3d& bounds) {
   Eigen::Index axis = 0;
@@ -124,9 +99,8 @@ std::vector<Candidate> candidatePoints(const Robot& robot, bool alongGeometry) {
         });
     if (!hasMovingDescendant) add(l, farEnd(bounds));
     if (alongGeometry) {
-      const Eigen::AlignedBox3d tight = tightLinkBounds(robot, static_cast<int>(l));
-      add(l, tight.center());
-      for (const Eigen::Vector3d& end : ends(tight)) add(l, end);
+      add(l, bounds.center());
+      for (const Eigen::Vector3d& end : ends(bounds)) add(l, end);
     }
   }
   return candidates;

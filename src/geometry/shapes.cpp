@@ -130,29 +130,33 @@ double boundingRadius(const Shape& shape) {
                     shape);
 }
 
-Eigen::Vector3d halfExtents(const Shape& shape) {
-  return std::visit(
-      Overloaded{
-          [](const Box& b) -> Eigen::Vector3d { return b.size / 2; },
-          [](const Sphere& s) -> Eigen::Vector3d { return Eigen::Vector3d::Constant(s.radius); },
-          [](const Cylinder& c) -> Eigen::Vector3d {
-            return {c.radius, c.radius, c.length / 2};
-          },
-          [](const Capsule& c) -> Eigen::Vector3d {
-            return {c.radius, c.radius, c.length / 2 + c.radius};
-          },
-          [](const Mesh& m) -> Eigen::Vector3d {
-            Eigen::Vector3d h = Eigen::Vector3d::Zero();
-            for (const auto& v : m.mesh->vertices) h = h.cwiseMax(v.cwiseAbs());
-            return h;
-          },
-          [](const PointCloud& c) -> Eigen::Vector3d {
-            Eigen::Vector3d h = Eigen::Vector3d::Zero();
-            for (const auto& p : c.cloud->points) h = h.cwiseMax(p.cwiseAbs());
-            return c.cloud->points.empty() ? h : (h.array() + c.radius).matrix();
-          },
-      },
-      shape);
+Eigen::AlignedBox3d shapeBounds(const Shape& shape) {
+  const auto about = [](const Eigen::Vector3d& half) { return Eigen::AlignedBox3d(-half, half); };
+  return std::visit(Overloaded{
+                        [&](const Box& b) { return about(b.size / 2); },
+                        [&](const Sphere& s) { return about(Eigen::Vector3d::Constant(s.radius)); },
+                        [&](const Cylinder& c) {
+                          return about({c.radius, c.radius, c.length / 2});
+                        },
+                        [&](const Capsule& c) {
+                          return about({c.radius, c.radius, c.length / 2 + c.radius});
+                        },
+                        [](const Mesh& m) {
+                          Eigen::AlignedBox3d box;
+                          for (const auto& v : m.mesh->vertices) box.extend(v);
+                          return box;
+                        },
+                        [](const PointCloud& c) {
+                          Eigen::AlignedBox3d box;
+                          for (const auto& p : c.cloud->points) box.extend(p);
+                          if (!box.isEmpty()) {
+                            box.min().array() -= c.radius;
+                            box.max().array() += c.radius;
+                          }
+                          return box;
+                        },
+                    },
+                    shape);
 }
 
 }  // namespace fastron

@@ -160,6 +160,12 @@ endsolid t
   const auto& mesh = std::get<Mesh>(robot.shapes()[0].shape).mesh;
   EXPECT_EQ(mesh->triangles.size(), 2u);
   EXPECT_NEAR(boundingRadius(robot.shapes()[0].shape), 0.5, 1e-6);
+  // The mesh lies off its origin, in one octant: its box is around its vertices, not about 0.
+  const Eigen::AlignedBox3d box = shapeBounds(robot.shapes()[0].shape);
+  EXPECT_TRUE(box.min().isZero(1e-6)) << box.min().transpose();
+  EXPECT_TRUE(box.max().isApprox(Eigen::Vector3d::Constant(0.5), 1e-6)) << box.max().transpose();
+  EXPECT_TRUE(shapeBounds(Box{{0.2, 0.4, 0.6}}).max().isApprox(Eigen::Vector3d(0.1, 0.2, 0.3)));
+  EXPECT_TRUE(shapeBounds(Capsule{0.1, 0.4}).min().isApprox(Eigen::Vector3d(-0.1, -0.1, -0.3)));
 }
 
 TEST_F(Urdf, MeshFileThatIsNotAMesh) {

@@ -3,6 +3,7 @@
 // axis of cylinders and capsules is the frame's z axis.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <variant>
@@ -65,8 +66,9 @@ std::string describe(const Shape& shape);
 /// Radius of the smallest sphere about the shape's origin that contains it (0 for an empty cloud).
 double boundingRadius(const Shape& shape);
 
-/// Half the extents of the smallest box about the shape's origin, aligned with its frame, that
-/// contains it.
-Eigen::Vector3d halfExtents(const Shape& shape);
+/// The smallest box aligned with the shape's frame that contains it: about the origin for a
+/// primitive, around its vertices or points for a mesh or a cloud (off the origin when they are,
+/// as the mesh Panda's forearm is). Empty for an empty mesh or cloud.
+Eigen::AlignedBox3d shapeBounds(const Shape& shape);
 
 }  // namespace fastron
