@@ -49,7 +49,7 @@ Table PlanRows::table() const {
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
         "total_s", "path_length", "waypoints", "stretches", "gradient_repairs", "relearned", "relearn_s", "fallback",
         "exact_ends", "collides_fcl", "exact_share", "attempts", "failed_plan_s", "plan_checks",
-        "plan_check_s", "exact_checks", "relaxed_checks", "planned_on"}) {
+        "plan_check_s", "plan_check_share", "model_plan_s", "model_checks", "model_check_s", "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
   }
   // clang-format on
@@ -87,6 +87,10 @@ Table PlanRows::table() const {
         cell(o.failedPlanSeconds),
         std::to_string(o.planChecks),
         cell(o.planCheckSeconds),
+        cell(o.planCheckShare),
+        cell(o.modelPlanSeconds),
+        std::to_string(o.modelChecks),
+        cell(o.modelCheckSeconds),
         std::to_string(o.exactChecks),
         std::to_string(o.relaxedChecks),
         o.plannedOn};

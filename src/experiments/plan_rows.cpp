@@ -32,11 +32,19 @@ PlanOutcome outcomeOf(const MethodPlan& method, const CollisionChecker& audit, d
   o.substituteEnds = plan.substituteEnds;
   o.exactShare = method.exactShare;
   o.attempts = plan.attempts.size();
+  double attemptSeconds = 0;
   for (const PlanAttempt& attempt : plan.attempts) {
+    attemptSeconds += inSeconds(attempt.time);
     if (attempt.status != PlanStatus::Solved) o.failedPlanSeconds += inSeconds(attempt.time);
     o.planChecks += attempt.checks;
     o.planCheckSeconds += inSeconds(attempt.checkTime);
+    if (attempt.onModel) {
+      o.modelPlanSeconds += inSeconds(attempt.time);
+      o.modelCheckSeconds += inSeconds(attempt.checkTime);
+      o.modelChecks += attempt.checks;
+    }
   }
+  o.planCheckShare = attemptSeconds > 0 ? o.planCheckSeconds / attemptSeconds : 0;
   o.exactChecks = plan.exactChecks;
   o.relaxedChecks = plan.relaxedChecks;
   o.plannedOn = plan.plannedOn;
@@ -216,12 +224,43 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
   return md.str();
 }
 
+namespace {
+
+/// "Model queries, in plans on a bare model (every planner's, solved or not): METHOD N% of their
+/// time, M per query (K queries); ...", or "" when no plan asked a bare model.
+std::string modelQueryLine(const PlanRows& r, const RowFilter& where) {
+  std::ostringstream line;
+  for (const std::string& method : methodsOf(r, where)) {
+    double planSeconds = 0, checkSeconds = 0;
+    std::uint64_t checks = 0;
+    for (const PlanRow& row : r.rows) {
+      if ((where && !where(row)) || row.method != method) continue;
+      planSeconds += row.outcome.modelPlanSeconds;
+      checkSeconds += row.outcome.modelCheckSeconds;
+      checks += row.outcome.modelChecks;
+    }
+    if (checks == 0 || planSeconds <= 0) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s %.0f%% of their time, %s per query (%llu queries)",
+                  method.c_str(), 100 * checkSeconds / planSeconds,
+                  durationText(checkSeconds / static_cast<double>(checks)).c_str(),
+                  static_cast<unsigned long long>(checks));
+    line << (line.tellp() > 0 ? "; " : "") << text;
+  }
+  if (line.tellp() == 0) return "";
+  return "\nModel queries, in plans on a bare model (all of them, solved or not; the clock read "
+         "around each question included): " +
+         line.str() + ".\n";
+}
+
+}  // namespace
+
 std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
                           const std::vector<std::string>& planners) {
   std::ostringstream md;
-  md << "| Planner | Method | Plan | of which attempts that failed | of which simplify | of which "
-        "their sources' checks (share) | Verify | Repair | Plans before verification | Their "
-        "sources' checks | Exact checks | Oracle checks |\n"
+  md << "| Planner | Method | Plan | of which attempts that failed | of which simplify | Their "
+        "sources answering (share of the attempts' time) | Verify | Repair | Plans before "
+        "verification | Their sources' checks | Exact checks | Oracle checks |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& planner : planners) {
     for (const std::string& method : methodsOf(r, where)) {
@@ -241,9 +280,7 @@ std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
       // go together).
       char checkShare[32];
       std::snprintf(checkShare, sizeof checkShare, "%.0f%%",
-                    100 * median([](const PlanOutcome& o) {
-                      return o.planSeconds > 0 ? o.planCheckSeconds / o.planSeconds : 0.0;
-                    }));
+                    100 * median([](const PlanOutcome& o) { return o.planCheckShare; }));
       md << "| " << planner << " | " << method << " | "
          << durationText(median([](const PlanOutcome& o) { return o.planSeconds; })) << " | "
          << durationText(median([](const PlanOutcome& o) { return o.failedPlanSeconds; })) << " | "
@@ -255,6 +292,7 @@ std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
          << counts << " |\n";
     }
   }
+  md << modelQueryLine(r, where);
   return md.str();
 }
 

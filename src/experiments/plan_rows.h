@@ -107,10 +107,11 @@ std::string planTable(const PlanRows& r, const RowFilter& where,
                       const std::vector<std::string>& planners);
 
 /// "Where the time goes": per (planner, method), medians over solved plans of the plan's time,
-/// of its attempts that found no path (a model closing the way), of simplification and of its
-/// sources answering (with the median of that share of each plan's time), of verify
+/// of its attempts that found no path (a model closing the way), of simplification, of its
+/// attempts' sources answering (and the median share of the attempts' time), of verify
 /// and repair, of the plans made before verification, of the checks their sources answered, and
-/// of those the exact checker and a relaxed oracle answered.
+/// of those the exact checker and a relaxed oracle answered; then a line per method of the share
+/// of its plans on a bare model spent in model queries, and their time per query.
 std::string timeBreakdown(const PlanRows& r, const RowFilter& where,
                           const std::vector<std::string>& planners);
 

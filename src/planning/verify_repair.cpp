@@ -308,9 +308,16 @@ struct ApproximatePlan {
   bool substituteEnds = false;
 };
 
-PlanAttempt attemptOf(std::string source, const PlanResult& plan, bool substituteEnds = false) {
-  return {std::move(source), plan.status,    plan.time,     plan.simplifyTime,
-          plan.checks,       plan.checkTime, substituteEnds};
+PlanAttempt attemptOf(const CollisionSource& source, const PlanResult& plan,
+                      bool substituteEnds = false) {
+  return {.source = sourceName(source),
+          .onModel = std::holds_alternative<std::shared_ptr<const Model>>(source),
+          .status = plan.status,
+          .time = plan.time,
+          .simplifyTime = plan.simplifyTime,
+          .checks = plan.checks,
+          .checkTime = plan.checkTime,
+          .substituteEnds = substituteEnds};
 }
 
 ApproximatePlan planApproximately(const CollisionSource& approximate,
@@ -365,7 +372,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
         planApproximately(source, exact, limits, start, goal, chainOptions);
     planTime += attempt.plan.time;
     substituteEnds = substituteEnds || attempt.substituteEnds;
-    attempts.push_back(attemptOf(sourceName(source), attempt.plan, attempt.substituteEnds));
+    attempts.push_back(attemptOf(source, attempt.plan, attempt.substituteEnds));
     if (attempt.plan.solved()) {
       VerifiedPlan result =
           repairChecked(attempt.plan.path, std::nullopt, exact, limits, options, relaxed, push);
@@ -382,7 +389,7 @@ VerifiedPlan planAndRepair(const std::vector<CollisionSource>& chain,
   const auto began = Clock::now();
   const PlanResult exactPlan = planMotion(exact, limits, start, goal, options);
   const auto repairTime = Clock::now() - began;
-  attempts.push_back(attemptOf(exact->name(), exactPlan));
+  attempts.push_back(attemptOf(exact, exactPlan));
   VerifiedPlan result;
   if (exactPlan.solved()) {
     result = verifyAndRepair(exactPlan.path, exact, limits, options);  // the final check
@@ -568,7 +575,7 @@ VerifiedPlan planVerifiedLearning(ProxyCollisionDetector& proxy,
     rounds.planTime += attempt.plan.time;
     rounds.simplifyTime += attempt.plan.simplifyTime;
     rounds.substituteEnds = rounds.substituteEnds || attempt.substituteEnds;
-    rounds.attempts.push_back(attemptOf(sourceName(model), attempt.plan, attempt.substituteEnds));
+    rounds.attempts.push_back(attemptOf(model, attempt.plan, attempt.substituteEnds));
     if (!attempt.plan.solved() && round > 0) {
       // What the model learned closed its way: repair the last path instead, as planVerified
       // would have.
@@ -629,7 +636,7 @@ VerifiedPlan planExactly(const std::shared_ptr<const CollisionChecker>& exact,
   checkExact(exact, limits);
   const PlanResult plan = planMotion(exact, limits, start, goal, options);
   VerifiedPlan result;
-  result.attempts.push_back(attemptOf(exact->name(), plan));
+  result.attempts.push_back(attemptOf(exact, plan));
   result.exactChecks = plan.checks;  // the planner asked `exact` alone
   result.status = plan.status;
   result.path = plan.path;

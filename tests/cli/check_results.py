@@ -106,6 +106,18 @@ def check_plans(rows, methods, every_method_solves=True, paper="Fastron"):
                 fail(f"FCL's plan is all its exact checks: {row}")
             if row["method"] in ("FCL", "GJK", paper) and value(row, "relaxed_checks") != 0:
                 fail(f"only the default method asks a relaxed oracle: {row}")
+            # The checks' time within the attempts' (the clock read around each one is counted
+            # in both): the plan's, and the repair's when the whole motion was planned exactly;
+            # the bare model's attempts within all of them.
+            if not 0 < value(row, "plan_check_s") <= times[0] + times[2] + 1e-9:
+                fail(f"plan_check_s out of place: {row}")
+            if not 0 < value(row, "plan_check_share") <= 1:
+                fail(f"plan_check_share out of place: {row}")
+            model = [value(row, k) for k in ("model_plan_s", "model_checks", "model_check_s")]
+            if not (0 <= model[2] <= model[0] <= times[0] + 1e-9 and model[1] <= value(row, "plan_checks")):
+                fail(f"the bare model's attempts out of place: {row}")
+            if row["method"] == "FCL" and model != [0, 0, 0]:
+                fail(f"FCL's plan asks no model: {row}")
         elif row["status"] == "solved":
             fail(f"status 'solved' on an unsolved row: {row}")
     # The source whose path was verified: the exact checker's after a whole-motion fallback, and

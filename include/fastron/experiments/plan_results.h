@@ -43,9 +43,16 @@ struct PlanOutcome {
   std::uint64_t exactChecks = 0, relaxedChecks = 0;  ///< as in VerifiedPlan
   /// Configurations the attempts' sources answered (a model's, a hybrid's, FCL's own plan).
   std::uint64_t planChecks = 0;
-  /// Of planSeconds: those sources answering them (PlanAttempt::checkTime); the rest is the
-  /// planner's own work (sampling, nearest neighbours, simplification's bookkeeping).
+  /// Those sources answering them (PlanAttempt::checkTime): within planSeconds, and within
+  /// repairSeconds for a whole motion planned on the exact checker (wholeMotionReplanned), whose
+  /// plan is an attempt too. The rest of the attempts' time is the planner's own work (sampling,
+  /// nearest neighbours, simplification's bookkeeping).
   double planCheckSeconds = 0;
+  double planCheckShare = 0;  ///< planCheckSeconds over the attempts' whole time
+  /// Of those: the attempts on a bare model (PlanAttempt::onModel), their time, their checks
+  /// (model queries) and the checks' time.
+  double modelPlanSeconds = 0, modelCheckSeconds = 0;
+  std::uint64_t modelChecks = 0;
   std::string plannedOn;  ///< the source whose path was verified (VerifiedPlan::plannedOn)
 };
 
@@ -84,9 +91,10 @@ struct PlanRows {
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,
   /// relearned, relearn_s, fallback, exact_ends, collides_fcl, exact_share, attempts,
-  /// failed_plan_s, plan_checks, plan_check_s, exact_checks, relaxed_checks, planned_on), then the
-  /// figures; then a row per skipped query (status "skipped: " and the error, no method, NaN
-  /// figures). Throws InvalidArgument when the rows do not share their query and figure columns.
+  /// failed_plan_s, plan_checks, plan_check_s, plan_check_share, model_plan_s, model_checks,
+  /// model_check_s, exact_checks, relaxed_checks, planned_on), then the figures; then a row per
+  /// skipped query (status "skipped: " and the error, no method, NaN figures). Throws
+  /// InvalidArgument when the rows do not share their query and figure columns.
   Table table() const;
 };
 

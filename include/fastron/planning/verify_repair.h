@@ -19,7 +19,8 @@ namespace FASTRON_API fastron {
 /// One plan made before verification: on a model, on its hybrid, or on the exact checker for the
 /// whole motion (repairs' bridges are not attempts: they are in repairTime).
 struct PlanAttempt {
-  std::string source;  ///< sourceName: "Fastron", "Fastron+FCL", "FCL", ...
+  std::string source;    ///< sourceName: "Fastron", "Fastron+FCL", "FCL", ...
+  bool onModel = false;  ///< the source was a bare model (every check a model query)
   PlanStatus status = PlanStatus::Timeout;
   std::chrono::nanoseconds time{0};          ///< simplification included
   std::chrono::nanoseconds simplifyTime{0};  ///< of which shortening the path
