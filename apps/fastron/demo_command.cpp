@@ -102,6 +102,18 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                   "terms alone, answered by a point field")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--gamma", o->demo.gamma, "fk: kernel width (default 40)")->check(numberAbove(0));
+  cmd->add_option("--beta", o->demo.beta, "conditional bias of the models (default: the case's)")
+      ->check(numberAbove(0, true));
+  cmd->add_option("--control-points", o->demo.controlPoints.maxPoints,
+                  "fk: at most this many automatic control points (0: all)")
+      ->capture_default_str();
+  cmd->add_option("--control-per-body", o->demo.controlPoints.maxPerBody,
+                  "fk: at most this many automatic control points on one rigid body (0: no limit)")
+      ->capture_default_str();
+  cmd->add_flag("--control-geometry", o->demo.controlPoints.alongGeometry,
+                "fk: automatic control points may also lie along each link's collision geometry "
+                "(its bounding box's centre and the ends of its longest side): for "
+                "--kernel-whole-share 0");
   cmd->add_option("--band-miss-rate", o->demo.band.missRate,
                   "Hybrid: colliding configurations the model may answer free (calibrated rate)")
       ->check(CLI::Range(0.0, 1.0))

@@ -28,6 +28,7 @@ ProxyParams demoProxyParams(const DemoOptions& o) {
   params.band = o.band;
   if (o.wholeShare) params.train.kernel.wholeShare = *o.wholeShare;
   if (o.gamma) params.train.kernel.gamma = *o.gamma;
+  if (o.beta) params.train.beta = *o.beta;
   params.pointField = true;  // models of point terms alone answer from their grids
   return params;
 }
@@ -108,7 +109,10 @@ DemoResults runDemo(const DemoOptions& o, const Progress& progress) {
   const auto audit = makeSceneChecker("fcl", robot, scene);
   const ProxyParams params = demoProxyParams(o);
   UpdateTally tally;  // before the proxy: its thread updates it until joined
-  ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features), params);
+  const std::vector<ControlPoint> points = o.features == FeatureKind::Kinematic
+                                               ? defaultControlPoints(robot, o.controlPoints)
+                                               : std::vector<ControlPoint>{};
+  ProxyCollisionDetector proxy(fcl, robotFeatures(robot, o.features, points), params);
   if (progress)
     progress("training the first model on " + std::to_string(o.initialPoints) +
              " FCL-labelled samples");
@@ -228,6 +232,8 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
       md << "; answers from a point field of " << field->grids().size() << " grids of "
          << field->spacing() * 100 << " cm cells (Fastron's query time above)";
     }
+    if (const auto& kinematics = r.model->features().kinematics())
+      md << "; features: the positions of " << kinematics->pointCount() << " control points";
     md << '\n';
   }
   md << "\n## Planning (RRT-Connect)\n\n";

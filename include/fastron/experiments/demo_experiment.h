@@ -12,6 +12,7 @@
 
 #include "fastron/experiments/plan_results.h"
 #include "fastron/experiments/progress.h"
+#include "fastron/geometry/control_points.h"
 #include "fastron/planning/planner.h"
 
 namespace fastron::experiments {
@@ -40,6 +41,10 @@ struct DemoOptions {
   /// width; unset: the defaults (0.5, 40). A share of 0 leaves point terms alone, and every
   /// model is published with its point field (ProxyParams::pointField).
   std::optional<double> wholeShare, gamma;
+  /// The conditional bias (TrainParams::beta); unset: the case's.
+  std::optional<double> beta;
+  /// Task-space features: how the robot's control points are chosen (defaultControlPoints).
+  ControlPointOptions controlPoints{};
 };
 
 /// `fastron demo`: the paper in one run.
