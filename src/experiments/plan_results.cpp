@@ -49,7 +49,8 @@ Table PlanRows::table() const {
        {"planner", "method", "solved", "status", "plan_s", "simplify_s", "verify_s", "repair_s",
         "total_s", "path_length", "waypoints", "stretches", "gradient_repairs", "relearned", "relearn_s", "fallback",
         "exact_ends", "collides_fcl", "exact_share", "attempts", "failed_plan_s", "plan_checks",
-        "plan_check_s", "plan_check_share", "model_plan_s", "model_checks", "model_check_s", "exact_checks", "relaxed_checks", "planned_on"}) {
+        "plan_check_s", "plan_check_share", "model_plan_s", "model_checks", "model_check_s",
+        "exact_checks", "relaxed_checks", "planned_on"}) {
     table.columns.emplace_back(column);
   }
   // clang-format on
