@@ -68,17 +68,15 @@ SharedSourceUse orNew(SharedSourceUse use) {
   return use ? std::move(use) : std::make_shared<SourceUseCounter>();
 }
 
-/// firstCollision, adding the rows the source answered (up to the first collision) and the time
-/// it took to `use`.
-std::size_t firstCollisionCounted(const CollisionSource& source, const double* states,
-                                  std::size_t n, std::size_t dim, SourceUseCounter& use) {
+}  // namespace
+
+std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
+                           std::size_t dim, SourceUseCounter& use) {
   const auto began = std::chrono::steady_clock::now();
   const std::size_t first = firstCollision(source, states, n, dim);
   use.add(first < n ? first + 1 : n, std::chrono::steady_clock::now() - began);
   return first;
 }
-
-}  // namespace
 
 void SourceUseCounter::add(std::uint64_t answered, std::chrono::nanoseconds time) {
   answered_.fetch_add(answered, std::memory_order_relaxed);
@@ -97,7 +95,7 @@ CollisionValidityChecker::CollisionValidityChecker(const ompl::base::SpaceInform
       use_(orNew(std::move(use))) {}
 
 bool CollisionValidityChecker::isValid(const ompl::base::State* state) const {
-  return firstCollisionCounted(source_, valuesOf(state), 1, si_->getStateDimension(), *use_) == 1;
+  return firstCollision(source_, valuesOf(state), 1, si_->getStateDimension(), *use_) == 1;
 }
 
 ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInformationPtr& si,
@@ -111,7 +109,7 @@ ResolutionMotionValidator::ResolutionMotionValidator(const ompl::base::SpaceInfo
 
 std::size_t ResolutionMotionValidator::ask(const double* states, std::size_t n,
                                            std::size_t dim) const {
-  return firstCollisionCounted(source_, states, n, dim, *use_);
+  return firstCollision(source_, states, n, dim, *use_);
 }
 
 bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,

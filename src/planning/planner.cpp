@@ -353,10 +353,7 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
     return result;
   };
   const auto collides = [&](const Eigen::VectorXd& end) {
-    const auto asked = std::chrono::steady_clock::now();
-    const bool answer = firstCollision(source, end.data(), 1, limits.dim()) == 0;
-    ends.add(1, std::chrono::steady_clock::now() - asked);
-    return answer;
+    return firstCollision(source, end.data(), 1, limits.dim(), ends) == 0;
   };
   if (collides(start)) return finish(PlanStatus::InvalidStart);
   if (collides(goal)) return finish(PlanStatus::InvalidGoal);

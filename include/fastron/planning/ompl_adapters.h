@@ -60,6 +60,11 @@ class SourceUseCounter {
 };
 using SharedSourceUse = std::shared_ptr<SourceUseCounter>;
 
+/// firstCollision, adding the rows the source answered (up to the first collision) and the time
+/// it took to `use`.
+std::size_t firstCollision(const CollisionSource& source, const double* states, std::size_t n,
+                           std::size_t dim, SourceUseCounter& use);
+
 /// A state is valid when the source says it is collision-free.
 class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
  public:
