@@ -546,13 +546,18 @@ CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const 
     for (std::size_t s = 0; s < poses.size(); ++s)
       poses[s] = shapePose(robot_, scratch->kinematics, s);
   };
-  // As the broad phase decides a pair: boxes first, then FCL's narrow phase.
+  // As the broad phase decides a pair: boxes first, then FCL's narrow phase, handed the two in
+  // the broad phase's order (collide: an obstacle, from the manager's tree, before the robot
+  // shape it was asked about; a self pair as listed). FCL's GJK can answer a grazing pair
+  // differently in the other order: a capsule and a box that its distance finds overlapping
+  // touched only with the box first, and a planner's motion was proven free where the dense
+  // check found it colliding (CertifiedMotion.AsksAGrazingPairInTheDenseChecksOrder).
   exact.touches = [&](const ClearancePair& pair) {
     if (pair.selfPair) {
       return shapesTouch(world->robotObject(*scratch, pair.shape),
                          world->robotObject(*scratch, pair.other));
     }
-    return shapesTouch(*scratch->robotObjects[pair.shape], *world->objects[pair.other]);
+    return shapesTouch(*world->objects[pair.other], *scratch->robotObjects[pair.shape]);
   };
   exact.distance = [&](const ClearancePair& pair) {
     const fcl::DistanceRequestd request;

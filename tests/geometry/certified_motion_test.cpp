@@ -18,6 +18,7 @@
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/robot_library.h"
+#include "fastron/geometry/scene.h"
 
 namespace fastron {
 namespace {
@@ -319,6 +320,42 @@ TEST(CertifiedMotion, AMotionWhoseEndCollidesIsFoundAtItsEnd) {
   EXPECT_EQ(checker.motionCollision(below.data(), stillBelow.data(), 10).looked, 10u);
   const std::vector<double> bad{0, std::nan("")};
   EXPECT_THROW(checker.motionCollision(from.data(), bad.data(), 5), InvalidArgument);
+}
+
+// FCL's GJK can answer a grazing pair differently by the order it is handed the two shapes, so
+// the certificate asks an obstacle pair in the dense check's order (the broad phase's: the
+// obstacle first). The mobile arm's forearm (a capsule) grazing a wall of a generated cage
+// (`fastron problems --robot mobile-arm --family cage -n 10 --seed 7`, problem 4, the tenth query
+// of `bench motion-bench --queries-per-scene 10`): state 2 of this edge of FCL's own path overlaps
+// the wall (FCL's distance: -1), which only the wall-first order saw.
+TEST(CertifiedMotion, AsksAGrazingPairInTheDenseChecksOrder) {
+  Robot robot = loadRobot("mobile-arm");
+  robot.setActuatedJoints({"torso_lift_joint", "shoulder_pan_joint", "shoulder_lift_joint",
+                           "upperarm_roll_joint", "elbow_flex_joint", "forearm_roll_joint",
+                           "wrist_flex_joint", "wrist_roll_joint"});
+  Scene scene;
+  Eigen::Isometry3d wall = Eigen::Isometry3d::Identity();
+  wall.translation() = Eigen::Vector3d(0.8432918441750911, -0.3712263339030187, 0.5988586781073975);
+  wall.linear() =
+      Eigen::Quaterniond(0.9993560810733637, 0, 0, -0.035880680340378196).toRotationMatrix();
+  scene.add({"side_left", Box{{0.7, 0.04, 0.7}}, wall, std::nullopt});
+  const FclChecker certified(robot, scene);
+  const FclChecker dense(robot, scene, CheckerOptions{.proveMotionsFree = false});
+  ASSERT_EQ(certified.motionProofs(), CollisionChecker::MotionProofs::Everywhere);
+  const std::vector<double> from{0.22327929363252338, -0.57446280850116016, 0.90995594680169711,
+                                 0.66078595299188492, -0.76093724502666249, -1.1894072485497906,
+                                 0.38063690291927749, -1.4029501078419797};
+  const std::vector<double> to{0.21881486906836026, -0.63404265008178229, 0.87898400017220579,
+                               0.55527404433647898, -0.69529173970762292, -0.93866431635473713,
+                               0.25703645635380667, -1.1826664310063557};
+  constexpr std::size_t kSegments = 13;
+  std::vector<double> state(robot.dof());
+  motionState(from.data(), to.data(), robot.dof(), 2, kSegments, state.data());
+  EXPECT_TRUE(dense.inCollision(state)) << "FCL no longer sees the graze: a new case is needed";
+  const bool denseFinds =
+      dense.motionCollision(from.data(), to.data(), kSegments).collidingState != 0;
+  EXPECT_EQ(certified.motionCollision(from.data(), to.data(), kSegments).collidingState != 0,
+            denseFinds);
 }
 
 }  // namespace
