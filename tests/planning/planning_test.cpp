@@ -1396,7 +1396,10 @@ TEST_F(Planning, ModelsCheckEdgesAtTheirOwnCoarserStepAndVerificationKeepsTheFin
 TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
   const auto wall = wallChecker();
   const JointLimits limits = JointLimits::unitBox(2);
-  const PlannerOptions options{.resolution = 0.01, .timeLimit = 0.5};
+  // A substitute's plan gets a tenth of the limit: the default share (0.2%) is 1 ms here, which a
+  // sanitizer build on a busy machine missed, and the whole motion went to the exact checker.
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 0.5, .verify = {.substituteShare = 0.1}};
   // It thinks the start collides, but a step away from it is free: the plan is made on it from
   // a substitute that the exact checker reaches from the true start in a straight line, so the
   // first edge needs no repair.
