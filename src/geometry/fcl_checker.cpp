@@ -99,8 +99,6 @@ fcl::Transform3d toFcl(const Eigen::Isometry3d& pose) {
 // Broad-phase callback: stop at the first collision and remember the obstacle it was; skip the
 // obstacles this robot shape may touch.
 struct CollideData {
-  fcl::CollisionRequestd request;
-  fcl::CollisionResultd result;
   const fcl::CollisionObjectd* hit = nullptr;
   const std::uint8_t* allowed = nullptr;  // one flag per obstacle, or none
 };
@@ -110,24 +108,32 @@ std::size_t obstacleIndex(const fcl::CollisionObjectd* object) {
   return reinterpret_cast<std::size_t>(object->getUserData()) - 1;
 }
 
-bool collideCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* raw) {
-  auto* data = static_cast<CollideData*>(raw);
-  if (data->hit != nullptr) return true;
-  const fcl::CollisionObjectd* obstacle = a->getUserData() != nullptr ? a : b;
-  if (data->allowed != nullptr && data->allowed[obstacleIndex(obstacle)] != 0) return false;
-  data->result.clear();
-  fcl::collide(a, b, data->request, data->result);
-  if (data->result.isCollision()) data->hit = obstacle;
-  return data->hit != nullptr;
-}
-
-// Two robot shapes, placed and with their AABBs computed.
+// Two shapes, placed and with their AABBs computed; FCL is handed `a` first.
 bool shapesTouch(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b) {
   if (!a.getAABB().overlap(b.getAABB())) return false;
   const fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   fcl::collide(&a, &b, request, result);
   return result.isCollision();
+}
+
+// An obstacle and a robot shape: every check of such a pair (the broad phase's, the clearance
+// certificate's) asks FCL in this one order. Its GJK can answer a grazing pair differently in the
+// other: a capsule and a box that its distance found overlapping touched only with the box first,
+// and a planner's motion was proven free that the dense check found colliding
+// (CertifiedMotion.AsksAGrazingPairInTheDenseChecksOrder).
+bool obstacleTouches(const fcl::CollisionObjectd& obstacle, const fcl::CollisionObjectd& shape) {
+  return shapesTouch(obstacle, shape);
+}
+
+bool collideCallback(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* raw) {
+  auto* data = static_cast<CollideData*>(raw);
+  if (data->hit != nullptr) return true;
+  const bool aIsObstacle = a->getUserData() != nullptr;
+  const fcl::CollisionObjectd* obstacle = aIsObstacle ? a : b;
+  if (data->allowed != nullptr && data->allowed[obstacleIndex(obstacle)] != 0) return false;
+  if (obstacleTouches(*obstacle, aIsObstacle ? *b : *a)) data->hit = obstacle;
+  return data->hit != nullptr;
 }
 
 }  // namespace
@@ -546,18 +552,14 @@ CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const 
     for (std::size_t s = 0; s < poses.size(); ++s)
       poses[s] = shapePose(robot_, scratch->kinematics, s);
   };
-  // As the broad phase decides a pair: boxes first, then FCL's narrow phase, handed the two in
-  // the broad phase's order (collide: an obstacle, from the manager's tree, before the robot
-  // shape it was asked about; a self pair as listed). FCL's GJK can answer a grazing pair
-  // differently in the other order: a capsule and a box that its distance finds overlapping
-  // touched only with the box first, and a planner's motion was proven free where the dense
-  // check found it colliding (CertifiedMotion.AsksAGrazingPairInTheDenseChecksOrder).
+  // As the dense check decides a pair: boxes first, then FCL's narrow phase, a self pair in the
+  // order it is listed in, an obstacle pair as obstacleTouches asks it.
   exact.touches = [&](const ClearancePair& pair) {
     if (pair.selfPair) {
       return shapesTouch(world->robotObject(*scratch, pair.shape),
                          world->robotObject(*scratch, pair.other));
     }
-    return shapesTouch(*world->objects[pair.other], *scratch->robotObjects[pair.shape]);
+    return obstacleTouches(*world->objects[pair.other], *scratch->robotObjects[pair.shape]);
   };
   exact.distance = [&](const ClearancePair& pair) {
     const fcl::DistanceRequestd request;
