@@ -302,6 +302,129 @@ double EnclosingVolume::distanceFrom(const Eigen::Vector3d& point) const {
   return 0;
 }
 
+void BallColumns::place(const Eigen::Isometry3d& pose, const std::vector<Ball>& balls) {
+  const std::size_t n = balls.size();
+  x.resize(n);
+  y.resize(n);
+  z.resize(n);
+  radius.resize(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    const Eigen::Vector3d c = pose * balls[b].centre;
+    x[b] = c.x();
+    y[b] = c.y();
+    z[b] = c.z();
+    radius[b] = balls[b].radius;
+  }
+}
+
+void BallColumns::clear() {
+  x.clear();
+  y.clear();
+  z.clear();
+  radius.clear();
+}
+
+void BallColumns::push(const Eigen::Vector3d& centre, double r) {
+  x.push_back(centre.x());
+  y.push_back(centre.y());
+  z.push_back(centre.z());
+  radius.push_back(r);
+}
+
+namespace {
+
+/// Balls per block of a columns bound: each block's figures are computed in one loop that the
+/// compiler vectorises, then their smallest taken.
+constexpr std::size_t kBlock = 32;
+
+/// The smallest of gap(i) over the balls of `columns`, i in blocks of kBlock: `gap` writes the
+/// figures of balls [from, from + n) to out[0..n).
+template <class Gap>
+double smallestOver(const BallColumns& columns, const Gap& gap) {
+  double best = std::numeric_limits<double>::infinity();
+  std::array<double, kBlock> out;  // written before it is read
+  for (std::size_t from = 0; from < columns.size(); from += kBlock) {
+    const std::size_t n = std::min(kBlock, columns.size() - from);
+    gap(from, n, out.data());
+    for (std::size_t i = 0; i < n; ++i) best = std::min(best, out[i]);
+  }
+  return best;
+}
+
+}  // namespace
+
+double smallestGap(const BallColumns& columns, const Eigen::Vector3d& point, double pointRadius) {
+  const double px = point.x(), py = point.y(), pz = point.z();
+  return smallestOver(columns, [&](std::size_t from, std::size_t n, double* out) {
+    const double *x = columns.x.data() + from, *y = columns.y.data() + from,
+                 *z = columns.z.data() + from, *r = columns.radius.data() + from;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dx = x[i] - px, dy = y[i] - py, dz = z[i] - pz;
+      out[i] = std::sqrt(dx * dx + dy * dy + dz * dz) - r[i] - pointRadius;
+    }
+  });
+}
+
+double EnclosingVolume::smallestGap(const BallColumns& columns) const {
+  if (kind_ == Kind::Nothing) return std::numeric_limits<double>::infinity();
+  const Eigen::Matrix3d& rotation = toLocal_.linear();
+  const Eigen::Vector3d& shift = toLocal_.translation();
+  const double r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
+  const double r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
+  const double r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
+  const double t0 = shift.x(), t1 = shift.y(), t2 = shift.z();
+  const double hx = halfExtents_.x(), hy = halfExtents_.y(), hz = halfExtents_.z();
+  const double radius = radius_, halfLength = halfLength_;
+  const Kind kind = kind_;
+  return smallestOver(columns, [&](std::size_t from, std::size_t n, double* out) {
+    const double *x = columns.x.data() + from, *y = columns.y.data() + from,
+                 *z = columns.z.data() + from, *r = columns.radius.data() + from;
+    // One loop per kind, as distanceFrom computes it, so that each vectorises.
+    switch (kind) {
+      case Kind::Box:
+        for (std::size_t i = 0; i < n; ++i) {
+          const double px = r00 * x[i] + r01 * y[i] + r02 * z[i] + t0;
+          const double py = r10 * x[i] + r11 * y[i] + r12 * z[i] + t1;
+          const double pz = r20 * x[i] + r21 * y[i] + r22 * z[i] + t2;
+          const double dx = std::max(std::abs(px) - hx, 0.0);
+          const double dy = std::max(std::abs(py) - hy, 0.0);
+          const double dz = std::max(std::abs(pz) - hz, 0.0);
+          out[i] = std::sqrt(dx * dx + dy * dy + dz * dz) - r[i];
+        }
+        return;
+      case Kind::Sphere:
+        for (std::size_t i = 0; i < n; ++i) {
+          const double px = r00 * x[i] + r01 * y[i] + r02 * z[i] + t0;
+          const double py = r10 * x[i] + r11 * y[i] + r12 * z[i] + t1;
+          const double pz = r20 * x[i] + r21 * y[i] + r22 * z[i] + t2;
+          out[i] = std::max(std::sqrt(px * px + py * py + pz * pz) - radius, 0.0) - r[i];
+        }
+        return;
+      case Kind::Cylinder:
+        for (std::size_t i = 0; i < n; ++i) {
+          const double px = r00 * x[i] + r01 * y[i] + r02 * z[i] + t0;
+          const double py = r10 * x[i] + r11 * y[i] + r12 * z[i] + t1;
+          const double pz = r20 * x[i] + r21 * y[i] + r22 * z[i] + t2;
+          const double radial = std::max(std::sqrt(px * px + py * py) - radius, 0.0);
+          const double axial = std::max(std::abs(pz) - halfLength, 0.0);
+          out[i] = std::sqrt(radial * radial + axial * axial) - r[i];
+        }
+        return;
+      case Kind::Capsule:
+        for (std::size_t i = 0; i < n; ++i) {
+          const double px = r00 * x[i] + r01 * y[i] + r02 * z[i] + t0;
+          const double py = r10 * x[i] + r11 * y[i] + r12 * z[i] + t1;
+          const double pz = r20 * x[i] + r21 * y[i] + r22 * z[i] + t2;
+          const double dz = pz - std::clamp(pz, -halfLength, halfLength);
+          out[i] = std::max(std::sqrt(px * px + py * py + dz * dz) - radius, 0.0) - r[i];
+        }
+        return;
+      case Kind::Nothing:
+        return;  // not reached: answered above
+    }
+  });
+}
+
 int commonAncestor(const Robot& robot, int linkA, int linkB) {
   const auto parentLink = [&](int link) {
     const int joint = robot.links()[static_cast<std::size_t>(link)].parentJoint;

@@ -138,6 +138,45 @@ TEST(EnclosingVolume, DistancesAreExactForPrimitivesAndBelowForMeshes) {
   }
 }
 
+TEST(EnclosingVolume, SmallestGapOverColumnsIsTheSmallestBallByBall) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh->triangles = {{0, 1, 2}};
+  auto cloud = std::make_shared<CloudPoints>();
+  const Eigen::Isometry3d pose = Eigen::Translation3d(0.3, -0.2, 0.5) *
+                                 Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  Rng rng(5);
+  std::uniform_real_distribution<double> sym(-2, 2), radius(0, 0.3);
+  // 1 ball, one block of columns, and blocks after the first (a partial one last).
+  for (const std::size_t count : {1, 7, 32, 75}) {
+    std::vector<Ball> balls(count);
+    for (Ball& b : balls) b = {{sym(rng), sym(rng), sym(rng)}, radius(rng)};
+    const Eigen::Isometry3d placed =
+        Eigen::Translation3d(0.1, 0.2, -0.3) * Eigen::AngleAxisd(1.1, Eigen::Vector3d::UnitY());
+    BallColumns columns;
+    columns.place(placed, balls);
+    ASSERT_EQ(columns.size(), count);
+    for (const Shape& shape :
+         std::vector<Shape>{Box{{0.4, 0.2, 0.1}}, Sphere{0.3}, Cylinder{0.2, 0.6},
+                            Capsule{0.1, 0.5}, Mesh{mesh}, PointCloud{cloud, 0.01}}) {
+      const EnclosingVolume volume(shape, pose);
+      double smallest = std::numeric_limits<double>::infinity();
+      for (const Ball& b : balls)
+        smallest = std::min(smallest, volume.distanceFrom(placed * b.centre) - b.radius);
+      if (std::isinf(smallest)) {  // the empty cloud: nothing to be near
+        EXPECT_TRUE(std::isinf(volume.smallestGap(columns)));
+      } else {
+        EXPECT_NEAR(volume.smallestGap(columns), smallest, 1e-12) << describe(shape) << count;
+      }
+    }
+    const Eigen::Vector3d point(sym(rng), sym(rng), sym(rng));
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Ball& b : balls)
+      nearest = std::min(nearest, (placed * b.centre - point).norm() - b.radius - 0.05);
+    EXPECT_NEAR(smallestGap(columns, point, 0.05), nearest, 1e-12) << count;
+  }
+}
+
 Joint joint(const std::string& name, JointType type, int parent, const Eigen::Vector3d& offset,
             const Eigen::Vector3d& axis, double lower, double upper) {
   Joint j;
