@@ -65,9 +65,9 @@ class EnclosingVolume {
   /// A lower bound on the distance from `point` (world) to the obstacle; 0 inside it.
   double distanceFrom(const Eigen::Vector3d& point) const;
   /// The smallest of distanceFrom(centre) - radius over the balls of `columns` (world): a lower
-  /// bound on the distance from the obstacle to their union. The same figures as distanceFrom
-  /// ball by ball, computed in the machine's vector lanes (most of a motion proof's time on
-  /// robots of primitives went to these bounds one ball at a time).
+  /// bound on the distance from the obstacle to their union. The figures of distanceFrom ball by
+  /// ball (to rounding), one loop per kind of volume that runs in the machine's vector lanes
+  /// (most of a motion proof's time on robots of primitives went to these bounds).
   double smallestGap(const BallColumns& columns) const;
 
  private:
