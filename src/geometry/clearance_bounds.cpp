@@ -281,25 +281,42 @@ EnclosingVolume::EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& po
              shape);
 }
 
-double EnclosingVolume::distanceFrom(const Eigen::Vector3d& point) const {
-  const Eigen::Vector3d p = toLocal_ * point;
+template <class Use>
+double EnclosingVolume::withLocalDistance(const Use& use) const {
+  const double hx = halfExtents_.x(), hy = halfExtents_.y(), hz = halfExtents_.z();
+  const double radius = radius_, halfLength = halfLength_;
   switch (kind_) {
     case Kind::Box:
-      return (p.cwiseAbs() - halfExtents_).cwiseMax(0.0).norm();
+      return use([=](double px, double py, double pz) {
+        const double dx = std::max(std::abs(px) - hx, 0.0);
+        const double dy = std::max(std::abs(py) - hy, 0.0);
+        const double dz = std::max(std::abs(pz) - hz, 0.0);
+        return std::sqrt(dx * dx + dy * dy + dz * dz);
+      });
     case Kind::Sphere:
-      return std::max(p.norm() - radius_, 0.0);
+      return use([=](double px, double py, double pz) {
+        return std::max(std::sqrt(px * px + py * py + pz * pz) - radius, 0.0);
+      });
     case Kind::Cylinder:
-      return std::hypot(std::max(std::hypot(p.x(), p.y()) - radius_, 0.0),
-                        std::max(std::abs(p.z()) - halfLength_, 0.0));
+      return use([=](double px, double py, double pz) {
+        const double radial = std::max(std::sqrt(px * px + py * py) - radius, 0.0);
+        const double axial = std::max(std::abs(pz) - halfLength, 0.0);
+        return std::sqrt(radial * radial + axial * axial);
+      });
     case Kind::Capsule:
-      return std::max(
-          (p - Eigen::Vector3d(0, 0, std::clamp(p.z(), -halfLength_, halfLength_))).norm() -
-              radius_,
-          0.0);
+      return use([=](double px, double py, double pz) {
+        const double dz = pz - std::clamp(pz, -halfLength, halfLength);
+        return std::max(std::sqrt(px * px + py * py + dz * dz) - radius, 0.0);
+      });
     case Kind::Nothing:
-      return std::numeric_limits<double>::infinity();
+      break;
   }
-  return 0;
+  return use([](double, double, double) { return std::numeric_limits<double>::infinity(); });
+}
+
+double EnclosingVolume::distanceFrom(const Eigen::Vector3d& point) const {
+  const Eigen::Vector3d p = toLocal_ * point;
+  return withLocalDistance([&](const auto& distance) { return distance(p.x(), p.y(), p.z()); });
 }
 
 void BallColumns::place(const Eigen::Isometry3d& pose, const std::vector<Ball>& balls) {
@@ -366,18 +383,14 @@ double smallestGap(const BallColumns& columns, const Eigen::Vector3d& point, dou
 }
 
 double EnclosingVolume::smallestGap(const BallColumns& columns) const {
-  if (kind_ == Kind::Nothing) return std::numeric_limits<double>::infinity();
   const Eigen::Matrix3d& rotation = toLocal_.linear();
   const Eigen::Vector3d& shift = toLocal_.translation();
   const double r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
   const double r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
   const double r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
   const double t0 = shift.x(), t1 = shift.y(), t2 = shift.z();
-  const double hx = halfExtents_.x(), hy = halfExtents_.y(), hz = halfExtents_.z();
-  const double radius = radius_, halfLength = halfLength_;
-  // The balls' gaps, `distance` giving the volume's distance from a point in its own frame (as
-  // distanceFrom does): one loop per kind of volume, inlined, so that each vectorises.
-  const auto gaps = [&](const auto& distance) {
+  // One loop per kind of volume, its distance inlined, so that each runs in vector lanes.
+  return withLocalDistance([&](const auto& distance) {
     return smallestOver(columns, [&](std::size_t from, std::size_t n, double* out) {
       const double *x = columns.x.data() + from, *y = columns.y.data() + from,
                    *z = columns.z.data() + from, *r = columns.radius.data() + from;
@@ -388,34 +401,7 @@ double EnclosingVolume::smallestGap(const BallColumns& columns) const {
                  r[i];
       }
     });
-  };
-  switch (kind_) {
-    case Kind::Box:
-      return gaps([&](double px, double py, double pz) {
-        const double dx = std::max(std::abs(px) - hx, 0.0);
-        const double dy = std::max(std::abs(py) - hy, 0.0);
-        const double dz = std::max(std::abs(pz) - hz, 0.0);
-        return std::sqrt(dx * dx + dy * dy + dz * dz);
-      });
-    case Kind::Sphere:
-      return gaps([&](double px, double py, double pz) {
-        return std::max(std::sqrt(px * px + py * py + pz * pz) - radius, 0.0);
-      });
-    case Kind::Cylinder:
-      return gaps([&](double px, double py, double pz) {
-        const double radial = std::max(std::sqrt(px * px + py * py) - radius, 0.0);
-        const double axial = std::max(std::abs(pz) - halfLength, 0.0);
-        return std::sqrt(radial * radial + axial * axial);
-      });
-    case Kind::Capsule:
-      return gaps([&](double px, double py, double pz) {
-        const double dz = pz - std::clamp(pz, -halfLength, halfLength);
-        return std::max(std::sqrt(px * px + py * py + dz * dz) - radius, 0.0);
-      });
-    case Kind::Nothing:
-      break;  // answered above
-  }
-  return std::numeric_limits<double>::infinity();
+  });
 }
 
 int commonAncestor(const Robot& robot, int linkA, int linkB) {

@@ -71,6 +71,11 @@ class EnclosingVolume {
   double smallestGap(const BallColumns& columns) const;
 
  private:
+  /// use(distance), `distance(x, y, z)` being the volume's distance from a point in its own frame:
+  /// the one formula per kind that distanceFrom and smallestGap share.
+  template <class Use>
+  double withLocalDistance(const Use& use) const;
+
   enum class Kind { Box, Sphere, Cylinder, Capsule, Nothing };
   Kind kind_ = Kind::Box;
   Eigen::Isometry3d toLocal_ = Eigen::Isometry3d::Identity();  ///< world to the volume's frame
