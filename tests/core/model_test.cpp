@@ -32,11 +32,10 @@ class FloatPath : public ::testing::TestWithParam<AgreementCase> {};
 TEST_P(FloatPath, AgreesInSignWithTheDoublePath) {
   const auto c = GetParam();
 #ifdef FASTRON_SANITIZED
-  // Two of these cases took 4-6 minutes each under ASan/UBSan, the longest of the whole CI run;
-  // the sanitizers look for memory errors, which a tenth of the queries reach as well, and a
-  // third of the training points (the 19- and 12-feature cases, random labels, every point a
-  // support point: 34 and 25 s with 3000, 15 and 8 s with 1000).
-  const std::size_t points = 1000, queries = 10'000;
+  // The sanitizers look for memory errors, which a twentieth of the queries and a sixth of the
+  // training points reach as well (the 19- and 12-feature cases, random labels, every point a
+  // support point, took 22 and 15 s of the sanitizer stage with 1000 points and 10000 queries).
+  const std::size_t points = 500, queries = 5'000;
 #else
   const std::size_t points = 3000, queries = 100'000;
 #endif

@@ -200,8 +200,8 @@ TEST(PointField, FastestAnswersTabulateLargeModelsOfPointTermsOnly) {
   // Random labels in 12 dimensions: most points become support points.
   const auto large = pointTermModel(12, 600, KernelType::RationalQuadratic, 10, 1);
   ASSERT_GE(large->supportCount(), kPointFieldMinSupport);
-  EXPECT_NE(withFastestAnswers(large)->pointField(), nullptr);
   const auto tabulated = withFastestAnswers(large);
+  EXPECT_NE(tabulated->pointField(), nullptr);
   EXPECT_EQ(withFastestAnswers(tabulated), tabulated);  // already tabulated: itself
   const Configurations s = test::uniformPoints(kPointFieldMinSupport - 1, 6, 409);
   const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(s.rows(), -1, 1);
