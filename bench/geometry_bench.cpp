@@ -1,5 +1,7 @@
 // Time per exact check for each shipped robot: forward kinematics alone, FK + FCL, FK + GJK,
-// against 1, 3, 10 and 100 obstacles. Compare within a run (scripts/bench_table.py).
+// against 1, 3, 10, 30 and 100 obstacles; FCL with its clearance bounds first (bounds:1, the
+// default) and with its broad phase alone (bounds:0). Compare within a run
+// (scripts/bench_table.py).
 
 #include <benchmark/benchmark.h>
 
@@ -208,7 +210,8 @@ template <class Checker>
 void BM_Check(benchmark::State& state) {
   const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
   const auto obstacles = static_cast<std::size_t>(state.range(1));
-  const Checker checker(robot, boxesNearTheRobot(robot, obstacles));
+  const Checker checker(robot, boxesNearTheRobot(robot, obstacles),
+                        {.proveMotionsFree = state.range(2) != 0});
   const Configurations q = queries(robot);
   std::size_t i = 0, hits = 0;
   for (auto _ : state) {
@@ -226,7 +229,7 @@ template <class Checker>
 void BM_CheckFree(benchmark::State& state) {
   const Robot robot = loadRobot(kRobots[static_cast<std::size_t>(state.range(0))]);
   const Scene scene = boxesNearTheRobot(robot, static_cast<std::size_t>(state.range(1)));
-  const Checker checker(robot, scene);
+  const Checker checker(robot, scene, {.proveMotionsFree = state.range(2) != 0});
   const FclChecker reference(robot, scene);
   Rng rng(13);
   const Configurations pool = uniformConfigurations(robot.limits(), 16384, rng);
@@ -249,11 +252,16 @@ void BM_CheckFree(benchmark::State& state) {
 }
 
 void robotsAndObstacles(benchmark::internal::Benchmark* b) {
-  b->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 100}})->ArgNames({"robot", "obstacles"});
+  b->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 30, 100}, {0}})
+      ->ArgNames({"robot", "obstacles", "bounds"});
 }
-BENCHMARK(BM_Check<FclChecker>)->Apply(robotsAndObstacles);
+void robotsObstaclesAndBounds(benchmark::internal::Benchmark* b) {
+  b->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 3, 10, 30, 100}, {0, 1}})
+      ->ArgNames({"robot", "obstacles", "bounds"});
+}
+BENCHMARK(BM_Check<FclChecker>)->Apply(robotsObstaclesAndBounds);
 BENCHMARK(BM_Check<GjkChecker>)->Apply(robotsAndObstacles);
-BENCHMARK(BM_CheckFree<FclChecker>)->Apply(robotsAndObstacles);
+BENCHMARK(BM_CheckFree<FclChecker>)->Apply(robotsObstaclesAndBounds);
 BENCHMARK(BM_CheckFree<GjkChecker>)->Apply(robotsAndObstacles);
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <ompl/util/Console.h>
 
+#include <algorithm>
 #include <map>
 
 #include "fastron/core/active_learning.h"
@@ -227,6 +228,36 @@ void BM_VerifyPath(benchmark::State& state) {
 BENCHMARK(BM_VerifyPath)
     ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
     ->ArgNames({"robot", "certified"})
+    ->Unit(benchmark::kMicrosecond);
+
+// Labels of a scene model's samples (labelConfigurations on one thread, FCL without
+// self-collision, as trainSceneModel asks them): 2500 uniform configurations in the first
+// generated problem of a family, with FCL's broad phase alone (bounds 0) or clearance bounds first
+// (bounds 1, the default). `same_labels` is 1 when both label every configuration alike.
+void BM_LabelScene(benchmark::State& state) {
+  const std::string robotName = kVerifiedRobots[static_cast<std::size_t>(state.range(0))];
+  const Robot robot = loadRobot(robotName);
+  experiments::ProblemOptions options;
+  options.family =
+      state.range(1) == 0 ? experiments::ProblemFamily::Box : experiments::ProblemFamily::Cage;
+  options.count = 1;
+  const Scene scene = experiments::generateProblems(robot, options).front().scene;
+  const FclChecker checker(robot, scene, {.proveMotionsFree = state.range(2) != 0});
+  const FclChecker broadPhase(robot, scene, {.proveMotionsFree = false});
+  Rng rng(3);
+  const Configurations q = uniformConfigurations(robot.limits(), 2500, rng);
+  const Labels expected = labelConfigurations(broadPhase, q, 1);
+  Labels labels;
+  for (auto _ : state) labels = labelConfigurations(checker, q, 1);
+  state.SetLabel(robotName + (state.range(1) == 0 ? " box" : " cage"));
+  state.SetItemsProcessed(state.iterations() * q.rows());
+  state.counters["colliding"] = static_cast<double>(std::ranges::count(expected, std::int8_t{1})) /
+                                static_cast<double>(q.rows());
+  state.counters["same_labels"] = labels == expected ? 1 : 0;
+}
+BENCHMARK(BM_LabelScene)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}})  // the Panda of primitives reaches into no box
+    ->ArgNames({"robot", "cage", "bounds"})
     ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_PlanOnFastron)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);

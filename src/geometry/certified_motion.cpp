@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <utility>
 
 #include "fastron/core/motion_states.h"
 
@@ -20,180 +21,171 @@ constexpr double kDistanceSteps = 4;
 /// collision tolerances differ at contact).
 constexpr double kDistanceFloor = 1e-4;
 
-/// The balls of every robot shape placed in the world for the configuration last placed, each
-/// shape's (and each ball's children) computed on first use, as columns (clearance_bounds.h).
-class PlacedBalls {
- public:
-  explicit PlacedBalls(const ClearanceModel& model)
-      : model_(model), covers_(*model.balls), shapes_(covers_.size()) {
-    for (std::size_t s = 0; s < shapes_.size(); ++s) {
-      shapes_[s].children.resize(covers_[s].children.size());
-      shapes_[s].childStamp.assign(covers_[s].children.size(), 0);
+Eigen::Vector3d centre(const BallColumns& columns, std::size_t i) {
+  return {columns.x[i], columns.y[i], columns.z[i]};
+}
+
+}  // namespace
+
+PlacedBalls::PlacedBalls(std::shared_ptr<const std::vector<BallCover>> covers)
+    : covers_(std::move(covers)), poses_(covers_->size()), shapes_(covers_->size()) {
+  for (std::size_t s = 0; s < shapes_.size(); ++s) {
+    shapes_[s].children.resize((*covers_)[s].children.size());
+    shapes_[s].childStamp.assign((*covers_)[s].children.size(), 0);
+  }
+}
+
+void PlacedBalls::place(const ExactPairCheck& exact, const double* q) {
+  exact.place(q, poses_);
+  ++now_;
+}
+
+double PlacedBalls::lowerBound(const ClearancePair& pair,
+                               const std::vector<EnclosingVolume>& obstacles, double wanted) {
+  const std::vector<BallCover>& covers = *covers_;
+  const double radius = covers[pair.shape].whole.radius;
+  const Eigen::Vector3d& whole = wholeCentre(pair.shape);
+  const double coarse = pair.selfPair ? (whole - wholeCentre(pair.other)).norm() - radius -
+                                            covers[pair.other].whole.radius
+                                      : obstacles[pair.other].distanceFrom(whole) - radius;
+  if (coarse > wanted) return coarse;
+  // The finer bound matters only above the coarse one (and above 0): its search stops once it is
+  // no higher.
+  const double floor = std::max(coarse, 0.0);
+  return std::max(coarse, pair.selfPair ? selfBound(pair, floor, wanted)
+                                        : obstacleBound(pair, obstacles[pair.other], floor));
+}
+
+/// The smallest bound over the shape's balls (a ball that meets the volume: the larger of its own
+/// and its children's), or the first at most `floor`.
+double PlacedBalls::obstacleBound(const ClearancePair& pair, const EnclosingVolume& obstacle,
+                                  double floor) {
+  const BallColumns& at = centres(pair.shape);
+  const double best = obstacle.smallestGap(at);
+  if (best > 0 || (*covers_)[pair.shape].children.empty()) return best;
+  double finer = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < at.size(); ++b) {
+    double bound = obstacle.distanceFrom(centre(at, b)) - at.radius[b];
+    if (bound <= 0) bound = std::max(bound, obstacle.smallestGap(childCentres(pair.shape, b)));
+    finer = std::min(finer, bound);
+    if (finer <= floor) return finer;
+  }
+  return finer;
+}
+
+/// The smallest bound over pairs of the shapes' balls (their children where they overlap), or the
+/// first at most `floor`. A ball farther than `wanted` from the other shape's enclosing ball keeps
+/// that bound, precise enough: only the balls near the other shape are paired (all pairs of two
+/// 12-ball covers were most of the certificate's time on robots of primitives).
+double PlacedBalls::selfBound(const ClearancePair& pair, double floor, double wanted) {
+  const std::vector<BallCover>& covers = *covers_;
+  const BallColumns& at = centres(pair.shape);
+  const BallColumns& otherAt = centres(pair.other);
+  const Eigen::Vector3d& wholeAt = wholeCentre(pair.shape);
+  const Eigen::Vector3d& otherWholeAt = wholeCentre(pair.other);
+  const double wholeRadius = covers[pair.shape].whole.radius;
+  const double otherWholeRadius = covers[pair.other].whole.radius;
+  double best = std::numeric_limits<double>::infinity();
+  near_.clear();
+  nearIndex_.clear();
+  for (std::size_t o = 0; o < otherAt.size(); ++o) {
+    const Eigen::Vector3d c = centre(otherAt, o);
+    const double gap = (c - wholeAt).norm() - otherAt.radius[o] - wholeRadius;
+    if (gap > wanted) {
+      best = std::min(best, gap);
+    } else {
+      near_.push(c, otherAt.radius[o]);
+      nearIndex_.push_back(o);
     }
   }
-
-  /// A new configuration was placed at these poses.
-  void placed(const std::vector<Eigen::Isometry3d>& poses) {
-    poses_ = &poses;
-    ++now_;
-  }
-
-  /// A lower bound on the pair's distance: from the shapes' enclosing balls when that already
-  /// exceeds `wanted`, else from their balls (and the children of balls that overlap), the
-  /// larger of the valid bounds.
-  double lowerBound(const ClearancePair& pair, double wanted) {
-    const BallCover& cover = covers_[pair.shape];
-    const Eigen::Vector3d& whole = wholeCentre(pair.shape);
-    const double coarse =
-        pair.selfPair ? (whole - wholeCentre(pair.other)).norm() - cover.whole.radius -
-                            covers_[pair.other].whole.radius
-                      : model_.obstacles[pair.other].distanceFrom(whole) - cover.whole.radius;
-    if (coarse > wanted) return coarse;
-    // The finer bound matters only above the coarse one (and above 0): its search stops once
-    // it is no higher.
-    const double floor = std::max(coarse, 0.0);
-    return std::max(coarse,
-                    pair.selfPair ? selfBound(pair, floor, wanted) : obstacleBound(pair, floor));
-  }
-
- private:
-  /// The smallest bound over the shape's balls (a ball that meets the volume: the larger of its
-  /// own and its children's), or the first at most `floor`.
-  double obstacleBound(const ClearancePair& pair, double floor) {
-    const EnclosingVolume& obstacle = model_.obstacles[pair.other];
-    const BallColumns& at = centres(pair.shape);
-    const double best = obstacle.smallestGap(at);
-    if (best > 0 || covers_[pair.shape].children.empty()) return best;
-    double finer = std::numeric_limits<double>::infinity();
-    for (std::size_t b = 0; b < at.size(); ++b) {
-      double bound = obstacle.distanceFrom(centre(at, b)) - at.radius[b];
-      if (bound <= 0) bound = std::max(bound, obstacle.smallestGap(childCentres(pair.shape, b)));
-      finer = std::min(finer, bound);
-      if (finer <= floor) return finer;
-    }
-    return finer;
-  }
-
-  /// The smallest bound over pairs of the shapes' balls (their children where they overlap), or
-  /// the first at most `floor`. A ball farther than `wanted` from the other shape's enclosing
-  /// ball keeps that bound, precise enough: only the balls near the other shape are paired (all
-  /// pairs of two 12-ball covers were most of the certificate's time on robots of primitives).
-  double selfBound(const ClearancePair& pair, double floor, double wanted) {
-    const BallColumns& at = centres(pair.shape);
-    const BallColumns& otherAt = centres(pair.other);
-    const Eigen::Vector3d& wholeAt = wholeCentre(pair.shape);
-    const Eigen::Vector3d& otherWholeAt = wholeCentre(pair.other);
-    const double wholeRadius = covers_[pair.shape].whole.radius;
-    const double otherWholeRadius = covers_[pair.other].whole.radius;
-    double best = std::numeric_limits<double>::infinity();
-    near_.clear();
-    nearIndex_.clear();
-    for (std::size_t o = 0; o < otherAt.size(); ++o) {
-      const Eigen::Vector3d c = centre(otherAt, o);
-      const double gap = (c - wholeAt).norm() - otherAt.radius[o] - wholeRadius;
-      if (gap > wanted) {
-        best = std::min(best, gap);
-      } else {
-        near_.push(c, otherAt.radius[o]);
-        nearIndex_.push_back(o);
+  if (near_.size() == 0) return best;
+  const bool children =
+      !covers[pair.shape].children.empty() || !covers[pair.other].children.empty();
+  for (std::size_t b = 0; b < at.size(); ++b) {
+    const Eigen::Vector3d c = centre(at, b);
+    double bound = (c - otherWholeAt).norm() - at.radius[b] - otherWholeRadius;
+    if (bound <= wanted) bound = smallestGap(near_, c, at.radius[b]);
+    if (bound <= 0 && children) {
+      // Ball by ball, the children of each pair that overlaps.
+      bound = std::numeric_limits<double>::infinity();
+      for (std::size_t n = 0; n < near_.size(); ++n) {
+        const std::size_t o = nearIndex_[n];
+        double pairBound = (c - centre(otherAt, o)).norm() - at.radius[b] - otherAt.radius[o];
+        if (pairBound <= 0)
+          pairBound = std::max(pairBound, childBound(pair.shape, b, pair.other, o));
+        bound = std::min(bound, pairBound);
+        if (bound <= floor) break;
       }
     }
-    if (near_.size() == 0) return best;
-    const bool children =
-        !covers_[pair.shape].children.empty() || !covers_[pair.other].children.empty();
-    for (std::size_t b = 0; b < at.size(); ++b) {
-      const Eigen::Vector3d c = centre(at, b);
-      double bound = (c - otherWholeAt).norm() - at.radius[b] - otherWholeRadius;
-      if (bound <= wanted) bound = smallestGap(near_, c, at.radius[b]);
-      if (bound <= 0 && children) {
-        // Ball by ball, the children of each pair that overlaps.
-        bound = std::numeric_limits<double>::infinity();
-        for (std::size_t n = 0; n < near_.size(); ++n) {
-          const std::size_t o = nearIndex_[n];
-          double pairBound = (c - centre(otherAt, o)).norm() - at.radius[b] - otherAt.radius[o];
-          if (pairBound <= 0)
-            pairBound = std::max(pairBound, childBound(pair.shape, b, pair.other, o));
-          bound = std::min(bound, pairBound);
-          if (bound <= floor) break;
-        }
-      }
-      best = std::min(best, bound);
-      if (best <= floor) return best;
-    }
-    return best;
+    best = std::min(best, bound);
+    if (best <= floor) return best;
   }
+  return best;
+}
 
-  static Eigen::Vector3d centre(const BallColumns& columns, std::size_t i) {
-    return {columns.x[i], columns.y[i], columns.z[i]};
+/// The bound between two overlapping balls from their children (the ball itself for a shape
+/// without children; one of the two has them).
+double PlacedBalls::childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB,
+                               std::size_t ballB) {
+  const std::vector<BallCover>& covers = *covers_;
+  const bool aSplits = !covers[shapeA].children.empty();
+  const bool bSplits = !covers[shapeB].children.empty();
+  if (!aSplits) {
+    const BallColumns& a = centres(shapeA);
+    return smallestGap(childCentres(shapeB, ballB), centre(a, ballA), a.radius[ballA]);
   }
-
-  const Eigen::Vector3d& wholeCentre(std::size_t shape) {
-    Shape& s = shapes_[shape];
-    if (s.wholeStamp != now_) {
-      s.whole = (*poses_)[shape] * covers_[shape].whole.centre;
-      s.wholeStamp = now_;
+  const BallColumns& a = childCentres(shapeA, ballA);
+  const BallColumns& other = bSplits ? childCentres(shapeB, ballB) : centres(shapeB);
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (bSplits) {
+      best = std::min(best, smallestGap(other, centre(a, i), a.radius[i]));
+    } else {
+      best = std::min(
+          best, (centre(a, i) - centre(other, ballB)).norm() - a.radius[i] - other.radius[ballB]);
     }
-    return s.whole;
   }
+  return best;
+}
 
-  struct Shape {
-    std::size_t wholeStamp = 0;
-    Eigen::Vector3d whole;
-    std::size_t stamp = 0;
-    BallColumns centres;
-    std::vector<std::size_t> childStamp;
-    std::vector<BallColumns> children;
-  };
-
-  const BallColumns& centres(std::size_t shape) {
-    Shape& s = shapes_[shape];
-    if (s.stamp != now_) {
-      s.centres.place((*poses_)[shape], covers_[shape].balls);
-      s.stamp = now_;
-    }
-    return s.centres;
+const Eigen::Vector3d& PlacedBalls::wholeCentre(std::size_t shape) {
+  Shape& s = shapes_[shape];
+  if (s.wholeStamp != now_) {
+    s.whole = poses_[shape] * (*covers_)[shape].whole.centre;
+    s.wholeStamp = now_;
   }
+  return s.whole;
+}
 
-  const BallColumns& childCentres(std::size_t shape, std::size_t ball) {
-    Shape& s = shapes_[shape];
-    if (s.childStamp[ball] != now_) {
-      s.children[ball].place((*poses_)[shape], covers_[shape].children[ball]);
-      s.childStamp[ball] = now_;
-    }
-    return s.children[ball];
+const BallColumns& PlacedBalls::centres(std::size_t shape) {
+  Shape& s = shapes_[shape];
+  if (s.stamp != now_) {
+    s.centres.place(poses_[shape], (*covers_)[shape].balls);
+    s.stamp = now_;
   }
+  return s.centres;
+}
 
-  /// The bound between two overlapping balls from their children (the ball itself for a shape
-  /// without children; one of the two has them).
-  double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB) {
-    const bool aSplits = !covers_[shapeA].children.empty();
-    const bool bSplits = !covers_[shapeB].children.empty();
-    if (!aSplits) {
-      const BallColumns& a = centres(shapeA);
-      return smallestGap(childCentres(shapeB, ballB), centre(a, ballA), a.radius[ballA]);
-    }
-    const BallColumns& a = childCentres(shapeA, ballA);
-    const BallColumns& other = bSplits ? childCentres(shapeB, ballB) : centres(shapeB);
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (bSplits) {
-        best = std::min(best, smallestGap(other, centre(a, i), a.radius[i]));
-      } else {
-        best = std::min(
-            best, (centre(a, i) - centre(other, ballB)).norm() - a.radius[i] - other.radius[ballB]);
-      }
-    }
-    return best;
+const BallColumns& PlacedBalls::childCentres(std::size_t shape, std::size_t ball) {
+  Shape& s = shapes_[shape];
+  if (s.childStamp[ball] != now_) {
+    s.children[ball].place(poses_[shape], (*covers_)[shape].children[ball]);
+    s.childStamp[ball] = now_;
   }
+  return s.children[ball];
+}
 
-  const ClearanceModel& model_;
-  const std::vector<BallCover>& covers_;
-  const std::vector<Eigen::Isometry3d>* poses_ = nullptr;
-  std::vector<Shape> shapes_;
-  std::size_t now_ = 0;
-  BallColumns near_;  // selfBound's balls of the other shape near the first
-  std::vector<std::size_t> nearIndex_;
-};
+bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exact,
+                         PlacedBalls& balls, const double* q) {
+  balls.place(exact, q);
+  for (const ClearancePair& pair : model.pairs) {
+    if (balls.lowerBound(pair, model.obstacles, kMargin) - kMargin > 0) continue;
+    if (exact.touches(pair)) return true;
+  }
+  return false;
+}
+
+namespace {
 
 using Bounds = std::shared_ptr<const std::vector<double>>;  // per pair, at one checked state
 
@@ -218,7 +210,7 @@ class MotionLooks {
         to_(to),
         dim_(dim),
         segments_(segments),
-        balls_(model),
+        balls_(model.balls),
         q_(dim),
         perStep_(model.pairs.size()),
         placed_(placed) {
@@ -243,13 +235,14 @@ class MotionLooks {
   bool look(std::size_t i, const std::vector<std::uint32_t>& active, std::vector<double>& bounds,
             bool decide, double steps, const Close& close) {
     motionState(from_, to_, dim_, i, segments_, q_.data());
-    exact_.place(q_.data(), poses_);
-    balls_.placed(poses_);
+    balls_.place(exact_, q_.data());
     ++placed_;
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
       const double bound =
-          close(p) ? 0 : balls_.lowerBound(pair, steps * perStep_[p] + kMargin) - kMargin;
+          close(p)
+              ? 0
+              : balls_.lowerBound(pair, model_.obstacles, steps * perStep_[p] + kMargin) - kMargin;
       bounds[p] = bound > 0 ? bound : 0;
       if (bound > 0) continue;
       if (pair.askDistance && exact_.distance && steps >= kDistanceSteps) {
@@ -270,7 +263,6 @@ class MotionLooks {
   const double *from_, *to_;
   std::size_t dim_, segments_;
   PlacedBalls balls_;
-  std::vector<Eigen::Isometry3d> poses_;
   std::vector<double> q_;
   std::vector<double> perStep_;
   std::size_t& placed_;  // the states placed, counted into the caller's answer

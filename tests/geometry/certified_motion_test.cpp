@@ -269,6 +269,32 @@ Scene clutter(Rng& rng, int boxes, double reach) {
   return scene;
 }
 
+/// `boxes` boxes among which `robot` has some free room (boxes on the fixed links make none free),
+/// spanning the robot's size: its shapes' farthest reach at the zero configuration. Of the
+/// clutters tried, the one with the most free configurations (at least 10 of 50 ends the search).
+Scene clutterWithFreeRoom(const Robot& robot, Rng& rng, int boxes = 8) {
+  double reach = 0;
+  const KinematicsData zero = kinematicsAtZero(robot);
+  for (std::size_t s = 0; s < robot.shapes().size(); ++s) {
+    reach = std::max(reach, shapePose(robot, zero, s).translation().norm() +
+                                boundingRadius(robot.shapes()[s].shape));
+  }
+  Scene scene;
+  std::ptrdiff_t mostFree = -1;
+  for (int attempt = 0; attempt < 100 && mostFree < 10; ++attempt) {
+    Scene candidate = clutter(rng, boxes, reach);
+    const FclChecker probe(robot, candidate, {.selfCollision = true});
+    const auto answers = probe.inCollisionBatch(uniformConfigurations(robot.limits(), 50, rng));
+    const std::ptrdiff_t free = std::count(answers.begin(), answers.end(), 0);
+    if (free > mostFree) {
+      mostFree = free;
+      scene = std::move(candidate);
+    }
+  }
+  EXPECT_GE(mostFree, 3) << robot.name() << ": every clutter tried leaves it hardly a free place";
+  return scene;
+}
+
 // The property the certificate must keep: the same verdict as checking every state, on motions
 // that start free, of every length, among obstacles, with self-collision, on every shipped robot
 // (300 per robot; 100 under the sanitizers).
@@ -277,30 +303,8 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
   std::normal_distribution<double> gauss;
   for (const RobotEntry& entry : shippedRobots()) {
     const Robot robot = loadRobot(entry.name);
-    // The clutter spans the robot's size: its shapes' farthest reach at the zero configuration.
-    double reach = 0;
-    const KinematicsData zero = kinematicsAtZero(robot);
-    for (std::size_t s = 0; s < robot.shapes().size(); ++s) {
-      reach = std::max(reach, shapePose(robot, zero, s).translation().norm() +
-                                  boundingRadius(robot.shapes()[s].shape));
-    }
-    // A clutter that leaves some configurations free (boxes on the fixed links make none free).
     const JointLimits limits = robot.limits();
-    // The clutter with the most free configurations among those tried (at least 10 of 50 ends
-    // the search).
-    Scene scene;
-    std::ptrdiff_t mostFree = -1;
-    for (int attempt = 0; attempt < 100 && mostFree < 10; ++attempt) {
-      Scene candidate = clutter(rng, 8, reach);
-      const FclChecker probe(robot, candidate, {.selfCollision = true});
-      const auto answers = probe.inCollisionBatch(uniformConfigurations(limits, 50, rng));
-      const std::ptrdiff_t free = std::count(answers.begin(), answers.end(), 0);
-      if (free > mostFree) {
-        mostFree = free;
-        scene = std::move(candidate);
-      }
-    }
-    ASSERT_GE(mostFree, 3) << entry.name << ": every clutter tried leaves it hardly a free place";
+    const Scene scene = clutterWithFreeRoom(robot, rng);
     const FclChecker dense(robot, scene, {.selfCollision = true, .proveMotionsFree = false});
     const FclChecker certified(robot, scene, {.selfCollision = true});
     ASSERT_NE(certified.motionProofs(), CollisionChecker::MotionProofs::None);
@@ -341,6 +345,55 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
     EXPECT_LT(looked, states) << entry.name;
     std::cout << entry.name << ": " << colliding << " of " << kMotions
               << " motions collide; looked at " << looked << " of " << states << " states\n";
+  }
+}
+
+// A configuration's check skips the pairs that bounds keep apart: the same answers as FCL asked
+// about every pair (its broad phase, then its narrow phase), with and without self-collision, on
+// uniform configurations and on the states of motions among the clutter, which pass close to
+// surfaces, on every shipped robot.
+TEST(CertifiedState, AnswersAsEveryPairCheckedOnEveryShippedRobot) {
+  Rng rng(6);
+  for (const RobotEntry& entry : shippedRobots()) {
+    const Robot robot = loadRobot(entry.name);
+    const JointLimits limits = robot.limits();
+    const Scene scene = clutterWithFreeRoom(robot, rng, 16);
+    const std::size_t dim = robot.dof();
+    // Uniform configurations (3000; 1000 under the sanitizers), then every state of a motion
+    // between two of them (30; 10).
+    const Configurations ends = uniformConfigurations(limits, 10 * kMotions, rng);
+    std::vector<double> states(ends.data(), ends.data() + ends.size());
+    std::vector<double> motion;
+    for (Eigen::Index m = 0; m + 1 < static_cast<Eigen::Index>(kMotions / 5); m += 2) {
+      const Eigen::VectorXd from = ends.row(m).transpose(), to = ends.row(m + 1).transpose();
+      motionStates(from.data(), to.data(), dim, segmentCount(from.data(), to.data(), dim, 0.03),
+                   motion);
+      states.insert(states.end(), motion.begin(), motion.end());
+    }
+    const std::size_t n = states.size() / dim;
+    for (const bool self : {false, true}) {
+      const FclChecker everyPair(robot, scene, {.selfCollision = self, .proveMotionsFree = false});
+      const FclChecker bounded(robot, scene, {.selfCollision = self});
+      std::vector<std::uint8_t> expected(n), answers(n);
+      everyPair.inCollisionEach(states.data(), n, expected.data());
+      bounded.inCollisionEach(states.data(), n, answers.data());
+      const auto colliding = std::count(expected.begin(), expected.end(), 1);
+      EXPECT_GT(colliding, static_cast<std::ptrdiff_t>(n / 100)) << entry.name;
+      EXPECT_LT(colliding, static_cast<std::ptrdiff_t>(n - n / 100)) << entry.name;
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(answers[i], expected[i])
+            << entry.name << (self ? " with" : " without") << " self-collision, state " << i;
+      }
+      // One at a time (check, firstInCollision) as in a run.
+      for (std::size_t i = 0; i < n; i += 7) {
+        ASSERT_EQ(bounded.inCollision(std::span<const double>(states.data() + i * dim, dim)),
+                  expected[i] != 0)
+            << entry.name << ", state " << i;
+      }
+      EXPECT_EQ(bounded.firstInCollision(states.data(), n),
+                everyPair.firstInCollision(states.data(), n))
+          << entry.name;
+    }
   }
 }
 

@@ -6,7 +6,8 @@
 // their distance at two checked states, d_a and d_b, proves the pair apart at every state between
 // when d_a + d_b exceeds the most that motion can bring them closer (clearance_bounds.h's levers).
 // Where no bound proves a pair apart, the exact checker decides it. The answer is the dense
-// check's, exactly: only states proven free are skipped.
+// check's, exactly: only states proven free are skipped. The same bounds decide most pairs of a
+// single configuration's check (certifiedStateCheck).
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -51,6 +52,58 @@ struct ExactPairCheck {
   /// free); below, `touches` decides.
   std::function<double(const ClearancePair& pair)> distance;
 };
+
+/// The robot's balls placed in the world at one configuration, each shape's (and each ball's
+/// children) placed on first use, as columns, and the lower bounds on a pair's distance that they
+/// give. Kept from one configuration to the next, as a thread's scratch: once every shape has been
+/// placed it allocates nothing. Not safe to share between threads.
+class PlacedBalls {
+ public:
+  /// For the robot's covers (ClearanceModel::balls, one per robot shape).
+  explicit PlacedBalls(std::shared_ptr<const std::vector<BallCover>> covers);
+
+  /// Places the robot at q (exact.place); the balls follow on first use.
+  void place(const ExactPairCheck& exact, const double* q);
+  /// Each robot shape's pose at the configuration last placed.
+  const std::vector<Eigen::Isometry3d>& poses() const { return poses_; }
+
+  /// A lower bound on the pair's distance at the configuration last placed: from the shapes'
+  /// enclosing balls when that already exceeds `wanted`, else from their balls (and the
+  /// children of balls that overlap), the larger of the valid bounds. `obstacles` are the
+  /// scene's, as the pair indexes them.
+  double lowerBound(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles,
+                    double wanted);
+
+ private:
+  struct Shape {
+    std::size_t wholeStamp = 0;
+    Eigen::Vector3d whole;
+    std::size_t stamp = 0;
+    BallColumns centres;
+    std::vector<std::size_t> childStamp;
+    std::vector<BallColumns> children;
+  };
+
+  double obstacleBound(const ClearancePair& pair, const EnclosingVolume& obstacle, double floor);
+  double selfBound(const ClearancePair& pair, double floor, double wanted);
+  double childBound(std::size_t shapeA, std::size_t ballA, std::size_t shapeB, std::size_t ballB);
+  const Eigen::Vector3d& wholeCentre(std::size_t shape);
+  const BallColumns& centres(std::size_t shape);
+  const BallColumns& childCentres(std::size_t shape, std::size_t ball);
+
+  std::shared_ptr<const std::vector<BallCover>> covers_;
+  std::vector<Eigen::Isometry3d> poses_;
+  std::vector<Shape> shapes_;
+  std::size_t now_ = 0;
+  BallColumns near_;  // selfBound's balls of the other shape near the first
+  std::vector<std::size_t> nearIndex_;
+};
+
+/// True when a pair of `model` touches at q, as a check of every pair with `exact` decides, that
+/// asks `exact` only about the pairs no bound keeps apart. `balls` is the caller's scratch, made
+/// for model.balls.
+bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exact,
+                         PlacedBalls& balls, const double* q);
 
 /// The answer of certifiedMotionCheck.
 struct CertifiedMotion {
