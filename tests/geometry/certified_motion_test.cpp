@@ -358,7 +358,7 @@ TEST(CertifiedState, AnswersAsEveryPairCheckedOnEveryShippedRobot) {
   for (const RobotEntry& entry : shippedRobots()) {
     const Robot robot = loadRobot(entry.name);
     const JointLimits limits = robot.limits();
-    // A generator per robot: the same clutter under the sanitizers, which draw fewer states.
+    // A generator per robot: its clutter does not hang on the states drawn for the robots before.
     Rng rng(++seed);
     const Scene scene = clutterWithFreeRoom(robot, rng, 16);
     const std::size_t dim = robot.dof();
