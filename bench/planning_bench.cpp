@@ -230,10 +230,11 @@ BENCHMARK(BM_VerifyPath)
     ->ArgNames({"robot", "certified"})
     ->Unit(benchmark::kMicrosecond);
 
-// Labels of a scene model's samples (labelConfigurations on one thread, FCL without
-// self-collision, as trainSceneModel asks them): 2500 uniform configurations in the first
-// generated problem of a family, with FCL's broad phase alone (bounds 0) or clearance bounds first
-// (bounds 1, the default). `same_labels` is 1 when both label every configuration alike.
+// Labels of a scene model's samples (labelConfigurations on one thread; FCL without
+// self-collision, as trainSceneModel asks them, or with it, self 1): 2500 uniform configurations in
+// the first generated problem of a family, with FCL's broad phase alone (bounds 0) or clearance
+// bounds first (bounds 1, the default). `same_labels` is 1 when both label every configuration
+// alike.
 void BM_LabelScene(benchmark::State& state) {
   const std::string robotName = kVerifiedRobots[static_cast<std::size_t>(state.range(0))];
   const Robot robot = loadRobot(robotName);
@@ -242,8 +243,10 @@ void BM_LabelScene(benchmark::State& state) {
       state.range(1) == 0 ? experiments::ProblemFamily::Box : experiments::ProblemFamily::Cage;
   options.count = 1;
   const Scene scene = experiments::generateProblems(robot, options).front().scene;
-  const FclChecker checker(robot, scene, {.proveMotionsFree = state.range(2) != 0});
-  const FclChecker broadPhase(robot, scene, {.proveMotionsFree = false});
+  const bool self = state.range(3) != 0;
+  const FclChecker checker(robot, scene,
+                           {.selfCollision = self, .proveMotionsFree = state.range(2) != 0});
+  const FclChecker broadPhase(robot, scene, {.selfCollision = self, .proveMotionsFree = false});
   Rng rng(3);
   const Configurations q = uniformConfigurations(robot.limits(), 2500, rng);
   const Labels expected = labelConfigurations(broadPhase, q, 1);
@@ -256,8 +259,9 @@ void BM_LabelScene(benchmark::State& state) {
   state.counters["same_labels"] = labels == expected ? 1 : 0;
 }
 BENCHMARK(BM_LabelScene)
-    ->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}})  // the Panda of primitives reaches into no box
-    ->ArgNames({"robot", "cage", "bounds"})
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}, {0}})  // the Panda of primitives reaches into no box
+    ->ArgsProduct({{0, 1, 2}, {0}, {0, 1}, {1}})
+    ->ArgNames({"robot", "cage", "bounds", "self"})
     ->Unit(benchmark::kMicrosecond);
 
 BENCHMARK(BM_PlanOnFastron)->Arg(0)->Arg(1)->ArgName("bitstar")->Unit(benchmark::kMicrosecond);

@@ -10,7 +10,6 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
-#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -29,9 +28,10 @@ using FclGeometry = std::shared_ptr<fcl::CollisionGeometryd>;
 /// A configuration's check bounds each robot shape-obstacle pair in turn where there are at most
 /// this many, and leaves more to FCL's broad phase (an AABB tree, whose walk grows with the log of
 /// the obstacles). Against boxes near the robot (BM_Check, BM_CheckFree; docs/performance.md) the
-/// bounds were 0.9-1.8 times as fast up to 30 obstacles on every shipped robot (Baxter's 10 moving
-/// shapes among 30: 300 pairs, 1.0x), and 0.6-0.9 times at 100 on Baxter and the Panda, where most
-/// configurations collide and the bounds go pair by pair to the colliding one.
+/// bounds were 0.9-1.7 times as fast as the broad phase up to 10 obstacles on every shipped robot
+/// and 1.0-1.8 times at 30 where the limit lets them; with the limit lifted, among 100 boxes, 0.6
+/// times on Baxter and the Panda, where most configurations collide and the bounds go pair by pair
+/// to the colliding one (Baxter's 10 moving shapes among 30 boxes, 300 pairs: 0.9-1.1 times).
 constexpr std::ptrdiff_t kMaxProvenStatePairs = 256;
 
 /// True when neither shape is a mesh: FCL's distance between them is a GJK run, cheap enough for
@@ -200,8 +200,12 @@ struct FclChecker::Scratch {
   KinematicsData kinematics;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> robotObjects;
   std::optional<PlacedBalls> balls;  // with options.proveMotionsFree
-  // The certificate's placement (exactPairs): forward kinematics for every shape, FCL's objects
-  // only for the shapes it asks FCL about, each once per configuration (placedAt[s] == placing).
+  // The clearance certificate's questions to FCL on this scratch (exactPairCheck), about `world`
+  // (exactPairs sets it): made once per scratch, not per check.
+  ExactPairCheck pairs;
+  const Obstacles* world = nullptr;
+  // The certificate's placement: forward kinematics for every shape, FCL's objects only for the
+  // shapes it asks FCL about, each once per configuration (placedAt[s] == placing).
   std::size_t placing = 0;
   std::vector<std::size_t> placedAt;
 };
@@ -234,7 +238,7 @@ struct FclChecker::Obstacles {
   std::vector<FclGeometry> distanceShapes;  // of each obstacle, for distance()
   ClearanceModel clearance;                 // for checkMotion
   // A configuration's check bounds every pair first and asks FCL only about the pairs no bound
-  // keeps apart (stateCheck), instead of FCL's broad phase.
+  // keeps apart (collides), instead of FCL's broad phase.
   bool statesProven = false;
   // Point-cloud obstacles; their entries in objects and distanceShapes are null.
   std::vector<Cloud> clouds;
@@ -248,6 +252,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
         for (const auto& g : geometry_->shapes)
           s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g.collision));
         if (options_.proveMotionsFree) s->balls.emplace(geometry_->balls);
+        s->pairs = exactPairCheck(*s);
         s->placedAt.assign(geometry_->shapes.size(), 0);
         return s;
       }) {
@@ -536,14 +541,10 @@ bool FclChecker::check(const double* q) const {
   return checkFirst(q, 1) == 0;
 }
 
-std::function<bool(const double*)> FclChecker::stateCheck(const Obstacles& world,
-                                                          Scratch& scratch) const {
-  if (!world.statesProven || world.fixedContact) {
-    return [&](const double* q) { return collide(world, scratch, q, false).has_value(); };
-  }
-  return [&, exact = exactPairs(world, scratch)](const double* q) {
-    return certifiedStateCheck(world.clearance, exact, *scratch.balls, q);
-  };
+bool FclChecker::collides(const Obstacles& world, Scratch& scratch, const double* q) const {
+  if (!world.statesProven || world.fixedContact)
+    return collide(world, scratch, q, false).has_value();
+  return certifiedStateCheck(world.clearance, exactPairs(world, scratch), *scratch.balls, q);
 }
 
 // One read of the world and one scratch lease for the whole run: with two threads verifying a
@@ -551,9 +552,8 @@ std::function<bool(const double*)> FclChecker::stateCheck(const Obstacles& world
 std::size_t FclChecker::checkFirst(const double* q, std::size_t n) const {
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
-  const auto collides = stateCheck(*world, *scratch);
   for (std::size_t i = 0; i < n; ++i) {
-    if (collides(q + i * robot_.dof())) return i;
+    if (collides(*world, *scratch, q + i * robot_.dof())) return i;
   }
   return n;
 }
@@ -561,8 +561,7 @@ std::size_t FclChecker::checkFirst(const double* q, std::size_t n) const {
 void FclChecker::checkEach(const double* q, std::size_t n, std::uint8_t* out) const {
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
   auto scratch = scratch_.lease();
-  const auto collides = stateCheck(*world, *scratch);
-  for (std::size_t i = 0; i < n; ++i) out[i] = collides(q + i * robot_.dof()) ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) out[i] = collides(*world, *scratch, q + i * robot_.dof());
 }
 
 bool FclChecker::leversHold(const double* from, const double* to) const {
@@ -572,10 +571,15 @@ bool FclChecker::leversHold(const double* from, const double* to) const {
   });
 }
 
-ExactPairCheck FclChecker::exactPairs(const Obstacles& world, Scratch& scratch) const {
+const ExactPairCheck& FclChecker::exactPairs(const Obstacles& world, Scratch& scratch) const {
+  scratch.world = &world;
+  return scratch.pairs;
+}
+
+ExactPairCheck FclChecker::exactPairCheck(Scratch& scratch) const {
   ExactPairCheck exact;
-  exact.place = [&](const double* q, std::vector<Eigen::Isometry3d>& poses) {
-    forwardKinematics(robot_, q, scratch.kinematics, world.robotBase);
+  exact.place = [this, &scratch](const double* q, std::vector<Eigen::Isometry3d>& poses) {
+    forwardKinematics(robot_, q, scratch.kinematics, scratch.world->robotBase);
     ++scratch.placing;
     poses.resize(robot_.shapes().size());
     for (std::size_t s = 0; s < poses.size(); ++s)
@@ -583,8 +587,8 @@ ExactPairCheck FclChecker::exactPairs(const Obstacles& world, Scratch& scratch) 
   };
   // Robot shape `s` as FCL's object, placed on first use for the configuration last placed (most
   // shapes are never asked about: their bounds keep them apart).
-  const auto object = [&](std::size_t s) -> const fcl::CollisionObjectd& {
-    if (world.fixedObjects[s]) return *world.fixedObjects[s];
+  const auto object = [this, &scratch](std::size_t s) -> const fcl::CollisionObjectd& {
+    if (scratch.world->fixedObjects[s]) return *scratch.world->fixedObjects[s];
     fcl::CollisionObjectd& o = *scratch.robotObjects[s];
     if (scratch.placedAt[s] != scratch.placing) {
       o.setTransform(toFcl(shapePose(robot_, scratch.kinematics, s)));
@@ -595,11 +599,12 @@ ExactPairCheck FclChecker::exactPairs(const Obstacles& world, Scratch& scratch) 
   };
   // As the dense check decides a pair: boxes first, then FCL's narrow phase, a self pair in the
   // order it is listed in, an obstacle pair as obstacleTouches asks it.
-  exact.touches = [&, object](const ClearancePair& pair) {
+  exact.touches = [&scratch, object](const ClearancePair& pair) {
     if (pair.selfPair) return shapesTouch(object(pair.shape), object(pair.other));
-    return obstacleTouches(*world.objects[pair.other], object(pair.shape));
+    return obstacleTouches(*scratch.world->objects[pair.other], object(pair.shape));
   };
-  exact.distance = [&, object](const ClearancePair& pair) {
+  exact.distance = [this, &scratch, object](const ClearancePair& pair) {
+    const Obstacles& world = *scratch.world;
     const fcl::DistanceRequestd request;
     fcl::DistanceResultd result;
     const fcl::CollisionObjectd& a = object(pair.shape);

@@ -64,8 +64,6 @@ class PlacedBalls {
 
   /// Places the robot at q (exact.place); the balls follow on first use.
   void place(const ExactPairCheck& exact, const double* q);
-  /// Each robot shape's pose at the configuration last placed.
-  const std::vector<Eigen::Isometry3d>& poses() const { return poses_; }
 
   /// A lower bound on the pair's distance at the configuration last placed: from the shapes'
   /// enclosing balls when that already exceeds `wanted`, else from their balls (and the

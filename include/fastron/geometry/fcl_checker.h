@@ -5,13 +5,12 @@
 // default), in a scene without point clouds and of at most 256 robot shape-obstacle pairs, a
 // configuration's check bounds every pair from balls first and asks FCL only about the pairs they
 // do not keep apart (certifiedStateCheck): the same answers, as fast or faster (labels of
-// generated scenes 1.8-4.3 times: docs/geometry.md). Point clouds are checked beside FCL's
+// generated scenes 1.6-4.3 times: docs/geometry.md). Point clouds are checked beside FCL's
 // broad phase: their balls sorted into a grid (cloud_grid.h) once per scene, a link's box picks
 // the balls near it, and each is tested exactly (in closed form against a primitive, by FCL
 // against a mesh) — the answers of FCL on one sphere per point, in a fraction of the time.
 
 #include <atomic>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -97,12 +96,14 @@ class FclChecker final : public SceneChecker {
   void buildClearance(Obstacles& world, const Scene& scene) const;
   /// True when the levers hold along the motion: every prismatic coordinate within its limits.
   bool leversHold(const double* from, const double* to) const;
-  /// The pairs of `world` as the clearance certificate asks FCL about them, on `scratch`'s
-  /// placement.
-  ExactPairCheck exactPairs(const Obstacles& world, Scratch& scratch) const;
-  /// The check of one configuration against `world` on `scratch`: the clearance certificate's
+  /// The clearance certificate's questions to FCL on `scratch`'s placement, about the world
+  /// `scratch` was last aimed at (made once per scratch).
+  ExactPairCheck exactPairCheck(Scratch& scratch) const;
+  /// `scratch`'s questions, aimed at `world`.
+  const ExactPairCheck& exactPairs(const Obstacles& world, Scratch& scratch) const;
+  /// True when q collides with `world` or the robot itself: the clearance certificate's check
   /// (certifiedStateCheck) where it holds, else collide.
-  std::function<bool(const double*)> stateCheck(const Obstacles& world, Scratch& scratch) const;
+  bool collides(const Obstacles& world, Scratch& scratch, const double* q) const;
   /// Places the robot at q in `scratch`, then the first contact with `world` or itself.
   std::optional<Contact> collide(const Obstacles& world, Scratch& scratch, const double* q,
                                  bool wantContact) const;
