@@ -100,7 +100,7 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
       ->capture_default_str();
   cmd.add_option("--samples", o.settings.samples,
                  "motion-bench: uniform samples of each scene's models before active learning "
-                 "(default 2000; --quick 1500)")
+                 "(default 1000)")
       ->check(numberAbove(0));
   cmd.add_option("--updates", o.settings.updates,
                  "motion-bench: active-learning updates of each scene's models after those "

@@ -140,7 +140,7 @@ double train(ProxyCollisionDetector& proxy, std::size_t samples, std::size_t upd
 }
 
 std::size_t trainingSamples(const MotionBenchOptions& o) {
-  return o.trainingPoints.value_or(o.quick ? 1500 : pipeline::SceneModelOptions{}.samples);
+  return o.trainingPoints.value_or(pipeline::SceneModelOptions{}.samples);
 }
 
 std::size_t trainingUpdates(const MotionBenchOptions& o) {

@@ -49,7 +49,7 @@ struct MotionBenchOptions {
   std::uint64_t seed = 1;
   bool quick = false;
   /// Uniform samples of each scene's models before active learning (unset: those of
-  /// pipeline::SceneModelOptions, 2000; quick 1500).
+  /// pipeline::SceneModelOptions, 1000).
   std::optional<std::size_t> trainingPoints;
   /// Active-learning updates of each scene's models after them, and of the self-collision model
   /// (unset: pipeline::SceneModelOptions', 1).

@@ -20,13 +20,15 @@
 namespace FASTRON_API fastron {
 namespace pipeline {
 
-/// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench. A
-/// model of 2000 samples and one update plans as fast as one of 5000 and three (it has fewer
-/// support points; verification catches what it gets wrong), and its training is what a plan
-/// with it must win back: on the held-out Panda families, FCL / Fastron with training counted
-/// went from 2.8x to 5.3x (docs/log/2026-11-28-robots-of-other-makers.md).
+/// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench. The
+/// training is what a plan with the model must win back, and a smaller model answers faster
+/// (verification catches what it gets wrong). With training counted, 1000 samples and one update
+/// planned faster than 2000 on six of eight families of four robots, as fast on one and slower on
+/// one (the mobile-arm cage), geometric mean 2.8x FCL against 2.2x with one query per scene and
+/// 4.7x against 3.8x with ten; 600 were no better
+/// (docs/log/2026-11-30-fewer-samples-per-scene.md).
 struct SceneModelOptions {
-  std::size_t samples = 2000;  ///< FCL-labelled uniform configurations
+  std::size_t samples = 1000;  ///< FCL-labelled uniform configurations
   std::size_t updates = 1;     ///< active-learning updates after them
   std::uint64_t seed = 1;
   std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
