@@ -326,7 +326,7 @@ def optimize_verified(detector: ProxyCollisionDetector, exact: CollisionChecker,
                       max_iterations: int = 400, model_resolution: float = 0.06,
                       time_limit: float = 0.0, rounds: int = 4) -> VerifiedTrajectory: ...
 def train_scene_model(robot: Robot, scene: Scene, features: Optional[FeatureMap] = None, *,
-                      samples: int = 1000, updates: int = 1, seed: int = 1,
+                      samples: int = 1000, updates: int = 0, seed: int = 1,
                       gamma: Optional[float] = None, beta: Optional[float] = None,
                       self_collision: bool = False, padding: float = 0.0,
                       checker: str = "fcl") -> ProxyCollisionDetector: ...

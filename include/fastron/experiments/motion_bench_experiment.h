@@ -51,8 +51,8 @@ struct MotionBenchOptions {
   /// Uniform samples of each scene's models before active learning (unset: those of
   /// pipeline::SceneModelOptions, 1000).
   std::optional<std::size_t> trainingPoints;
-  /// Active-learning updates of each scene's models after them, and of the self-collision model
-  /// (unset: pipeline::SceneModelOptions', 1).
+  /// Active-learning updates of each scene's models after them (unset:
+  /// pipeline::SceneModelOptions', 0), and of the self-collision model (unset: 1).
   std::optional<std::size_t> updates;
   /// Kernel width and conditional bias of each scene's models (unset: the features' defaults,
   /// defaultTrainParams); not of the robot's self-collision model.

@@ -22,14 +22,14 @@ namespace pipeline {
 
 /// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench. The
 /// training is what a plan with the model must win back, and a smaller model answers faster
-/// (verification catches what it gets wrong). With training counted, 1000 samples and one update
-/// planned faster than 2000 on six of eight families of four robots, as fast on one and slower on
-/// one (the mobile-arm cage), geometric mean 2.8x FCL against 2.2x with one query per scene and
-/// 4.7x against 3.8x with ten; 600 were no better
+/// (verification catches what it gets wrong). With training counted, 1000 samples and no
+/// active-learning update planned faster than 2000 samples and one update on seven of eight
+/// families of four robots (geometric mean 3.6x FCL against 2.2x with one query per scene); 1000
+/// with one update, 1500 or 600 samples were in between
 /// (docs/log/2026-11-30-fewer-samples-per-scene.md).
 struct SceneModelOptions {
   std::size_t samples = 1000;  ///< FCL-labelled uniform configurations
-  std::size_t updates = 1;     ///< active-learning updates after them
+  std::size_t updates = 0;     ///< active-learning updates after them
   std::uint64_t seed = 1;
   std::optional<double> gamma, beta;  ///< kernel width, conditional bias (unset: the features')
   std::string checker{kDefaultSceneChecker};  ///< the oracle's backend (scene_checkers.h)
