@@ -23,10 +23,10 @@ namespace pipeline {
 /// How a scene's model is trained. Defaults: those of `fastron plan` and bench motion-bench. The
 /// training is what a plan with the model must win back, and a smaller model answers faster
 /// (verification catches what it gets wrong). With training counted, 1000 samples and no
-/// active-learning update planned faster than 2000 samples and one update on seven of eight
-/// families of four robots (geometric mean 3.6x FCL against 2.2x with one query per scene); 1000
-/// with one update, 1500 or 600 samples were in between
-/// (docs/log/2026-11-30-fewer-samples-per-scene.md).
+/// active-learning update planned faster than 2000 samples and one update on six of eight
+/// families of four robots, as fast on one and slower on the mobile-arm cage (geometric mean
+/// 3.6-3.7x FCL against 2.1-2.3x with one query per scene); 1000 samples with one update, 1500
+/// or 600 were in between (docs/log/2026-11-30-fewer-samples-per-scene.md).
 struct SceneModelOptions {
   std::size_t samples = 1000;  ///< FCL-labelled uniform configurations
   std::size_t updates = 0;     ///< active-learning updates after them
