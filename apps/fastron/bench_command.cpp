@@ -102,9 +102,10 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
                  "motion-bench: uniform samples of each scene's models before active learning "
                  "(default 1000)")
       ->check(numberAbove(0));
-  cmd.add_option("--updates", o.settings.updates,
-                 "motion-bench: active-learning updates of each scene's models after those "
-                 "samples (default 0), and of --self-model's (default 1)");
+  cmd.add_option(
+      "--updates", o.settings.updates,
+      "motion-bench: active-learning updates of each scene's models after those "
+      "samples (default 0), and of --self-model's (default 3, as plan --self-model auto)");
   cmd.add_flag("--learn-from-verification", o.settings.learnFromVerification,
                "motion-bench: between a scene's queries, the paper's model learns the exact "
                "answers of the last plan's verification and repair that it got wrong");

@@ -143,10 +143,6 @@ std::size_t trainingSamples(const MotionBenchOptions& o) {
   return o.trainingPoints.value_or(pipeline::SceneModelOptions{}.samples);
 }
 
-/// The self-collision model's active-learning updates unless --updates is given: learned once per
-/// robot and kept, so its update costs no scene anything.
-constexpr std::size_t kSelfModelUpdates = 1;
-
 std::size_t trainingUpdates(const MotionBenchOptions& o) {
   return o.updates.value_or(pipeline::SceneModelOptions{}.updates);
 }
@@ -196,11 +192,11 @@ struct RobotModels {
 void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const Progress& progress,
                          RobotModels& models) {
   if (progress) progress("motion-bench: the robot's self-collision model");
-  const pipeline::SelfModel self =
-      pipeline::selfCollisionModel(robot, {.samples = o.quick ? 2000 : o.selfTrainingPoints,
-                                           .updates = o.updates.value_or(kSelfModelUpdates),
-                                           .seed = o.seed,
-                                           .cacheDirectory = o.selfModelCache});
+  const pipeline::SelfModel self = pipeline::selfCollisionModel(
+      robot, {.samples = o.quick ? 2000 : o.selfTrainingPoints,
+              .updates = o.updates.value_or(pipeline::SelfModelOptions{}.updates),
+              .seed = o.seed,
+              .cacheDirectory = o.selfModelCache});
   if (progress)
     progress("motion-bench: self-collision model " +
              std::string(self.fromCache ? "read from " : "trained and kept in ") +

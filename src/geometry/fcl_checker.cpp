@@ -105,6 +105,12 @@ fcl::Transform3d toFcl(const Eigen::Isometry3d& pose) {
   return t;
 }
 
+/// FCL's object of a robot shape moved to `pose`, with its box for the broad phase.
+void placeObject(fcl::CollisionObjectd& object, const Eigen::Isometry3d& pose) {
+  object.setTransform(toFcl(pose));
+  object.computeAABB();
+}
+
 // Broad-phase callback: stop at the first collision and remember the obstacle it was; skip the
 // obstacles this robot shape may touch.
 struct CollideData {
@@ -238,7 +244,8 @@ struct FclChecker::Obstacles {
   std::vector<FclGeometry> distanceShapes;  // of each obstacle, for distance()
   ClearanceModel clearance;                 // for checkMotion
   // A configuration's check bounds every pair first and asks FCL only about the pairs no bound
-  // keeps apart (collides), instead of FCL's broad phase.
+  // keeps apart (collides), instead of FCL's broad phase; not where a fixed link already touches
+  // (every configuration collides, and collide names the contact).
   bool statesProven = false;
   // Point-cloud obstacles; their entries in objects and distanceShapes are null.
   std::vector<Cloud> clouds;
@@ -343,7 +350,7 @@ void FclChecker::setScene(const Scene& scene) {
     buildClearance(*next, scene);
     const auto obstaclePairs = std::ranges::count_if(
         next->clearance.pairs, [](const auto& pair) { return !pair.selfPair; });
-    next->statesProven = obstaclePairs <= kMaxProvenStatePairs;
+    next->statesProven = obstaclePairs <= kMaxProvenStatePairs && !next->fixedContact;
   }
   obstacles_.set(std::move(next));
 }
@@ -478,11 +485,8 @@ void FclChecker::placeFixedShapes(Obstacles& world) const {
 void FclChecker::placeRobot(Scratch& scratch, const Eigen::Isometry3d& base,
                             const double* q) const {
   forwardKinematics(robot_, q, scratch.kinematics, base);
-  for (const std::size_t s : geometry_->moving) {
-    fcl::CollisionObjectd& object = *scratch.robotObjects[s];
-    object.setTransform(toFcl(shapePose(robot_, scratch.kinematics, s)));
-    object.computeAABB();
-  }
+  for (const std::size_t s : geometry_->moving)
+    placeObject(*scratch.robotObjects[s], shapePose(robot_, scratch.kinematics, s));
 }
 
 const FclChecker::Cloud* FclChecker::touchedCloud(const Obstacles& world, std::size_t shape,
@@ -541,9 +545,13 @@ bool FclChecker::check(const double* q) const {
   return checkFirst(q, 1) == 0;
 }
 
+bool FclChecker::boundsStateChecks() const {
+  const std::shared_ptr<const Obstacles> world = obstacles_.get();
+  return world->statesProven;
+}
+
 bool FclChecker::collides(const Obstacles& world, Scratch& scratch, const double* q) const {
-  if (!world.statesProven || world.fixedContact)
-    return collide(world, scratch, q, false).has_value();
+  if (!world.statesProven) return collide(world, scratch, q, false).has_value();
   return certifiedStateCheck(world.clearance, exactPairs(world, scratch), *scratch.balls, q);
 }
 
@@ -588,14 +596,11 @@ ExactPairCheck FclChecker::exactPairCheck(Scratch& scratch) const {
   // Robot shape `s` as FCL's object, placed on first use for the configuration last placed (most
   // shapes are never asked about: their bounds keep them apart).
   const auto object = [this, &scratch](std::size_t s) -> const fcl::CollisionObjectd& {
-    if (scratch.world->fixedObjects[s]) return *scratch.world->fixedObjects[s];
-    fcl::CollisionObjectd& o = *scratch.robotObjects[s];
-    if (scratch.placedAt[s] != scratch.placing) {
-      o.setTransform(toFcl(shapePose(robot_, scratch.kinematics, s)));
-      o.computeAABB();
+    if (!scratch.world->fixedObjects[s] && scratch.placedAt[s] != scratch.placing) {
+      placeObject(*scratch.robotObjects[s], shapePose(robot_, scratch.kinematics, s));
       scratch.placedAt[s] = scratch.placing;
     }
-    return o;
+    return scratch.world->robotObject(scratch, s);
   };
   // As the dense check decides a pair: boxes first, then FCL's narrow phase, a self pair in the
   // order it is listed in, an obstacle pair as obstacleTouches asks it.

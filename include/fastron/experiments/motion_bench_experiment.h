@@ -52,7 +52,9 @@ struct MotionBenchOptions {
   /// pipeline::SceneModelOptions, 1000).
   std::optional<std::size_t> trainingPoints;
   /// Active-learning updates of each scene's models after them (unset:
-  /// pipeline::SceneModelOptions', 0), and of the self-collision model (unset: 1).
+  /// pipeline::SceneModelOptions', 0), and of the self-collision model (unset:
+  /// pipeline::SelfModelOptions', as `fastron plan --self-model auto`, whose cached model it
+  /// shares).
   std::optional<std::size_t> updates;
   /// Kernel width and conditional bias of each scene's models (unset: the features' defaults,
   /// defaultTrainParams); not of the robot's self-collision model.

@@ -47,6 +47,10 @@ class FclChecker final : public SceneChecker {
   /// Panda's cage problems 1.2 times slower so, the gripper-arm's box problems 1.3 times faster,
   /// means of one run each: docs/planning.md).
   MotionProofs motionProofs() const override { return proofs_; }
+  /// True when a configuration's check in the current scene bounds every pair from balls first
+  /// and asks FCL only about the pairs they do not keep apart (certifiedStateCheck): with
+  /// options.proveMotionsFree, no point clouds and at most 256 robot shape-obstacle pairs.
+  bool boundsStateChecks() const;
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
