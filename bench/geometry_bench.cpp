@@ -21,7 +21,8 @@
 namespace fastron {
 namespace {
 
-const std::vector<std::string> kRobots{"rod2", "rod4", "baxter", "ur3", "panda", "psm"};
+const std::vector<std::string> kRobots{"rod2",  "rod4", "baxter",      "ur3",
+                                       "panda", "psm",  "gripper-arm", "mobile-arm"};
 
 // n boxes of 0.1 m, each within 0.25 m of a moving link of the robot at a random
 // configuration, and none touching the robot's fixed geometry (which would put every
@@ -77,7 +78,7 @@ void BM_ForwardKinematics(benchmark::State& state) {
   }
   state.SetLabel(robot.name());
 }
-BENCHMARK(BM_ForwardKinematics)->DenseRange(0, 5)->ArgName("robot");
+BENCHMARK(BM_ForwardKinematics)->DenseRange(0, 7)->ArgName("robot");
 
 // Task-space features: the world positions of the robot's automatic control points (at most
 // `points` of them), float path (queries) and double path (training).

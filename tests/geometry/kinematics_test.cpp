@@ -129,11 +129,11 @@ TEST(ForwardKinematics, HeldJointsAndBasePose) {
   EXPECT_THROW(panda.setHeldPosition("panda_finger_joint1", 0.5), InvalidArgument);
 }
 
-// A turn about z (sin_cos.h's sine and cosine without a branch, two columns turned) against
-// Eigen's AngleAxis with the C library's sine and cosine: within a few ulps at the octant
+// A turn about each coordinate axis, either way (sin_cos.h's sine and cosine without a branch, two
+// columns turned), and about oblique axes (the turn's matrix from the same sine and cosine)
+// against Eigen's AngleAxis with the C library's sine and cosine: within a few ulps at the octant
 // boundaries of the reduction, at random angles, far out and beyond the bound where the C library
-// takes over. (A wrong sign or octant is off by up to 2.) The -z and oblique axes, which take
-// AngleAxis, check that only z takes the two-column turn.
+// takes over. (A wrong sign, octant or pair of columns is off by up to 2.)
 TEST(ForwardKinematics, AJointTurnsAsEigensAngleAxisDoes) {
   std::vector<double> angles{0.0, -0.0, 1e-300, 2 * pi, -pi};
   for (int octant = -24; octant <= 24; ++octant) {
@@ -150,8 +150,14 @@ TEST(ForwardKinematics, AJointTurnsAsEigensAngleAxisDoes) {
   joint.type = JointType::Revolute;
   joint.origin = Eigen::Translation3d(0.1, -0.2, 0.3) *
                  Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 1, 0).normalized());
-  const std::vector<Eigen::Vector3d> axes{Eigen::Vector3d::UnitZ(), -Eigen::Vector3d::UnitZ(),
-                                          Eigen::Vector3d(1, -2, 3).normalized()};
+  const std::vector<Eigen::Vector3d> axes{Eigen::Vector3d::UnitX(),
+                                          -Eigen::Vector3d::UnitX(),
+                                          Eigen::Vector3d::UnitY(),
+                                          -Eigen::Vector3d::UnitY(),
+                                          Eigen::Vector3d::UnitZ(),
+                                          -Eigen::Vector3d::UnitZ(),
+                                          Eigen::Vector3d(1, -2, 3).normalized(),
+                                          Eigen::Vector3d(0, 1, 1).normalized()};
   for (const Eigen::Vector3d& axis : axes) {
     joint.axis = axis;
     for (const double angle : angles) {
