@@ -32,38 +32,31 @@ std::pair<int, double> coordinateAxis(const Eigen::Vector3d& axis) {
 /// pose times the joint origin, which costs one product fewer than composing a joint transform.
 /// A turn about a coordinate axis (x, y or z, either way: the axes of URDF joints as robots are
 /// written, e.g. y for the UR's shoulder and elbow, x for a wrist roll) turns two columns of the
-/// pose with sin_cos.h's sine and cosine; an oblique axis multiplies by the turn's matrix, built as
-/// Eigen's AngleAxis builds it but from the same sine and cosine. (AngleAxis, with the C library's
-/// sincos, which branches on the angle, made the UR3's forward kinematics, four joints about y,
-/// 1.3 times slower: BM_ForwardKinematics.)
+/// pose with sin_cos.h's sine and cosine; an oblique axis multiplies by the turn's matrix from the
+/// same sine and cosine. (Eigen's AngleAxis, with the C library's sincos, which branches on the
+/// angle, made the UR3's forward kinematics, four joints about y, 1.3 times slower:
+/// BM_ForwardKinematics.)
 inline void applyMotion(const Joint& joint, double value, Eigen::Isometry3d& pose) {
   switch (joint.type) {
     case JointType::Revolute:
     case JointType::Continuous: {
       double s = 0, c = 1;
       detail::sinCos(value, s, c);
-      auto r = pose.linear();
       if (const auto [k, direction] = coordinateAxis(joint.axis); k >= 0) {
         // About axis k, the columns after it in turn: (x, y) for z, (y, z) for x, (z, x) for y.
         const int a = (k + 1) % 3, b = (k + 2) % 3;
         s *= direction;
+        auto r = pose.linear();
         const Eigen::Vector3d u = r.col(a), v = r.col(b);
         r.col(a) = c * u + s * v;
         r.col(b) = c * v - s * u;
       } else {
+        // Rodrigues' formula, c I + s [n]x + (1 - c) n n^T, as AngleAxis::toRotationMatrix.
         const Eigen::Vector3d& n = joint.axis;
-        const Eigen::Vector3d sinAxis = s * n, cos1Axis = (1 - c) * n;
-        Eigen::Matrix3d turn;
-        double t = cos1Axis.x() * n.y();
-        turn(0, 1) = t - sinAxis.z();
-        turn(1, 0) = t + sinAxis.z();
-        t = cos1Axis.x() * n.z();
-        turn(0, 2) = t + sinAxis.y();
-        turn(2, 0) = t - sinAxis.y();
-        t = cos1Axis.y() * n.z();
-        turn(1, 2) = t - sinAxis.x();
-        turn(2, 1) = t + sinAxis.x();
-        turn.diagonal() = (cos1Axis.cwiseProduct(n)).array() + c;
+        Eigen::Matrix3d cross;
+        cross << 0, -n.z(), n.y(), n.z(), 0, -n.x(), -n.y(), n.x(), 0;
+        Eigen::Matrix3d turn = ((1 - c) * n) * n.transpose() + s * cross;
+        turn.diagonal().array() += c;
         pose.linear() = pose.linear() * turn;
       }
       break;
