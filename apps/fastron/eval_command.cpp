@@ -224,20 +224,22 @@ void printDataLine(const EvalOptions& o, const Dataset& data, const ConfusionCou
             << " in collision\n";
 }
 
-/// For a model of point terms only: its point field, how many of the samples the grids answered,
-/// that every answer equals the full sum's, and the field's query time. Returns that time.
+/// For a model of point terms only: its point field, how many of the samples the grids answered
+/// (alone, and with their fine blocks), that every answer equals the full sum's, and the field's
+/// query time. Returns that time.
 double printPointField(const EvalOptions& o, const Model& model, const Dataset& data) {
   const auto start = std::chrono::steady_clock::now();
   const auto tabulated = model.withPointField(o.field);
   const double build =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const PointField& field = *tabulated->pointField();
-  std::size_t decided = 0, equal = 0;
+  std::size_t decided = 0, fine = 0, equal = 0;
   std::vector<float> x(model.featureDim());
   for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
     const double* q = data.points.row(i).data();
     model.features().map(q, x.data());
     decided += field.sign(x.data()) != 0;
+    fine += field.signWithFineBlocks(x.data()) != 0;
     equal += tabulated->inCollision(q) == (model.score(q) > 0);
   }
   const double query = experiments::meanSecondsPerCall(
@@ -247,8 +249,9 @@ double printPointField(const EvalOptions& o, const Model& model, const Dataset& 
             << " cm cells, " << field.nodeCount() << " nodes ("
             << field.memoryBytes() / (1024 * 1024) << " MiB), built in " << durationText(build)
             << "; " << rate(static_cast<double>(decided) / n)
-            << " of the samples answered by the grids, the rest by the full sum; " << equal
-            << " of " << data.size() << " answers equal to the full sum's\n";
+            << " of the samples answered by the grids, " << rate(static_cast<double>(fine) / n)
+            << " with their " << field.fineBlockCount() << " fine blocks, the rest by exact sums; "
+            << equal << " of " << data.size() << " answers equal to the full sum's\n";
   return query;
 }
 
@@ -372,6 +375,14 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                   "a model of point terms only: cell edge of its point field, metres")
       ->capture_default_str()
       ->check(numberAbove(0));
+  cmd->add_option("--field-refinement", o->field.refinement,
+                  "a model of point terms only: fine cells per cell edge in the fine blocks of its "
+                  "point field's least certain cells (1: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  cmd->add_option("--field-fine-nodes", o->field.maxFineNodes,
+                  "a model of point terms only: the most nodes over its point field's fine blocks")
+      ->capture_default_str();
   cmd->callback([o, &exitCode] { exitCode = runEval(*o); });
 }
 

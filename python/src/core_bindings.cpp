@@ -228,12 +228,16 @@ void bindModel(py::module_& m) {
       .def(
           "with_point_field",
           [](const Model& model, double spacing, std::size_t samples, std::uint64_t seed,
-             double errorFactor) {
+             double errorFactor, std::uint32_t refinement, std::size_t maxFineNodes,
+             double fineFrom) {
             PointFieldOptions options;
             options.spacing = spacing;
             options.samples = samples;
             options.seed = seed;
             options.errorFactor = errorFactor;
+            options.refinement = refinement;
+            options.maxFineNodes = maxFineNodes;
+            options.fineFrom = fineFrom;
             py::gil_scoped_release released;
             return std::const_pointer_cast<Model>(model.withPointField(options));
           },
@@ -241,10 +245,15 @@ void bindModel(py::module_& m) {
           py::arg("samples") = PointFieldOptions{}.samples,
           py::arg("seed") = PointFieldOptions{}.seed,
           py::arg("error_factor") = PointFieldOptions{}.errorFactor,
+          py::arg("refinement") = PointFieldOptions{}.refinement,
+          py::arg("max_fine_nodes") = PointFieldOptions{}.maxFineNodes,
+          py::arg("fine_from") = PointFieldOptions{}.fineFrom,
           "A copy whose collision answers (in_collision, first_in_collision) read the point terms "
           "from grids of `spacing` metres where they decide the sign, and sum every term where "
-          "not: the same answers, faster for large support sets (docs/performance.md). score "
-          "still sums every term. Raises ValueError unless has_only_point_terms.")
+          "not: the same answers, faster for large support sets (docs/performance.md). Where the "
+          "grids leave more than `fine_from` of their samples undecided, the least certain "
+          "cells get fine blocks (`refinement` fine cells per edge, at most `max_fine_nodes` "
+          "nodes). score still sums every term. Raises ValueError unless has_only_point_terms.")
       .def_property_readonly(
           "point_field",
           [](const Model& model) -> py::object {
@@ -255,10 +264,11 @@ void bindModel(py::module_& m) {
             d["spacing"] = field->spacing();
             d["nodes"] = field->nodeCount();
             d["memory_bytes"] = field->memoryBytes();
+            d["fine_blocks"] = field->fineBlockCount();
             return d;
           },
           "None, or the grids of with_point_field: {'grids', 'spacing', 'nodes', "
-          "'memory_bytes'}.")
+          "'memory_bytes', 'fine_blocks'}.")
       .def(
           "save",
           [](const Model& model, const std::filesystem::path& path) { saveModel(model, path); },

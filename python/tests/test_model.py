@@ -170,8 +170,14 @@ def test_a_point_field_answers_as_the_full_sum(baxter, baxter_fcl):
     assert np.array_equal(tabulated.in_collision(q), model.score(q) > 0)
     assert np.array_equal(tabulated.score(q), model.score(q))
     assert tabulated.first_in_collision(q) == model.first_in_collision(q)
+    refined = model.with_point_field(spacing=0.05, refinement=4, fine_from=0)
+    assert refined.point_field["fine_blocks"] > 0
+    assert refined.point_field["memory_bytes"] > field["memory_bytes"]
+    assert np.array_equal(refined.in_collision(q), model.score(q) > 0)
     with pytest.raises(fastron.InvalidArgument, match="spacing"):
         model.with_point_field(spacing=0)
+    with pytest.raises(fastron.InvalidArgument, match="refinement"):
+        model.with_point_field(refinement=0)
     default, _ = fastron.train(x[:500], baxter_fcl.in_collision(x[:500]),
                                features=fastron.robot_features(baxter))
     assert not default.has_only_point_terms

@@ -29,10 +29,23 @@ void validate(const PointFieldOptions& options) {
   }
   if (options.samples == 0) throw InvalidArgument("point field samples must be at least 1");
   if (options.maxNodes == 0) throw InvalidArgument("point field maxNodes must be at least 1");
+  if (options.refinement < 1 || options.refinement > 16) {
+    throw InvalidArgument("point field refinement must be 1 to 16, got " +
+                          std::to_string(options.refinement));
+  }
+  if (!(options.fineFrom >= 0 && options.fineFrom <= 1)) {
+    throw InvalidArgument("point field fineFrom must be in [0, 1], got " +
+                          std::to_string(options.fineFrom));
+  }
 }
 
-PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spacing)
-    : grids_(std::move(grids)), roundingFloor_(roundingFloor), spacing_(spacing) {
+PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spacing,
+                       std::uint32_t refinement)
+    : grids_(std::move(grids)),
+      roundingFloor_(roundingFloor),
+      spacing_(spacing),
+      refinement_(refinement) {
+  const std::size_t r = refinement_;
   for (const Grid& grid : grids_) {
     const std::size_t cells = std::size_t{grid.cells[0]} * grid.cells[1] * grid.cells[2];
     const std::size_t nodes =
@@ -42,6 +55,12 @@ PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spac
                             " nodes and " + std::to_string(grid.bounds.size()) +
                             " bounds do not fit its cells");
     }
+    const std::size_t blocks = grid.fineBounds.size() / (r * r * r);
+    bool fits = r >= 1 && grid.fineBounds.size() == blocks * r * r * r &&
+                grid.fineNodes.size() == blocks * (r + 1) * (r + 1) * (r + 1) &&
+                (grid.fineBlock.empty() || grid.fineBlock.size() == cells);
+    for (const std::uint32_t block : grid.fineBlock) fits = fits && block <= blocks;
+    if (!fits) throw InvalidArgument("point field grid: its fine blocks do not fit it");
   }
 }
 
@@ -51,10 +70,80 @@ std::size_t PointField::nodeCount() const {
   return n;
 }
 
+std::size_t PointField::fineBlockCount() const {
+  const std::size_t r = refinement_;
+  std::size_t n = 0;
+  for (const Grid& grid : grids_) n += grid.fineBounds.size() / (r * r * r);
+  return n;
+}
+
 std::size_t PointField::memoryBytes() const {
   std::size_t n = 0;
-  for (const Grid& grid : grids_) n += (grid.nodes.size() + grid.bounds.size()) * sizeof(float);
+  for (const Grid& grid : grids_) {
+    n += (grid.nodes.size() + grid.bounds.size() + grid.fineNodes.size() + grid.fineBounds.size()) *
+             sizeof(float) +
+         grid.fineBlock.size() * sizeof(std::uint32_t);
+  }
   return n;
+}
+
+namespace {
+
+/// The indices 0 .. terms - 1 ordered by `bounds`, largest first: the terms whose estimates are
+/// least certain, which a refinement replaces first.
+std::array<std::uint8_t, kMaxPointTerms> leastCertainFirst(const float* bounds, std::size_t terms) {
+  std::array<std::uint8_t, kMaxPointTerms> order;
+  std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms), 0);
+  std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms),
+            [&](std::uint8_t a, std::uint8_t b) { return bounds[a] > bounds[b]; });
+  return order;
+}
+
+}  // namespace
+
+int PointField::refineFinely(const float* x, float* values, float* bounds) const {
+  const std::size_t terms = grids_.size();
+  float value = 0, bound = 0;
+  for (std::size_t g = 0; g < terms; ++g) {
+    value += values[g];
+    bound += bounds[g];
+  }
+  const auto order = leastCertainFirst(bounds, terms);
+  for (std::size_t k = 0; k < terms; ++k) {
+    const std::size_t g = order[k];
+    float fine = 0, fineBound = 0;
+    if (!estimateFine(g, x + 3 * g, fine, fineBound)) continue;
+    value += fine - values[g];
+    bound -= bounds[g] - fineBound;
+    values[g] = fine;
+    bounds[g] = fineBound;
+    if (value > bound) return 1;
+    if (value < -bound) return -1;
+  }
+  return 0;
+}
+
+bool PointField::estimateFine(std::size_t g, const float* y, float& value, float& bound) const {
+  const Grid& grid = grids_[g];
+  if (grid.fineBlock.empty()) return false;
+  float t[3];
+  std::uint32_t i[3];
+  if (!locate(grid, y, i, t)) return false;
+  const std::uint32_t block = grid.fineBlock[cellIndex(grid, i)];
+  if (block == 0) return false;
+  const std::size_t r = refinement_, n = r + 1;
+  std::size_t at[3];
+  float ft[3];
+  for (int a = 0; a < 3; ++a) {
+    const float u = t[a] * static_cast<float>(r);
+    at[a] = std::min(static_cast<std::size_t>(u), r - 1);
+    ft[a] = u - static_cast<float>(at[a]);
+  }
+  const std::size_t b = block - 1;
+  value = trilinear(grid.fineNodes.data() + b * n * n * n + at[0] + n * at[1] + n * n * at[2], n,
+                    n * n, ft);
+  bound = grid.fineBounds[b * r * r * r + at[0] + r * (at[1] + r * at[2])];
+  return true;
 }
 
 namespace {
@@ -74,6 +163,20 @@ void fieldAlongRow(const detail::SupportView& view, const std::array<float, 3>& 
     }
     detail::activeKernelSums().four(view, xs.data(), f.data());
     std::copy_n(f.begin(), count, out + i);
+  }
+}
+
+/// F_g at every point of `points` (x, y, z of each), written to out, four per pass of `four`.
+void fieldAtPoints(const detail::SupportView& view, std::vector<float> points, float* out) {
+  const std::size_t n = points.size() / 3, q = detail::kQueriesPerPass;
+  const std::size_t padded = (n + q - 1) / q * q;
+  for (std::size_t k = n; k < padded; ++k) {  // a short last pass repeats the first point
+    points.insert(points.end(), {points[0], points[1], points[2]});
+  }
+  std::array<float, detail::kQueriesPerPass> f{};
+  for (std::size_t i = 0; i < padded; i += q) {
+    detail::activeKernelSums().four(view, points.data() + 3 * i, f.data());
+    std::copy_n(f.begin(), std::min(q, n - i), out + i);
   }
 }
 
@@ -162,6 +265,155 @@ void tabulate(PointField::Grid& grid, const detail::SupportView& view,
   for (float& bound : grid.bounds) bound = static_cast<float>(errorFactor) * bound + roundingFloor;
 }
 
+/// Fills the fine block over `cell` of `grid`: nodes ((r + 1)^3) and bounds (r^3) at spacing
+/// spacing / r, the bounds measured as tabulate measures the grid's (the neighbours within the
+/// block).
+void tabulateFineBlock(const PointField::Grid& grid, std::size_t cell,
+                       const detail::SupportView& term, const PointFieldOptions& options,
+                       float roundingFloor, float* nodes, float* bounds) {
+  const std::size_t r = options.refinement, n = r + 1;
+  const std::size_t cx = grid.cells[0], cy = grid.cells[1];
+  const std::size_t index[3] = {cell % cx, (cell / cx) % cy, cell / (cx * cy)};
+  const auto h = static_cast<float>(options.spacing / static_cast<double>(r));
+  const auto position = [&](int a, std::size_t i, float shift) {
+    return grid.origin[a] + static_cast<float>(index[a]) * static_cast<float>(options.spacing) +
+           (static_cast<float>(i) + shift) * h;
+  };
+  // Every node, then every centre, four to a pass over the support set.
+  std::vector<float> points, values(n * n * n + r * r * r);
+  for (const auto& [m, shift] : {std::pair{n, 0.0f}, std::pair{r, 0.5f}}) {
+    for (std::size_t z = 0; z < m; ++z) {
+      for (std::size_t y = 0; y < m; ++y) {
+        for (std::size_t x = 0; x < m; ++x) {
+          points.insert(points.end(),
+                        {position(0, x, shift), position(1, y, shift), position(2, z, shift)});
+        }
+      }
+    }
+  }
+  fieldAtPoints(term, points, values.data());
+  std::copy_n(values.begin(), n * n * n, nodes);
+  const float* centres = values.data() + n * n * n;
+  std::vector<float> errors(r * r * r);
+  for (std::size_t z = 0; z < r; ++z) {
+    for (std::size_t y = 0; y < r; ++y) {
+      for (std::size_t x = 0; x < r; ++x) {
+        const float* c = nodes + x + n * y + n * n * z;
+        const float corners = (c[0] + c[1] + c[n] + c[n + 1] + c[n * n] + c[n * n + 1] +
+                               c[n * n + n] + c[n * n + n + 1]) *
+                              0.125f;
+        const std::size_t k = x + r * (y + r * z);
+        errors[k] = std::abs(centres[k] - corners);
+      }
+    }
+  }
+  const auto fine = static_cast<std::uint32_t>(r);
+  const std::uint32_t blockCells[3] = {fine, fine, fine};
+  maxOverNeighbours(errors, blockCells);
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    bounds[k] = static_cast<float>(options.errorFactor) * errors[k] + roundingFloor;
+  }
+}
+
+/// Per grid and cell, how much the cell's bound left the samples (rows of `features`) undecided:
+/// the sum of its bound over the samples whose estimate the grids' bounds did not decide and whose
+/// point lay in it.
+/// `undecided` counts those samples.
+std::vector<std::vector<float>> undecidedWeight(const std::vector<PointField::Grid>& grids,
+                                                const Eigen::MatrixXd& features,
+                                                std::size_t& undecided) {
+  const std::size_t terms = grids.size();
+  std::vector<std::vector<float>> weight(terms);
+  for (std::size_t g = 0; g < terms; ++g) weight[g].assign(grids[g].bounds.size(), 0.0f);
+  std::array<float, 3 * kMaxPointTerms> x{};
+  std::array<float, kMaxPointTerms> values{}, bounds{};
+  std::array<std::size_t, kMaxPointTerms> cells{};
+  for (Eigen::Index r = 0; r < features.rows(); ++r) {
+    for (std::size_t c = 0; c < 3 * terms; ++c) {
+      x[c] = static_cast<float>(features(r, static_cast<Eigen::Index>(c)));
+    }
+    float value = 0, bound = 0;
+    bool inside = true;
+    for (std::size_t g = 0; g < terms && inside; ++g) {
+      std::uint32_t i[3];
+      float t[3];
+      inside = PointField::locate(grids[g], x.data() + 3 * g, i, t) &&
+               PointField::interpolate(grids[g], x.data() + 3 * g, values[g], bounds[g]);
+      if (inside) cells[g] = PointField::cellIndex(grids[g], i);
+      value += values[g];
+      bound += bounds[g];
+    }
+    if (!inside || std::abs(value) > bound) continue;
+    ++undecided;
+    for (std::size_t g = 0; g < terms; ++g) weight[g][cells[g]] += bounds[g];
+  }
+  return weight;
+}
+
+/// Unless the grids decide all but options.fineFrom of the samples (rows of `features`) alone:
+/// gives fine blocks to the cells over every grid that left most samples undecided
+/// (undecidedWeight), then to those of largest bound, as many as options.maxFineNodes holds,
+/// tabulated on this thread and the helper.
+void addFineBlocks(std::vector<PointField::Grid>& grids,
+                   const std::vector<detail::SupportView>& terms, const Eigen::MatrixXd& features,
+                   const PointFieldOptions& options, float roundingFloor) {
+  const std::size_t r = options.refinement, n = r + 1;
+  const std::size_t most = options.maxFineNodes / (n * n * n);
+  if (r < 2 || most == 0) return;
+  std::size_t undecided = 0;
+  const auto weight = undecidedWeight(grids, features, undecided);
+  if (static_cast<double>(undecided) <= options.fineFrom * static_cast<double>(features.rows())) {
+    return;
+  }
+  struct Cell {
+    float weight, bound;
+    std::uint32_t grid, cell;
+  };
+  std::vector<Cell> cells;
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const auto& bounds = grids[g].bounds;
+    for (std::size_t c = 0; c < bounds.size(); ++c) {
+      // A cell whose bound is the rounding floor's is as certain as an exact sum.
+      if (bounds[c] > 2 * roundingFloor) {
+        cells.push_back({weight[g][c], bounds[c], static_cast<std::uint32_t>(g),
+                         static_cast<std::uint32_t>(c)});
+      }
+    }
+  }
+  const std::size_t chosen = std::min(most, cells.size());
+  std::partial_sort(cells.begin(), cells.begin() + static_cast<std::ptrdiff_t>(chosen), cells.end(),
+                    [](const Cell& a, const Cell& b) {
+                      return a.weight != b.weight ? a.weight > b.weight : a.bound > b.bound;
+                    });
+  cells.resize(chosen);
+  std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
+    return a.grid != b.grid ? a.grid < b.grid : a.cell < b.cell;
+  });
+  std::vector<std::size_t> first(grids.size() + 1, 0);  // each grid's first chosen cell
+  for (const Cell& c : cells) ++first[c.grid + 1];
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    first[g + 1] += first[g];
+    const std::size_t blocks = first[g + 1] - first[g];
+    if (blocks == 0) continue;
+    grids[g].fineBlock.assign(grids[g].bounds.size(), 0);
+    grids[g].fineNodes.resize(blocks * n * n * n);
+    grids[g].fineBounds.resize(blocks * r * r * r);
+  }
+  const std::size_t chunks = std::min<std::size_t>(cells.size(), 256);
+  auto chunk = [&](std::size_t k) {
+    for (std::size_t c = k * cells.size() / chunks; c < (k + 1) * cells.size() / chunks; ++c) {
+      PointField::Grid& grid = grids[cells[c].grid];
+      const std::size_t b = c - first[cells[c].grid];
+      grid.fineBlock[cells[c].cell] = static_cast<std::uint32_t>(b + 1);
+      tabulateFineBlock(grid, cells[c].cell, terms[cells[c].grid], options, roundingFloor,
+                        grid.fineNodes.data() + b * n * n * n,
+                        grid.fineBounds.data() + b * r * r * r);
+    }
+  };
+  detail::HelperSession helper(options.threads != 1);
+  if (chunks > 0) helper.run(chunks, chunk);
+}
+
 }  // namespace
 
 bool Model::hasOnlyPointTerms() const {
@@ -202,9 +454,14 @@ std::shared_ptr<const Model> Model::withPointField(const PointFieldOptions& opti
   for (std::size_t g = 0; g < terms; ++g) {
     tabulate(grids[g], termView(g), options, roundingFloor);
   }
+  {
+    std::vector<detail::SupportView> views;
+    for (std::size_t g = 0; g < terms; ++g) views.push_back(termView(g));
+    addFineBlocks(grids, views, features, options, roundingFloor);
+  }
   auto copy = std::make_shared<Model>(*this);
-  copy->pointField_ =
-      std::make_shared<const PointField>(std::move(grids), roundingFloor, options.spacing);
+  copy->pointField_ = std::make_shared<const PointField>(std::move(grids), roundingFloor,
+                                                         options.spacing, options.refinement);
   return copy;
 }
 
@@ -232,19 +489,17 @@ bool Model::inCollisionByField(const float* x) const {
   static_assert(kMaxPointTerms * 3 == kMaxFeatureDimension);
   std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
+    int sign = field.signOf(values.data(), bounds.data());
+    if (sign == 0) sign = field.refineFinely(x, values.data(), bounds.data());
+    if (sign != 0) return sign > 0;
+    // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
+    // share of the full one; the rounding floor stays with it).
     float value = 0, bound = 0;
     for (std::size_t g = 0; g < terms; ++g) {
       value += values[g];
       bound += bounds[g];
     }
-    if (value > bound) return true;
-    if (value < -bound) return false;
-    // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
-    // share of the full one); the rounding floor stays with it.
-    std::array<std::uint8_t, kMaxPointTerms> order;
-    std::iota(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms), 0);
-    std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(terms),
-              [&](std::uint8_t a, std::uint8_t b) { return bounds[a] > bounds[b]; });
+    const auto order = leastCertainFirst(bounds.data(), terms);
     for (std::size_t k = 0; k < terms; ++k) {
       const std::size_t g = order[k];
       value += detail::activeKernelSums().one(termView(g), x + 3 * g) - values[g];

@@ -49,27 +49,46 @@ TEST_P(PointFieldAnswers, AsTheFullSumDoes) {
   const auto model = pointTermModel(c.dim, points, c.type, c.gamma, c.beta);
   PointFieldOptions options;
   options.spacing = c.spacing;
+  options.refinement = 1;
   const auto tabulated = model->withPointField(options);
   ASSERT_NE(tabulated->pointField(), nullptr);
   EXPECT_EQ(model->pointField(), nullptr);
   EXPECT_EQ(tabulated->pointField()->grids().size(), c.dim / 3);
+  EXPECT_EQ(tabulated->pointField()->fineBlockCount(), 0u);
+  // The same grids with fine blocks wherever a bound is above rounding.
+  options.refinement = c.dim == 6 ? 4 : 2;
+  options.fineFrom = 0;
+  const auto refined = model->withPointField(options);
+  const PointField& fine = *refined->pointField();
+  EXPECT_GT(fine.fineBlockCount(), 0u);
 
   const Configurations q = test::uniformPoints(queries, c.dim, 403);
-  std::size_t decided = 0, collides = 0;
+  std::size_t decided = 0, decidedFinely = 0, collides = 0;
+  std::array<float, kMaxFeatureDimension> x{};
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     const double* row = q.row(i).data();
     const double score = model->score(row);
     ASSERT_EQ(tabulated->score(row), score);
     ASSERT_EQ(tabulated->inCollision(row), score > 0) << "query " << i << ", score " << score;
+    ASSERT_EQ(refined->inCollision(row), score > 0) << "query " << i << ", score " << score;
     const int sign = fieldSign(*tabulated, row);
     if (sign != 0) {
       ASSERT_EQ(sign > 0, score > 0) << "query " << i;
     }
+    model->features().map(row, x.data());
+    const int fineSign = fine.signWithFineBlocks(x.data());
+    if (fineSign != 0) {
+      ASSERT_EQ(fineSign > 0, score > 0) << "query " << i;
+    }
+    ASSERT_TRUE(sign == 0 || fineSign == sign) << "query " << i;
     decided += sign != 0;
+    decidedFinely += fineSign != 0;
     collides += score > 0;
   }
   ASSERT_GT(collides, queries / 200) << "the model should predict some collisions";
   EXPECT_GE(static_cast<double>(decided) / static_cast<double>(queries), c.decidedShare);
+  // Fine blocks decide some of what the grids leave, and never fewer.
+  EXPECT_GT(decidedFinely, decided);
 
   // Bisect segments between a colliding and a free query down to where the score changes sign:
   // both ends lie within rounding of f = 0, where an estimate could err.
@@ -84,6 +103,8 @@ TEST_P(PointFieldAnswers, AsTheFullSumDoes) {
     for (const Eigen::VectorXd* end : {&a, &b}) {
       ASSERT_EQ(tabulated->inCollision(end->data()), model->score(end->data()) > 0)
           << "boundary query near segment " << i;
+      ASSERT_EQ(refined->inCollision(end->data()), model->score(end->data()) > 0)
+          << "boundary query near segment " << i << ", fine blocks";
     }
     ++boundary;
   }
@@ -193,6 +214,50 @@ TEST(PointField, RefusesModelsItCannotTabulateAndBadOptions) {
   refusesOptions(o, "maxNodes");
   o.spacing = 1e-12;  // more nodes than any integer type counts
   refusesOptions(o, "maxNodes");
+  o = {};
+  o.refinement = 0;
+  refusesOptions(o, "refinement");
+  o.refinement = 17;
+  refusesOptions(o, "refinement");
+  o = {};
+  o.fineFrom = 1.5;
+  refusesOptions(o, "fineFrom");
+  o.fineFrom = std::nan("");
+  refusesOptions(o, "fineFrom");
+}
+
+// Fine blocks are tabulated where the grids' bounds left sampled queries undecided, within their
+// budget, and only when the grids leave more than fineFrom of the samples; a field whose blocks
+// do not fit its grids is refused.
+TEST(PointField, FineBlocksWithinTheirBudget) {
+  const auto model = pointTermModel(6, 1000, KernelType::RationalQuadratic, 10, 10);
+  PointFieldOptions options;
+  options.spacing = 0.1;
+  options.fineFrom = 0;
+  options.maxFineNodes = 27 * 40;  // 40 blocks of 2 x 2 x 2 fine cells
+  const auto refined = model->withPointField(options);
+  const PointField& field = *refined->pointField();
+  EXPECT_EQ(field.fineBlockCount(), 40u);
+  EXPECT_EQ(field.refinement(), 2u);
+  std::size_t blocks = 0;
+  for (const PointField::Grid& grid : field.grids()) {
+    EXPECT_EQ(grid.fineNodes.size(), grid.fineBounds.size() / 8 * 27);
+    for (const std::uint32_t block : grid.fineBlock) blocks += block != 0;
+  }
+  EXPECT_EQ(blocks, 40u);
+  options.fineFrom = 1;  // the grids always decide enough
+  EXPECT_EQ(model->withPointField(options)->pointField()->fineBlockCount(), 0u);
+
+  std::vector<PointField::Grid> grids = field.grids();
+  for (std::uint32_t& block : grids[0].fineBlock) {
+    if (block != 0) block = 1000;
+  }
+  try {
+    const PointField broken(grids, field.roundingFloor(), field.spacing(), field.refinement());
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("fine blocks"), std::string::npos) << e.what();
+  }
 }
 
 // The field is given where it pays: point terms only and enough support points.
@@ -219,8 +284,10 @@ TEST(PointField, FastestAnswersTabulateLargeModelsOfPointTermsOnly) {
 
 // A field is part of an immutable model: many threads answer from it at once.
 TEST(PointField, ThreadsQueryOneFieldAtOnce) {
+  PointFieldOptions options;
+  options.fineFrom = 0;  // with fine blocks
   const auto tabulated =
-      pointTermModel(6, 800, KernelType::RationalQuadratic, 10, 1)->withPointField();
+      pointTermModel(6, 800, KernelType::RationalQuadratic, 10, 1)->withPointField(options);
   const Configurations q = test::uniformPoints(4000, 6, 408);
   std::vector<char> expected(4000);
   for (Eigen::Index i = 0; i < q.rows(); ++i) expected[i] = tabulated->inCollision(q.row(i).data());
