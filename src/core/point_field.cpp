@@ -317,8 +317,7 @@ void tabulateFineBlock(const PointField::Grid& grid, std::size_t cell,
 
 /// Per grid and cell, how much the cell's bound left the samples (rows of `features`) undecided:
 /// the sum of its bound over the samples whose estimate the grids' bounds did not decide and whose
-/// point lay in it.
-/// `undecided` counts those samples.
+/// point lay in it. `undecided` counts those samples.
 std::vector<std::vector<float>> undecidedWeight(const std::vector<PointField::Grid>& grids,
                                                 const Eigen::MatrixXd& features,
                                                 std::size_t& undecided) {
@@ -334,12 +333,13 @@ std::vector<std::vector<float>> undecidedWeight(const std::vector<PointField::Gr
     }
     float value = 0, bound = 0;
     bool inside = true;
-    for (std::size_t g = 0; g < terms && inside; ++g) {
+    for (std::size_t g = 0; g < terms; ++g) {
       std::uint32_t i[3];
       float t[3];
-      inside = PointField::locate(grids[g], x.data() + 3 * g, i, t) &&
-               PointField::interpolate(grids[g], x.data() + 3 * g, values[g], bounds[g]);
-      if (inside) cells[g] = PointField::cellIndex(grids[g], i);
+      inside = PointField::locate(grids[g], x.data() + 3 * g, i, t);
+      if (!inside) break;
+      cells[g] = PointField::cellIndex(grids[g], i);
+      PointField::interpolate(grids[g], x.data() + 3 * g, values[g], bounds[g]);
       value += values[g];
       bound += bounds[g];
     }
