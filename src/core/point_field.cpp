@@ -470,7 +470,9 @@ std::shared_ptr<const Model> withFastestAnswers(std::shared_ptr<const Model> mod
       model->pointField()) {
     return model;
   }
-  return model->withPointField();
+  PointFieldOptions options;
+  options.refinement = 1;
+  return model->withPointField(options);
 }
 
 detail::SupportView Model::termView(std::size_t g) const {
