@@ -61,19 +61,13 @@ PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spac
                 (grid.fineBlock.empty() || grid.fineBlock.size() == cells);
     for (const std::uint32_t block : grid.fineBlock) fits = fits && block <= blocks;
     if (!fits) throw InvalidArgument("point field grid: its fine blocks do not fit it");
+    fineBlocks_ += blocks;
   }
 }
 
 std::size_t PointField::nodeCount() const {
   std::size_t n = 0;
   for (const Grid& grid : grids_) n += grid.nodes.size();
-  return n;
-}
-
-std::size_t PointField::fineBlockCount() const {
-  const std::size_t r = refinement_;
-  std::size_t n = 0;
-  for (const Grid& grid : grids_) n += grid.fineBounds.size() / (r * r * r);
   return n;
 }
 
@@ -99,17 +93,19 @@ std::array<std::uint8_t, kMaxPointTerms> leastCertainFirst(const float* bounds, 
   return order;
 }
 
+/// The sign of f as the sum of the estimates `value` and of their bounds `bound` decide it: +1,
+/// -1, or 0.
+int signOfSums(float value, float bound) {
+  if (value > bound) return 1;
+  if (value < -bound) return -1;
+  return 0;
+}
+
 }  // namespace
 
-int PointField::refineFinely(const float* x, float* values, float* bounds) const {
-  const std::size_t terms = grids_.size();
-  float value = 0, bound = 0;
-  for (std::size_t g = 0; g < terms; ++g) {
-    value += values[g];
-    bound += bounds[g];
-  }
-  const auto order = leastCertainFirst(bounds, terms);
-  for (std::size_t k = 0; k < terms; ++k) {
+int PointField::refineFinely(const float* x, const std::uint8_t* order, float* values,
+                             float* bounds, float& value, float& bound) const {
+  for (std::size_t k = 0; k < grids_.size(); ++k) {
     const std::size_t g = order[k];
     float fine = 0, fineBound = 0;
     if (!estimateFine(g, x + 3 * g, fine, fineBound)) continue;
@@ -117,10 +113,23 @@ int PointField::refineFinely(const float* x, float* values, float* bounds) const
     bound -= bounds[g] - fineBound;
     values[g] = fine;
     bounds[g] = fineBound;
-    if (value > bound) return 1;
-    if (value < -bound) return -1;
+    if (const int sign = signOfSums(value, bound); sign != 0) return sign;
   }
   return 0;
+}
+
+int PointField::signWithFineBlocks(const float* x) const {
+  float values[kMaxPointTerms], bounds[kMaxPointTerms];
+  if (!estimateTerms(x, values, bounds)) return 0;
+  const int grids = signOf(values, bounds);
+  if (grids != 0 || fineBlocks_ == 0) return grids;
+  float value = 0, bound = 0;
+  for (std::size_t g = 0; g < grids_.size(); ++g) {
+    value += values[g];
+    bound += bounds[g];
+  }
+  const auto order = leastCertainFirst(bounds, grids_.size());
+  return refineFinely(x, order.data(), values, bounds, value, bound);
 }
 
 bool PointField::estimateFine(std::size_t g, const float* y, float& value, float& bound) const {
@@ -399,12 +408,15 @@ void addFineBlocks(std::vector<PointField::Grid>& grids,
     grids[g].fineNodes.resize(blocks * n * n * n);
     grids[g].fineBounds.resize(blocks * r * r * r);
   }
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    grids[cells[c].grid].fineBlock[cells[c].cell] =
+        static_cast<std::uint32_t>(c - first[cells[c].grid] + 1);
+  }
   const std::size_t chunks = std::min<std::size_t>(cells.size(), 256);
   auto chunk = [&](std::size_t k) {
     for (std::size_t c = k * cells.size() / chunks; c < (k + 1) * cells.size() / chunks; ++c) {
       PointField::Grid& grid = grids[cells[c].grid];
       const std::size_t b = c - first[cells[c].grid];
-      grid.fineBlock[cells[c].cell] = static_cast<std::uint32_t>(b + 1);
       tabulateFineBlock(grid, cells[c].cell, terms[cells[c].grid], options, roundingFloor,
                         grid.fineNodes.data() + b * n * n * n,
                         grid.fineBounds.data() + b * r * r * r);
@@ -491,23 +503,26 @@ bool Model::inCollisionByField(const float* x) const {
   static_assert(kMaxPointTerms * 3 == kMaxFeatureDimension);
   std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
-    int sign = field.signOf(values.data(), bounds.data());
-    if (sign == 0) sign = field.refineFinely(x, values.data(), bounds.data());
-    if (sign != 0) return sign > 0;
-    // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
-    // share of the full one; the rounding floor stays with it).
     float value = 0, bound = 0;
     for (std::size_t g = 0; g < terms; ++g) {
       value += values[g];
       bound += bounds[g];
     }
-    const auto order = leastCertainFirst(bounds.data(), terms);
+    if (const int sign = signOfSums(value, bound); sign != 0) return sign > 0;
+    auto order = leastCertainFirst(bounds.data(), terms);
+    if (field.fineBlockCount() > 0) {
+      const int sign =
+          field.refineFinely(x, order.data(), values.data(), bounds.data(), value, bound);
+      if (sign != 0) return sign > 0;
+      order = leastCertainFirst(bounds.data(), terms);  // the refined terms are now the surest
+    }
+    // The least certain terms first, each replaced by its exact sum (a 3-D kernel sum, a term's
+    // share of the full one; the rounding floor stays with it).
     for (std::size_t k = 0; k < terms; ++k) {
       const std::size_t g = order[k];
       value += detail::activeKernelSums().one(termView(g), x + 3 * g) - values[g];
       bound -= bounds[g] - field.roundingFloor();
-      if (value > bound) return true;
-      if (value < -bound) return false;
+      if (const int sign = signOfSums(value, bound); sign != 0) return sign > 0;
     }
   }
   return scoreInputFloat(x) > 0;

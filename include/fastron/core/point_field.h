@@ -112,12 +112,7 @@ class PointField {
 
   /// +1, -1 or 0 as `sign`, from the grids and, where they do not decide, the fine blocks of
   /// the least certain terms (none beyond what decides).
-  int signWithFineBlocks(const float* x) const {
-    float values[kMaxPointTerms], bounds[kMaxPointTerms];
-    if (!estimateTerms(x, values, bounds)) return 0;
-    const int grids = signOf(values, bounds);
-    return grids != 0 ? grids : refineFinely(x, values, bounds);
-  }
+  int signWithFineBlocks(const float* x) const;
 
   /// +1, -1 or 0 as the estimates `values` and their `bounds` (one per grid) decide the sign of
   /// f.
@@ -132,10 +127,11 @@ class PointField {
     return 0;
   }
 
-  /// Replaces the grids' estimates of the terms whose cells have fine blocks by the blocks', the
-  /// least certain first, until the sign is decided: returns it (or 0), leaving `values` and
-  /// `bounds` the best estimates.
-  int refineFinely(const float* x, float* values, float* bounds) const;
+  /// Replaces the grids' estimates of the terms whose cells have fine blocks by the blocks', in
+  /// the order of `order` (the terms, least certain first), until the sign is decided: returns it
+  /// (or 0), leaving `values` and `bounds` the best estimates and `value` and `bound` their sums.
+  int refineFinely(const float* x, const std::uint8_t* order, float* values, float* bounds,
+                   float& value, float& bound) const;
 
   /// When point y of grid g lies in a cell with a fine block: the block's estimate of F_g(y)
   /// and its bound. False when the cell has none (or y lies outside the grid).
@@ -181,7 +177,7 @@ class PointField {
   /// Fine cells per coarse cell edge in the fine blocks.
   std::uint32_t refinement() const { return refinement_; }
   /// Fine blocks over every grid.
-  std::size_t fineBlockCount() const;
+  std::size_t fineBlockCount() const { return fineBlocks_; }
   double spacing() const { return spacing_; }
   /// The part of every cell's bound that covers float rounding (4 FLT_EPSILON sum |w|): an exact
   /// term sum in float keeps it.
@@ -194,6 +190,7 @@ class PointField {
   float roundingFloor_ = 0;
   double spacing_ = 0;
   std::uint32_t refinement_ = 1;
+  std::size_t fineBlocks_ = 0;  // over every grid, counted once: queries skip the blocks when 0
 };
 
 }  // namespace fastron
