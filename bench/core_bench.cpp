@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 
+#include "fastron/baselines/original_fastron_query.h"
 #include "fastron/core/model.h"
 #include "fastron/core/reference_trainer.h"
 #include "fastron/core/trainer.h"
@@ -228,6 +229,20 @@ void BM_QueryPlainDouble(benchmark::State& state) {
   }
 }
 
+// The original Fastron C++'s query (Fastron::eval of ucsdarclab/fastron, re-implemented): Eigen
+// arrays over the support points in double, one query at a time.
+void BM_QueryOriginalFastron(benchmark::State& state) {
+  const auto support = static_cast<std::size_t>(state.range(0));
+  const auto d = static_cast<std::size_t>(state.range(1));
+  const OriginalFastronQuery original(randomModel(support, d, KernelType::RationalQuadratic));
+  const Configurations q = test::uniformPoints(kQueries, d, 4);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(original.inCollision(q.row(static_cast<Eigen::Index>(i)).data()));
+    i = (i + 1) % kQueries;
+  }
+}
+
 void BM_QueryBatch(benchmark::State& state) {
   const auto support = static_cast<std::size_t>(state.range(0));
   const auto d = static_cast<std::size_t>(state.range(1));
@@ -247,6 +262,7 @@ void queryArgs(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_QueryFloat<KernelType::RationalQuadratic>)->Apply(queryArgs);
 BENCHMARK(BM_QueryFloat<KernelType::Gaussian>)->Apply(queryArgs);
 BENCHMARK(BM_QueryPlainDouble)->Apply(queryArgs);
+BENCHMARK(BM_QueryOriginalFastron)->Apply(queryArgs);
 BENCHMARK(BM_QueryBatch)->Apply(queryArgs);
 
 // The roofline of the kernel sum: how many 16-float vector operations this core retires per ns

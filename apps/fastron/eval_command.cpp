@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "fastron/baselines/original_fastron_query.h"
 #include "fastron/core/active_learning.h"
 #include "fastron/core/dataset.h"
 #include "fastron/core/error.h"
@@ -312,6 +313,15 @@ int runEval(const EvalOptions& o) {
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
             << ")\n";
+  if (model.kernel().type == KernelType::RationalQuadratic && model.kernel().block == 0) {
+    const OriginalFastronQuery original(model);
+    const double seconds = experiments::meanSecondsPerCall(
+        data.points, [&](const double* q) { return original.inCollision(q); }, kTimingSeconds);
+    std::cout << "original    " << durationText(seconds)
+              << " per configuration with the original Fastron's query (Fastron::eval of "
+                 "ucsdarclab/fastron, re-implemented): the model is "
+              << times(seconds / query) << " faster\n";
+  }
   std::optional<double> fieldQuery;
   if (o.pointField && model.hasOnlyPointTerms()) {
     fieldQuery = printPointField(o, model, data);

@@ -3,10 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "fastron/baselines/box_qp.h"
 #include "fastron/baselines/fastron_classifier.h"
 #include "fastron/baselines/incremental_svm.h"
 #include "fastron/baselines/libsvm_classifier.h"
+#include "fastron/baselines/original_fastron_query.h"
 #include "fastron/baselines/sparse_svm.h"
 #include "fastron/core/error.h"
 #include "test_worlds.h"
@@ -146,6 +150,49 @@ TEST(Baselines, RefuseBadInput) {
   EXPECT_THROW(ssvm.train(Configurations(2, 2), Labels{1}), InvalidArgument);
   EXPECT_THROW(solveBoxQp(Eigen::MatrixXd::Identity(2, 2), Eigen::VectorXd::Ones(3), 1, 1e-6),
                InvalidArgument);
+}
+
+// The original Fastron's query is the paper's kernel scaled by (gamma / 2)^2: the same sign as
+// the model's score wherever the score is not within float rounding of 0, for the dimensions
+// the original unrolls (4 to 7) and one it sums column by column (2, 9).
+TEST(OriginalFastronQuery, ScoresTheModelsSumScaledByTheKernelWidth) {
+  for (const std::size_t d : {2, 4, 5, 6, 7, 9}) {
+    SCOPED_TRACE("d " + std::to_string(d));
+    const Configurations support = test::uniformPoints(300, d, 5);
+    std::mt19937_64 random(d);
+    std::normal_distribution<double> normal;
+    Eigen::VectorXd weights(support.rows());
+    for (Eigen::Index i = 0; i < weights.size(); ++i) weights[i] = normal(random);
+    const double gamma = 3.0;
+    const Model model(FeatureMap::jointScaling(JointLimits::unitBox(d)),
+                      {KernelType::RationalQuadratic, gamma}, support, weights);
+    const OriginalFastronQuery original(model);
+    const Configurations q = test::uniformPoints(500, d, 6);
+    const double scale = (gamma / 2) * (gamma / 2);
+    std::size_t compared = 0;
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      const double exact = model.scoreExact(q.row(i).data());
+      Eigen::VectorXd x(static_cast<Eigen::Index>(model.featureDim()));
+      model.features().map(q.row(i).data(), x.data());
+      EXPECT_NEAR(original.scoreFeatures(x.data()), scale * exact,
+                  1e-9 * scale * weights.cwiseAbs().sum());
+      if (std::abs(exact) < 1e-6) continue;
+      EXPECT_EQ(original.inCollision(q.row(i).data()), model.inCollision(q.row(i).data()));
+      ++compared;
+    }
+    EXPECT_GT(compared, 450U);
+  }
+}
+
+TEST(OriginalFastronQuery, RefusesAKernelTheOriginalDoesNotHave) {
+  const Configurations support = test::uniformPoints(10, 6, 5);
+  const Eigen::VectorXd weights = Eigen::VectorXd::Ones(10);
+  const FeatureMap features = FeatureMap::jointScaling(JointLimits::unitBox(6));
+  EXPECT_THROW(OriginalFastronQuery(Model(features, {KernelType::Gaussian, 3}, support, weights)),
+               InvalidArgument);
+  Kernel points{KernelType::RationalQuadratic, 3};
+  points.block = 3;
+  EXPECT_THROW(OriginalFastronQuery(Model(features, points, support, weights)), InvalidArgument);
 }
 
 }  // namespace
