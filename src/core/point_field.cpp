@@ -81,6 +81,32 @@ std::size_t PointField::memoryBytes() const {
   return n;
 }
 
+bool PointField::estimateTerms(const float* x, float* values, float* bounds) const {
+  // Every term's cell is located and its cache lines requested before any is read: a query
+  // reads about five lines per term from grids of megabytes.
+  const std::size_t terms = grids_.size();
+  std::array<const float*, kMaxPointTerms> corners{}, cellBounds{};
+  std::array<std::array<float, 3>, kMaxPointTerms> within{};
+  for (std::size_t g = 0; g < terms; ++g) {
+    const Grid& grid = grids_[g];
+    std::uint32_t i[3];
+    if (!locate(grid, x + 3 * g, i, within[g].data())) return false;
+    const std::size_t nx = grid.cells[0] + 1, nxy = nx * (grid.cells[1] + 1);
+    const float* c = grid.nodes.data() + i[0] + nx * i[1] + nxy * i[2];
+    corners[g] = c;
+    cellBounds[g] = grid.bounds.data() + cellIndex(grid, i);
+    for (const float* line : {c, c + nx, c + nxy, c + nxy + nx, cellBounds[g]}) {
+      __builtin_prefetch(line);
+    }
+  }
+  for (std::size_t g = 0; g < terms; ++g) {
+    const std::size_t nx = grids_[g].cells[0] + 1, nxy = nx * (grids_[g].cells[1] + 1);
+    values[g] = trilinear(corners[g], nx, nxy, within[g].data());
+    bounds[g] = *cellBounds[g];
+  }
+  return true;
+}
+
 namespace {
 
 /// The indices 0 .. terms - 1 ordered by `bounds`, largest first: the terms whose estimates are
@@ -228,12 +254,45 @@ void maxOverNeighbours(std::vector<float>& values, const std::uint32_t cells[3])
   }
 }
 
+/// Per cell of a block of nodes (cells[a] + 1 per axis, x fastest), raises errors[cell] to the
+/// error bound of trilinear interpolation from each axis's curvature, (|d2x| + |d2y| + |d2z|) / 8
+/// with d2a the largest second difference along axis a at the cell's corners (h^2 F_aa: the
+/// error along an edge is h^2 |F_aa| / 8). The centre's error sees only the curvatures' sum, which
+/// cancels where they differ in sign (a saddle on a kernel's flank): there a cell's error reached
+/// 1.36 times its bound (docs/log/2026-11-30-field-reads-and-bound-slack.md). A corner on the
+/// block's face has no second difference across it; its neighbours along the face give theirs.
+void raiseToAxisCurvature(const float* nodes, const std::uint32_t cells[3], float* errors) {
+  const std::size_t nx = cells[0] + 1, ny = cells[1] + 1, nz = cells[2] + 1;
+  const std::size_t stride[3] = {1, nx, nx * ny}, count[3] = {nx, ny, nz};
+  for (std::size_t z = 0; z < cells[2]; ++z) {
+    for (std::size_t y = 0; y < cells[1]; ++y) {
+      for (std::size_t x = 0; x < cells[0]; ++x) {
+        float sum = 0;
+        for (int a = 0; a < 3; ++a) {
+          float largest = 0;
+          for (std::size_t corner = 0; corner < 8; ++corner) {
+            const std::size_t at[3] = {x + (corner & 1), y + ((corner >> 1) & 1),
+                                       z + ((corner >> 2) & 1)};
+            if (at[a] == 0 || at[a] + 1 == count[a]) continue;
+            const float* n = nodes + at[0] + nx * at[1] + nx * ny * at[2];
+            largest = std::max(largest, std::abs(n[stride[a]] - 2 * n[0] +
+                                                 n[-static_cast<std::ptrdiff_t>(stride[a])]));
+          }
+          sum += largest;
+        }
+        float& error = errors[x + cells[0] * (y + std::size_t{cells[1]} * z)];
+        error = std::max(error, sum * 0.125f);
+      }
+    }
+  }
+}
+
 /// Fills the nodes of `grid` with F_g and each cell's bound: errorFactor x the largest error of
 /// trilinear interpolation at the centre of the cell or of a neighbour (|F_g(centre) - the mean
-/// of its corners|), plus a floor for float rounding. The centre alone is not enough: where the
-/// curvature changes sign inside a cell (F = x^3 about its centre) the centre's error vanishes
-/// and others' do not; the neighbours' centres see the curvature around it. Slabs of z go to this
-/// thread and the helper.
+/// of its corners|, or the axes' curvature bound where larger: raiseToAxisCurvature), plus a
+/// floor for float rounding. The centre alone is not enough: where the curvature changes sign
+/// inside a cell (F = x^3 about its centre) the centre's error vanishes and others' do not; the
+/// neighbours' centres see the curvature around it. Slabs of z go to this thread and the helper.
 void tabulate(PointField::Grid& grid, const detail::SupportView& view,
               const PointFieldOptions& options, float roundingFloor) {
   const double spacing = options.spacing, errorFactor = options.errorFactor;
@@ -270,6 +329,7 @@ void tabulate(PointField::Grid& grid, const detail::SupportView& view,
     helper.run(cz + 1, nodeSlab);
     helper.run(cz, cellSlab);
   }
+  raiseToAxisCurvature(grid.nodes.data(), grid.cells, grid.bounds.data());
   maxOverNeighbours(grid.bounds, grid.cells);
   for (float& bound : grid.bounds) bound = static_cast<float>(errorFactor) * bound + roundingFloor;
 }
@@ -318,6 +378,7 @@ void tabulateFineBlock(const PointField::Grid& grid, std::size_t cell,
   }
   const auto fine = static_cast<std::uint32_t>(r);
   const std::uint32_t blockCells[3] = {fine, fine, fine};
+  raiseToAxisCurvature(nodes, blockCells, errors.data());
   maxOverNeighbours(errors, blockCells);
   for (std::size_t k = 0; k < errors.size(); ++k) {
     bounds[k] = static_cast<float>(options.errorFactor) * errors[k] + roundingFloor;
