@@ -313,7 +313,7 @@ int runEval(const EvalOptions& o) {
             << durationText(features) << ", kernel sum "
             << durationText(std::max(0.0, query - features)) << ", " << toString(activeSimdPath())
             << ")\n";
-  if (model.kernel().type == KernelType::RationalQuadratic && model.kernel().block == 0) {
+  if (OriginalFastronQuery::accepts(model.kernel())) {
     const OriginalFastronQuery original(model);
     const double seconds = experiments::meanSecondsPerCall(
         data.points, [&](const double* q) { return original.inCollision(q); }, kTimingSeconds);

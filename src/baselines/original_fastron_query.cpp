@@ -9,11 +9,11 @@
 namespace fastron {
 
 OriginalFastronQuery::OriginalFastronQuery(const Model& model)
-    : model_(std::make_shared<const Model>(model)),
+    : features_(model.features()),
       support_(model.supportFeatures()),
       alpha_(model.weights().array()),
       twoOverGamma_(2.0 / model.kernel().gamma) {
-  if (model.kernel().type != KernelType::RationalQuadratic || model.kernel().block != 0) {
+  if (!accepts(model.kernel())) {
     throw InvalidArgument(
         "the original Fastron's query sums the rational-quadratic kernel over the whole "
         "feature vector; this model's kernel is " +
@@ -61,8 +61,9 @@ double OriginalFastronQuery::scoreFeatures(const double* x) const {
 }
 
 bool OriginalFastronQuery::inCollision(const double* q) const {
-  std::array<double, kMaxFeatureDimension> x{};
-  model_->features().map(q, x.data());
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): map fills what is read
+  std::array<double, kMaxFeatureDimension> x;
+  features_.map(q, x.data());
   return scoreFeatures(x.data()) > 0;
 }
 

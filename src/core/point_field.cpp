@@ -85,8 +85,10 @@ bool PointField::estimateTerms(const float* x, float* values, float* bounds) con
   // Every term's cell is located and its cache lines requested before any is read: a query
   // reads about five lines per term from grids of megabytes.
   const std::size_t terms = grids_.size();
-  std::array<const float*, kMaxPointTerms> corners{}, cellBounds{};
-  std::array<std::array<float, 3>, kMaxPointTerms> within{};
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): the first loop fills what is read
+  std::array<const float*, kMaxPointTerms> corners, cellBounds;
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): the same
+  std::array<std::array<float, 3>, kMaxPointTerms> within;
   for (std::size_t g = 0; g < terms; ++g) {
     const Grid& grid = grids_[g];
     std::uint32_t i[3];
@@ -119,14 +121,6 @@ std::array<std::uint8_t, kMaxPointTerms> leastCertainFirst(const float* bounds, 
   return order;
 }
 
-/// The sign of f as the sum of the estimates `value` and of their bounds `bound` decide it: +1,
-/// -1, or 0.
-int signOfSums(float value, float bound) {
-  if (value > bound) return 1;
-  if (value < -bound) return -1;
-  return 0;
-}
-
 }  // namespace
 
 int PointField::refineFinely(const float* x, const std::uint8_t* order, float* values,
@@ -145,15 +139,10 @@ int PointField::refineFinely(const float* x, const std::uint8_t* order, float* v
 }
 
 int PointField::signWithFineBlocks(const float* x) const {
-  float values[kMaxPointTerms], bounds[kMaxPointTerms];
+  float values[kMaxPointTerms], bounds[kMaxPointTerms], value = 0, bound = 0;
   if (!estimateTerms(x, values, bounds)) return 0;
-  const int grids = signOf(values, bounds);
+  const int grids = signOf(values, bounds, value, bound);
   if (grids != 0 || fineBlocks_ == 0) return grids;
-  float value = 0, bound = 0;
-  for (std::size_t g = 0; g < grids_.size(); ++g) {
-    value += values[g];
-    bound += bounds[g];
-  }
   const auto order = leastCertainFirst(bounds, grids_.size());
   return refineFinely(x, order.data(), values, bounds, value, bound);
 }
@@ -565,11 +554,9 @@ bool Model::inCollisionByField(const float* x) const {
   std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
     float value = 0, bound = 0;
-    for (std::size_t g = 0; g < terms; ++g) {
-      value += values[g];
-      bound += bounds[g];
+    if (const int sign = field.signOf(values.data(), bounds.data(), value, bound); sign != 0) {
+      return sign > 0;
     }
-    if (const int sign = signOfSums(value, bound); sign != 0) return sign > 0;
     auto order = leastCertainFirst(bounds.data(), terms);
     if (field.fineBlockCount() > 0) {
       const int sign =
@@ -583,7 +570,7 @@ bool Model::inCollisionByField(const float* x) const {
       const std::size_t g = order[k];
       value += detail::activeKernelSums().one(termView(g), x + 3 * g) - values[g];
       bound -= bounds[g] - field.roundingFloor();
-      if (const int sign = signOfSums(value, bound); sign != 0) return sign > 0;
+      if (const int sign = PointField::signOfSums(value, bound); sign != 0) return sign > 0;
     }
   }
   return scoreInputFloat(x) > 0;

@@ -12,9 +12,10 @@
 // Fastron's query").
 
 #include <Eigen/Core>
-#include <memory>
 
 #include "fastron/core/export.h"
+#include "fastron/core/feature_map.h"
+#include "fastron/core/kernel.h"
 #include "fastron/core/model.h"
 
 namespace FASTRON_API fastron {
@@ -22,9 +23,14 @@ namespace FASTRON_API fastron {
 /// Immutable once built: queried from any number of threads (each query keeps its own array).
 class OriginalFastronQuery {
  public:
-  /// Copies the support features and weights of `model`. Throws InvalidArgument unless the
-  /// model has the original's kernel: rational quadratic, one term over the whole vector.
+  /// Copies the feature map, support features and weights of `model`. Throws InvalidArgument
+  /// unless accepts(model.kernel()).
   explicit OriginalFastronQuery(const Model& model);
+
+  /// Whether `kernel` is the original's: rational quadratic, one term over the whole vector.
+  static bool accepts(const Kernel& kernel) {
+    return kernel.type == KernelType::RationalQuadratic && kernel.block == 0;
+  }
 
   /// The original's score of feature vector x (featureDim values): (gamma / 2)^2 f(x).
   double scoreFeatures(const double* x) const;
@@ -33,8 +39,8 @@ class OriginalFastronQuery {
   bool inCollision(const double* q) const;
 
  private:
-  std::shared_ptr<const Model> model_;  // its feature map
-  Eigen::MatrixXd support_;             // one support point per row, stored column by column
+  FeatureMap features_;
+  Eigen::MatrixXd support_;  // one support point per row, stored column by column
   Eigen::ArrayXd alpha_;
   double twoOverGamma_ = 0;
 };

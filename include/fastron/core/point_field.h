@@ -104,9 +104,9 @@ class PointField {
   /// +1 (collides) or -1 (free) when the grids alone decide the sign of f(x), 0 when they do
   /// not (Model::inCollision then refines the least certain terms).
   int sign(const float* x) const {
-    float values[kMaxPointTerms], bounds[kMaxPointTerms];
+    float values[kMaxPointTerms], bounds[kMaxPointTerms], value = 0, bound = 0;
     if (!estimateTerms(x, values, bounds)) return 0;
-    return signOf(values, bounds);
+    return signOf(values, bounds, value, bound);
   }
 
   /// +1, -1 or 0 as `sign`, from the grids and, where they do not decide, the fine blocks of
@@ -114,13 +114,20 @@ class PointField {
   int signWithFineBlocks(const float* x) const;
 
   /// +1, -1 or 0 as the estimates `values` and their `bounds` (one per grid) decide the sign of
-  /// f.
-  int signOf(const float* values, const float* bounds) const {
-    float value = 0, bound = 0;
+  /// f, leaving their sums in `value` and `bound` (what a refinement goes on from).
+  int signOf(const float* values, const float* bounds, float& value, float& bound) const {
+    value = 0;
+    bound = 0;
     for (std::size_t g = 0; g < grids_.size(); ++g) {
       value += values[g];
       bound += bounds[g];
     }
+    return signOfSums(value, bound);
+  }
+
+  /// +1, -1 or 0 as the sum of the estimates `value` and of their bounds `bound` decide the sign
+  /// of f.
+  static int signOfSums(float value, float bound) {
     if (value > bound) return 1;
     if (value < -bound) return -1;
     return 0;
