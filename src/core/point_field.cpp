@@ -50,13 +50,13 @@ PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spac
     const std::size_t cells = std::size_t{grid.cells[0]} * grid.cells[1] * grid.cells[2];
     const std::size_t nodes =
         std::size_t{grid.cells[0] + 1} * (grid.cells[1] + 1) * (grid.cells[2] + 1);
-    if (cells == 0 || grid.nodes.size() != nodes || grid.bounds.size() != cells) {
+    if (cells == 0 || grid.nodes.size() != nodes || grid.cellTable.size() != cells) {
       throw InvalidArgument("point field grid: " + std::to_string(grid.nodes.size()) +
-                            " nodes and " + std::to_string(grid.bounds.size()) +
-                            " bounds do not fit its cells");
+                            " nodes and " + std::to_string(grid.cellTable.size()) +
+                            " cell records do not fit its cells");
     }
-    const std::size_t blocks = grid.fineBounds.size() / (r * r * r);
-    bool fits = r >= 1 && grid.fineBounds.size() == blocks * r * r * r &&
+    const std::size_t blocks = grid.fineCells.size() / (r * r * r);
+    bool fits = r >= 1 && grid.fineCells.size() == blocks * r * r * r &&
                 grid.fineNodes.size() == blocks * (r + 1) * (r + 1) * (r + 1) &&
                 (grid.fineBlock.empty() || grid.fineBlock.size() == cells);
     for (const std::uint32_t block : grid.fineBlock) fits = fits && block <= blocks;
@@ -74,8 +74,8 @@ std::size_t PointField::nodeCount() const {
 std::size_t PointField::memoryBytes() const {
   std::size_t n = 0;
   for (const Grid& grid : grids_) {
-    n += (grid.nodes.size() + grid.bounds.size() + grid.fineNodes.size() + grid.fineBounds.size()) *
-             sizeof(float) +
+    n += (grid.nodes.size() + grid.fineNodes.size()) * sizeof(float) +
+         (grid.cellTable.size() + grid.fineCells.size()) * sizeof(PointField::Cell) +
          grid.fineBlock.size() * sizeof(std::uint32_t);
   }
   return n;
@@ -86,7 +86,9 @@ bool PointField::estimateTerms(const float* x, float* values, float* bounds) con
   // reads about five lines per term from grids of megabytes.
   const std::size_t terms = grids_.size();
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): the first loop fills what is read
-  std::array<const float*, kMaxPointTerms> corners, cellBounds;
+  std::array<const float*, kMaxPointTerms> corners;
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): the same
+  std::array<const Cell*, kMaxPointTerms> cellOf;
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): the same
   std::array<std::array<float, 3>, kMaxPointTerms> within;
   for (std::size_t g = 0; g < terms; ++g) {
@@ -96,15 +98,14 @@ bool PointField::estimateTerms(const float* x, float* values, float* bounds) con
     const std::size_t nx = grid.cells[0] + 1, nxy = nx * (grid.cells[1] + 1);
     const float* c = grid.nodes.data() + i[0] + nx * i[1] + nxy * i[2];
     corners[g] = c;
-    cellBounds[g] = grid.bounds.data() + cellIndex(grid, i);
-    for (const float* line : {c, c + nx, c + nxy, c + nxy + nx, cellBounds[g]}) {
-      __builtin_prefetch(line);
-    }
+    cellOf[g] = grid.cellTable.data() + cellIndex(grid, i);
+    for (const float* line : {c, c + nx, c + nxy, c + nxy + nx}) __builtin_prefetch(line);
+    __builtin_prefetch(cellOf[g]);
   }
   for (std::size_t g = 0; g < terms; ++g) {
     const std::size_t nx = grids_[g].cells[0] + 1, nxy = nx * (grids_[g].cells[1] + 1);
-    values[g] = trilinear(corners[g], nx, nxy, within[g].data());
-    bounds[g] = *cellBounds[g];
+    values[g] = estimate(corners[g], nx, nxy, *cellOf[g], within[g].data());
+    bounds[g] = cellOf[g]->bound;
   }
   return true;
 }
@@ -164,9 +165,10 @@ bool PointField::estimateFine(std::size_t g, const float* y, float& value, float
     ft[a] = u - static_cast<float>(at[a]);
   }
   const std::size_t b = block - 1;
-  value = trilinear(grid.fineNodes.data() + b * n * n * n + at[0] + n * at[1] + n * n * at[2], n,
-                    n * n, ft);
-  bound = grid.fineBounds[b * r * r * r + at[0] + r * (at[1] + r * at[2])];
+  const Cell& cell = grid.fineCells[b * r * r * r + at[0] + r * (at[1] + r * at[2])];
+  value = estimate(grid.fineNodes.data() + b * n * n * n + at[0] + n * at[1] + n * n * at[2], n,
+                   n * n, cell, ft);
+  bound = cell.bound;
   return true;
 }
 
@@ -243,52 +245,124 @@ void maxOverNeighbours(std::vector<float>& values, const std::uint32_t cells[3])
   }
 }
 
-/// Per cell of a block of nodes (cells[a] + 1 per axis, x fastest), raises errors[cell] to the
-/// error bound of trilinear interpolation from each axis's curvature, (|d2x| + |d2y| + |d2z|) / 8
-/// with d2a the largest second difference along axis a at the cell's corners (h^2 F_aa: the
-/// error along an edge is h^2 |F_aa| / 8). The centre's error sees only the curvatures' sum, which
-/// cancels where they differ in sign (a saddle on a kernel's flank): there a cell's error reached
-/// 1.36 times its bound (docs/log/2026-11-30-field-reads-and-bound-slack.md). A corner on the
-/// block's face has no second difference across it; its neighbours along the face give theirs.
-void raiseToAxisCurvature(const float* nodes, const std::uint32_t cells[3], float* errors) {
-  const std::size_t nx = cells[0] + 1, ny = cells[1] + 1, nz = cells[2] + 1;
-  const std::size_t stride[3] = {1, nx, nx * ny}, count[3] = {nx, ny, nz};
-  for (std::size_t z = 0; z < cells[2]; ++z) {
-    for (std::size_t y = 0; y < cells[1]; ++y) {
-      for (std::size_t x = 0; x < cells[0]; ++x) {
-        float sum = 0;
+/// The second differences along each axis (h^2 F_aa) at every node of a block of nodes
+/// (cells[b] + 1 per axis, at least 3, x fastest), axis after axis; a node on the block's face
+/// across an axis, which has no node beyond it, takes its inward neighbour's.
+std::vector<float> secondDifferences(const float* nodes, const std::uint32_t cells[3]) {
+  const std::size_t count[3] = {cells[0] + std::size_t{1}, cells[1] + std::size_t{1},
+                                cells[2] + std::size_t{1}};
+  const std::size_t stride[3] = {1, count[0], count[0] * count[1]};
+  const std::size_t n = stride[2] * count[2];
+  std::vector<float> out(3 * n);
+  for (std::size_t z = 0, i = 0; z < count[2]; ++z) {
+    for (std::size_t y = 0; y < count[1]; ++y) {
+      for (std::size_t x = 0; x < count[0]; ++x, ++i) {
+        const std::size_t at[3] = {x, y, z};
         for (int a = 0; a < 3; ++a) {
-          float largest = 0;
-          for (std::size_t corner = 0; corner < 8; ++corner) {
-            const std::size_t at[3] = {x + (corner & 1), y + ((corner >> 1) & 1),
-                                       z + ((corner >> 2) & 1)};
-            if (at[a] == 0 || at[a] + 1 == count[a]) continue;
-            const float* n = nodes + at[0] + nx * at[1] + nx * ny * at[2];
-            largest = std::max(largest, std::abs(n[stride[a]] - 2 * n[0] +
-                                                 n[-static_cast<std::ptrdiff_t>(stride[a])]));
-          }
-          sum += largest;
+          const std::size_t s = stride[a];
+          const std::size_t centre = at[a] == 0 ? i + s : at[a] + 1 == count[a] ? i - s : i;
+          out[a * n + i] = nodes[centre + s] - 2 * nodes[centre] + nodes[centre - s];
         }
-        float& error = errors[x + cells[0] * (y + std::size_t{cells[1]} * z)];
-        error = std::max(error, sum * 0.125f);
       }
     }
   }
+  return out;
 }
 
-/// Fills the nodes of `grid` with F_g and each cell's bound: errorFactor x the largest error of
-/// trilinear interpolation at the centre of the cell or of a neighbour (|F_g(centre) - the mean
-/// of its corners|, or the axes' curvature bound where larger: raiseToAxisCurvature), plus a
-/// floor for float rounding. The centre alone is not enough: where the curvature changes sign
-/// inside a cell (F = x^3 about its centre) the centre's error vanishes and others' do not; the
-/// neighbours' centres see the curvature around it. Slabs of z go to this thread and the helper.
+/// Stores the curvatures c (h^2 F_aa / 2 per axis) in `cell` as 8-bit values of one power of
+/// two, the largest within 127 of it; returns what their rounding may add to the estimate's
+/// error (the difference per axis times t (1 - t), at most 1/4).
+float storeCurvatures(const float c[3], PointField::Cell& cell) {
+  const float largest = std::max({std::abs(c[0]), std::abs(c[1]), std::abs(c[2])});
+  int exponent = 0;
+  if (largest > 0) {
+    std::frexp(largest / 127, &exponent);  // largest / 127 < 2^exponent
+  }
+  cell.exponent = static_cast<std::int8_t>(std::clamp(exponent, -126, 127));
+  const float scale = cell.scale();
+  float rounding = 0;
+  for (int a = 0; a < 3; ++a) {
+    const float units = std::clamp(std::round(c[a] / scale), -127.0f, 127.0f);
+    cell.curvature[a] = static_cast<std::int8_t>(units);
+    rounding += std::abs(c[a] - units * scale);
+  }
+  return rounding * 0.25f;
+}
+
+/// Fills the curvature correction of cell (x, y, z) of a block of nodes (cells[b] + 1 per axis):
+/// per axis a, half the mean of the second differences along a at its 8 corners
+/// (storeCurvatures). Returns the bound on what the correction leaves of the interpolation's error
+/// where F_aa varies within the cell: (largest - smallest) / 16 of the corners' second
+/// differences, summed over the axes, plus what their storage rounds off. Along an edge, linear
+/// interpolation less c t (1 - t) errs by (h^2 F_aa / 2 - c) t (1 - t); where h^2 F_aa varies
+/// linearly across the cell by D, it differs from the corners' mean by at most D / 2 where
+/// t (1 - t) is 1/4. (Where it does not vary, what is left is of fourth order, and the centre's
+/// measure covers it.) On the models of docs/performance.md the largest error reached 0.63 of its
+/// bound with this measure and 1.35 times it without.
+float correctCurvature(const float* differences, const std::uint32_t cells[3], std::size_t x,
+                       std::size_t y, std::size_t z, PointField::Cell& cell) {
+  const std::size_t nx = cells[0] + 1, nxy = nx * (cells[1] + 1), n = nxy * (cells[2] + 1);
+  const std::size_t first = x + nx * y + nxy * z;
+  const std::size_t corners[8] = {
+      first,       first + 1,       first + nx,       first + nx + 1,
+      first + nxy, first + nxy + 1, first + nxy + nx, first + nxy + nx + 1};
+  float spread = 0, curvature[3];
+  for (int a = 0; a < 3; ++a) {
+    float sum = 0, low = std::numeric_limits<float>::max(), high = -low;
+    for (const std::size_t corner : corners) {
+      const float d = differences[a * n + corner];
+      sum += d;
+      low = std::min(low, d);
+      high = std::max(high, d);
+    }
+    curvature[a] = sum * (0.5f / 8);
+    spread += high - low;
+  }
+  return spread * 0.0625f + storeCurvatures(curvature, cell);
+}
+
+/// The bounds of a block's cells (cells[b] per axis) from the errors measured in each
+/// (Cell::bound on entry): errorFactor x the largest of the cell's and its neighbours' (3 x 3 x 3,
+/// clipped at the block's faces), plus the rounding floor.
+void boundCells(std::vector<PointField::Cell>::iterator first, const std::uint32_t cells[3],
+                double errorFactor, float roundingFloor) {
+  std::vector<float> errors(std::size_t{cells[0]} * cells[1] * cells[2]);
+  for (std::size_t k = 0; k < errors.size(); ++k)
+    errors[k] = first[static_cast<std::ptrdiff_t>(k)].bound;
+  maxOverNeighbours(errors, cells);
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    first[static_cast<std::ptrdiff_t>(k)].bound =
+        static_cast<float>(errorFactor) * errors[k] + roundingFloor;
+  }
+}
+
+/// The error measured in cell (x, y, z) of a block of nodes (cells[b] + 1 per axis, x fastest)
+/// with their secondDifferences, whose centre's F_g is `centre`: the larger of the estimate's
+/// error there and what correctCurvature (which fills the cell's correction) says the correction
+/// leaves.
+float measureCell(const float* nodes, const float* differences, const std::uint32_t cells[3],
+                  std::size_t x, std::size_t y, std::size_t z, float centre,
+                  PointField::Cell& cell) {
+  const float spread = correctCurvature(differences, cells, x, y, z, cell);
+  const std::size_t nx = cells[0] + 1, nxy = nx * (cells[1] + 1);
+  constexpr float kMiddle[3] = {0.5f, 0.5f, 0.5f};
+  const float estimate = PointField::estimate(nodes + x + nx * y + nxy * z, nx, nxy, cell, kMiddle);
+  return std::max(std::abs(centre - estimate), spread);
+}
+
+/// Fills the nodes of `grid` with F_g and each cell's record: its curvature correction
+/// (correctCurvature) and its bound, errorFactor x the largest error measured (measureCell) at
+/// the cell or a neighbour, plus a floor for float rounding. The centre alone is not enough: where
+/// the curvature changes sign inside a cell (F = x^3 about its centre) the centre's error
+/// vanishes and others' do not; the spread of the corners' curvatures and the neighbours' centres
+/// see it. Slabs of z go to this thread and the helper.
 void tabulate(PointField::Grid& grid, const detail::SupportView& view,
               const PointFieldOptions& options, float roundingFloor) {
-  const double spacing = options.spacing, errorFactor = options.errorFactor;
+  const double spacing = options.spacing;
   const std::size_t cx = grid.cells[0], cy = grid.cells[1], cz = grid.cells[2];
   const std::size_t nx = cx + 1, nxy = nx * (cy + 1);
   grid.nodes.assign(nxy * (cz + 1), 0.0f);
-  grid.bounds.assign(cx * cy * cz, 0.0f);
+  grid.cellTable.assign(cx * cy * cz, {});
   const auto h = static_cast<float>(spacing);
   const auto position = [&](int a, std::size_t i, float shift) {
     return grid.origin[a] + (static_cast<float>(i) + shift) * h;
@@ -299,36 +373,35 @@ void tabulate(PointField::Grid& grid, const detail::SupportView& view,
                     grid.nodes.data() + nxy * z + nx * y);
     }
   };
+  std::vector<float> differences;  // of every node, once they are all tabulated
   auto cellSlab = [&](std::size_t z) {
     std::vector<float> centres(cx);  // per slab: the two threads run slabs at once
     for (std::size_t y = 0; y < cy; ++y) {
       fieldAlongRow(view, {position(0, 0, 0.5f), position(1, y, 0.5f), position(2, z, 0.5f)}, h, cx,
                     centres.data());
       for (std::size_t x = 0; x < cx; ++x) {
-        const float* c = grid.nodes.data() + x + nx * y + nxy * z;
-        const float corners = (c[0] + c[1] + c[nx] + c[nx + 1] + c[nxy] + c[nxy + 1] + c[nxy + nx] +
-                               c[nxy + nx + 1]) *
-                              0.125f;
-        grid.bounds[x + cx * (y + cy * z)] = std::abs(centres[x] - corners);
+        PointField::Cell& cell = grid.cellTable[x + cx * (y + cy * z)];
+        cell.bound = measureCell(grid.nodes.data(), differences.data(), grid.cells, x, y, z,
+                                 centres[x], cell);
       }
     }
   };
   {
     detail::HelperSession helper(options.threads != 1);
     helper.run(cz + 1, nodeSlab);
+    differences = secondDifferences(grid.nodes.data(), grid.cells);
     helper.run(cz, cellSlab);
   }
-  raiseToAxisCurvature(grid.nodes.data(), grid.cells, grid.bounds.data());
-  maxOverNeighbours(grid.bounds, grid.cells);
-  for (float& bound : grid.bounds) bound = static_cast<float>(errorFactor) * bound + roundingFloor;
+  boundCells(grid.cellTable.begin(), grid.cells, options.errorFactor, roundingFloor);
 }
 
-/// Fills the fine block over `cell` of `grid`: nodes ((r + 1)^3) and bounds (r^3) at spacing
-/// spacing / r, the bounds measured as tabulate measures the grid's (the neighbours within the
+/// Fills the fine block over `cell` of `grid`: nodes ((r + 1)^3) and cells (r^3) at spacing
+/// spacing / r, measured and bounded as tabulate does the grid's (the neighbours within the
 /// block).
 void tabulateFineBlock(const PointField::Grid& grid, std::size_t cell,
                        const detail::SupportView& term, const PointFieldOptions& options,
-                       float roundingFloor, float* nodes, float* bounds) {
+                       float roundingFloor, float* nodes,
+                       std::vector<PointField::Cell>::iterator cells) {
   const std::size_t r = options.refinement, n = r + 1;
   const std::size_t cx = grid.cells[0], cy = grid.cells[1];
   const std::size_t index[3] = {cell % cx, (cell / cx) % cy, cell / (cx * cy)};
@@ -352,26 +425,19 @@ void tabulateFineBlock(const PointField::Grid& grid, std::size_t cell,
   fieldAtPoints(term, points, values.data());
   std::copy_n(values.begin(), n * n * n, nodes);
   const float* centres = values.data() + n * n * n;
-  std::vector<float> errors(r * r * r);
+  const auto fine = static_cast<std::uint32_t>(r);
+  const std::uint32_t blockCells[3] = {fine, fine, fine};
+  const std::vector<float> differences = secondDifferences(nodes, blockCells);
   for (std::size_t z = 0; z < r; ++z) {
     for (std::size_t y = 0; y < r; ++y) {
       for (std::size_t x = 0; x < r; ++x) {
-        const float* c = nodes + x + n * y + n * n * z;
-        const float corners = (c[0] + c[1] + c[n] + c[n + 1] + c[n * n] + c[n * n + 1] +
-                               c[n * n + n] + c[n * n + n + 1]) *
-                              0.125f;
         const std::size_t k = x + r * (y + r * z);
-        errors[k] = std::abs(centres[k] - corners);
+        PointField::Cell& c = cells[static_cast<std::ptrdiff_t>(k)];
+        c.bound = measureCell(nodes, differences.data(), blockCells, x, y, z, centres[k], c);
       }
     }
   }
-  const auto fine = static_cast<std::uint32_t>(r);
-  const std::uint32_t blockCells[3] = {fine, fine, fine};
-  raiseToAxisCurvature(nodes, blockCells, errors.data());
-  maxOverNeighbours(errors, blockCells);
-  for (std::size_t k = 0; k < errors.size(); ++k) {
-    bounds[k] = static_cast<float>(options.errorFactor) * errors[k] + roundingFloor;
-  }
+  boundCells(cells, blockCells, options.errorFactor, roundingFloor);
 }
 
 /// Per grid and cell, how much the cell's bound left the samples (rows of `features`) undecided:
@@ -382,7 +448,7 @@ std::vector<std::vector<float>> undecidedWeight(const std::vector<PointField::Gr
                                                 std::size_t& undecided) {
   const std::size_t terms = grids.size();
   std::vector<std::vector<float>> weight(terms);
-  for (std::size_t g = 0; g < terms; ++g) weight[g].assign(grids[g].bounds.size(), 0.0f);
+  for (std::size_t g = 0; g < terms; ++g) weight[g].assign(grids[g].cellTable.size(), 0.0f);
   std::array<float, 3 * kMaxPointTerms> x{};
   std::array<float, kMaxPointTerms> values{}, bounds{};
   std::array<std::size_t, kMaxPointTerms> cells{};
@@ -430,11 +496,11 @@ void addFineBlocks(std::vector<PointField::Grid>& grids,
   };
   std::vector<Cell> cells;
   for (std::size_t g = 0; g < grids.size(); ++g) {
-    const auto& bounds = grids[g].bounds;
-    for (std::size_t c = 0; c < bounds.size(); ++c) {
+    const auto& table = grids[g].cellTable;
+    for (std::size_t c = 0; c < table.size(); ++c) {
       // A cell whose bound is the rounding floor's is as certain as an exact sum.
-      if (bounds[c] > 2 * roundingFloor) {
-        cells.push_back({weight[g][c], bounds[c], static_cast<std::uint32_t>(g),
+      if (table[c].bound > 2 * roundingFloor) {
+        cells.push_back({weight[g][c], table[c].bound, static_cast<std::uint32_t>(g),
                          static_cast<std::uint32_t>(c)});
       }
     }
@@ -454,9 +520,9 @@ void addFineBlocks(std::vector<PointField::Grid>& grids,
     first[g + 1] += first[g];
     const std::size_t blocks = first[g + 1] - first[g];
     if (blocks == 0) continue;
-    grids[g].fineBlock.assign(grids[g].bounds.size(), 0);
+    grids[g].fineBlock.assign(grids[g].cellTable.size(), 0);
     grids[g].fineNodes.resize(blocks * n * n * n);
-    grids[g].fineBounds.resize(blocks * r * r * r);
+    grids[g].fineCells.resize(blocks * r * r * r);
   }
   for (std::size_t c = 0; c < cells.size(); ++c) {
     grids[cells[c].grid].fineBlock[cells[c].cell] =
@@ -469,7 +535,7 @@ void addFineBlocks(std::vector<PointField::Grid>& grids,
       const std::size_t b = c - first[cells[c].grid];
       tabulateFineBlock(grid, cells[c].cell, terms[cells[c].grid], options, roundingFloor,
                         grid.fineNodes.data() + b * n * n * n,
-                        grid.fineBounds.data() + b * r * r * r);
+                        grid.fineCells.begin() + static_cast<std::ptrdiff_t>(b * r * r * r));
     }
   };
   detail::HelperSession helper(options.threads != 1);

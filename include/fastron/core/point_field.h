@@ -6,10 +6,14 @@
 //   f(x) = p sum_g F_g(x_g),   F_g(y) = sum_i w_i k(|y - s_ig|^2),   p = Kernel::pointWeight,
 // where x_g is the position of control point g: each F_g is a function of a point in 3-D. A
 // PointField samples every F_g at the nodes of a regular grid over the box that point g reaches,
-// and estimates F_g by trilinear interpolation: 8 reads per point instead of |S| kernel terms.
-// Each cell keeps a bound on its interpolation error: the larger of the error measured at build
-// time at its centre and the classical bound from each axis's curvature (second differences of
-// the nodes at its corners), the largest of the cell's and its neighbours', times a safety
+// and estimates F_g by trilinear interpolation corrected for curvature: 8 reads and a cell's
+// record per point instead of |S| kernel terms. Trilinear interpolation errs by about
+// h^2 F_aa t_a (1 - t_a) / 2 along each axis a (h the spacing, t_a the place in the cell); each
+// cell keeps that term with F_aa from the second differences of the nodes at its corners and
+// subtracts it, which leaves about a quarter of the error on the models measured
+// (docs/performance.md). Each cell also keeps a bound on what is left: the larger of the error
+// measured at build time at its centre and the spread of its corners' second differences (what
+// the correction cannot follow), the largest of the cell's and its neighbours', times a safety
 // factor, plus a floor for float rounding. Where the estimate of f lies beyond the summed
 // bounds the sign is decided; where not, Model::inCollision replaces the least certain terms by
 // sharper estimates, one at a time: first from the fine blocks of the least certain cells (the
@@ -18,6 +22,7 @@
 // with a field answers as the full sum does: the tests bisect to the decision boundary of seeded
 // models to check it.
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,30 +44,32 @@ struct PointFieldOptions {
   /// reaches; queries beyond it (widened by one cell) are answered by the full sum.
   std::size_t samples = 20000;
   std::uint64_t seed = 1;
-  /// A cell's measured error (its centre's, or its axes' curvature bound if larger) is
-  /// multiplied by this before it bounds the cell: > 1, because the measures are samples, not a
-  /// proof. On 20000 uniform configurations of four models of three robots (160000 or more term
-  /// estimates each) the largest error reached 0.66 of its bound at 1.5; 2 with the centre's
-  /// error alone let one reach 1.36 times its bound, and decided no more queries
-  /// (docs/log/2026-11-30-field-reads-and-bound-slack.md).
+  /// A cell's measured error (its centre's, or the spread of its corners' curvatures if larger)
+  /// is multiplied by this before it bounds the cell: > 1, because the measures are samples, not
+  /// a proof. On 20000 uniform configurations of four models of three robots (3000 of them
+  /// checked term by term, 30000 or more estimates each) the largest error reached 0.62 of its
+  /// bound at 1.5; without the spread it reached 1.35 times its bound
+  /// (docs/log/2026-11-30-curvature-corrected-grids.md).
   double errorFactor = 1.5;
-  /// The most grid nodes over every point's grid (memory: 8 bytes per node).
+  /// The most grid nodes over every point's grid (memory: about 12 bytes per node, its value and
+  /// its cell's record).
   std::size_t maxNodes = std::size_t{1} << 25;
   /// Fine cells per edge of a coarse cell in a fine block (1: none). Fine blocks tabulate F_g
   /// again at spacing / refinement over the cells whose bounds left most of the sampled
   /// configurations undecided (then those of largest bound), until maxFineNodes: the bound of
   /// trilinear interpolation shrinks with the square of the spacing, and the queries that the
   /// cells leave undecided lie mostly in those cells (near the support points, where F_g curves
-  /// most). On the mobile arm's box model (|S| 4558) they halved the share of queries left to
-  /// exact sums and answered 1.5x faster, built in 1.1 s instead of 0.45 s; on models whose
-  /// grids decide 90% alone they change little (docs/performance.md).
+  /// most). Before the grids' curvature correction, on the mobile arm's box model (|S| 4558)
+  /// they halved the share of queries left to exact sums and answered 1.5x faster; since it, the
+  /// grids alone decide 86-89% on the mobile arm's models, and blocks forced on them (fineFrom
+  /// 0) answered 0.95-1.15x as fast (docs/performance.md).
   std::uint32_t refinement = 2;
-  /// The most nodes over every fine block ((refinement + 1)^3 per block, with its bounds about
-  /// 5 bytes per node).
+  /// The most nodes over every fine block ((refinement + 1)^3 per block, with its cells' records
+  /// about 7 bytes per node at refinement 2).
   std::size_t maxFineNodes = std::size_t{1} << 19;
   /// Fine blocks only for a field whose grids leave more than this share of the sampled
-  /// configurations undecided: where they decide 90% or more (the gripper arm's and the mesh
-  /// Panda's models, |S| 1088-2050; the demo's, |S| 330), fine blocks answered no faster and
+  /// configurations undecided: where they decide 85% or more (the validation robots' and the mesh
+  /// Panda's models, |S| 1088-4558; the demo's, |S| 330), fine blocks answered about as fast and
   /// took 1.5-5 times as long to build.
   double fineFrom = 0.15;
   /// 1: the calling thread builds the grids alone (a background update, beside a planner on the
@@ -77,20 +84,38 @@ void validate(const PointFieldOptions& options);
 /// Immutable once built: queried from any number of threads. Built by Model::withPointField.
 class PointField {
  public:
-  /// One point term's grid: nodes (cells + 1 per axis, x fastest) and a bound per cell.
+  /// What a query reads of a cell besides its corners: 8 bytes, so that a grid's records take
+  /// twice its nodes' memory, not four times (16-byte records with float curvatures made the
+  /// grids' part of a query 1.1-1.7 times slower, from cache misses).
+  struct Cell {
+    /// errorFactor x the largest error measured of the cell and its neighbours (which includes
+    /// what the curvatures' rounding to 8 bits may cost), plus the rounding floor.
+    float bound = 0;
+    /// Per axis a, h^2 F_aa / 2 (from the mean second difference at the cell's corners) is
+    /// curvature[a] x 2^exponent: the estimate subtracts it times t_a (1 - t_a) from the
+    /// trilinear interpolation.
+    std::int8_t curvature[3] = {0, 0, 0};
+    std::int8_t exponent = 0;
+
+    /// 2^exponent (exponent within [-126, 127]: a normal float).
+    float scale() const {
+      return std::bit_cast<float>(static_cast<std::uint32_t>(exponent + 127) << 23);
+    }
+  };
+
+  /// One point term's grid: nodes (cells + 1 per axis, x fastest) and a record per cell.
   struct Grid {
     float origin[3] = {0, 0, 0};
     float inverseSpacing = 1;
     std::uint32_t cells[3] = {0, 0, 0};
-    std::vector<float> nodes;  ///< F_g at the nodes
-    /// Per cell: errorFactor x the largest measured interpolation error of the cell and its
-    /// neighbours, plus the rounding floor.
-    std::vector<float> bounds;
+    std::vector<float> nodes;     ///< F_g at the nodes
+    std::vector<Cell> cellTable;  ///< per cell, x fastest
     /// Per cell: 0, or 1 + the index of its fine block.
     std::vector<std::uint32_t> fineBlock;
-    /// The fine blocks' nodes ((refinement + 1)^3 per block, x fastest) and their cells' bounds
+    /// The fine blocks' nodes ((refinement + 1)^3 per block, x fastest) and their cells
     /// (refinement^3 per block), block after block.
-    std::vector<float> fineNodes, fineBounds;
+    std::vector<float> fineNodes;
+    std::vector<Cell> fineCells;
   };
 
   /// `refinement`: fine cells per coarse cell edge in the grids' fine blocks.
@@ -155,7 +180,7 @@ class PointField {
     }
     return true;
   }
-  /// The index of cell i in Grid::bounds.
+  /// The index of cell i in Grid::cellTable.
   static std::size_t cellIndex(const Grid& grid, const std::uint32_t i[3]) {
     return i[0] + grid.cells[0] * (i[1] + std::size_t{grid.cells[1]} * i[2]);
   }
@@ -168,14 +193,25 @@ class PointField {
         lerp(lerp(c[dz], c[dz + 1], t[0]), lerp(c[dz + dy], c[dz + dy + 1], t[0]), t[1]);
     return lerp(y0, y1, t[2]);
   }
+  /// The estimate at t in `cell` whose corners start at c (as trilinear): the trilinear
+  /// interpolation less the cell's curvature correction.
+  static float estimate(const float* c, std::size_t dy, std::size_t dz, const Cell& cell,
+                        const float t[3]) {
+    float correction = 0;
+    for (int a = 0; a < 3; ++a) {
+      correction += static_cast<float>(cell.curvature[a]) * t[a] * (1.0f - t[a]);
+    }
+    return trilinear(c, dy, dz, t) - correction * cell.scale();
+  }
   /// The grid's estimate of F_g at y and its cell's bound; false outside the grid.
   static bool interpolate(const Grid& grid, const float* y, float& value, float& bound) {
     float t[3];
     std::uint32_t i[3];
     if (!locate(grid, y, i, t)) return false;
     const std::size_t nx = grid.cells[0] + 1, nxy = nx * (grid.cells[1] + 1);
-    value = trilinear(grid.nodes.data() + i[0] + nx * i[1] + nxy * i[2], nx, nxy, t);
-    bound = grid.bounds[cellIndex(grid, i)];
+    const Cell& cell = grid.cellTable[cellIndex(grid, i)];
+    value = estimate(grid.nodes.data() + i[0] + nx * i[1] + nxy * i[2], nx, nxy, cell, t);
+    bound = cell.bound;
     return true;
   }
 
