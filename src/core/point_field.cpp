@@ -61,6 +61,14 @@ PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spac
                 (grid.fineBlock.empty() || grid.fineBlock.size() == cells);
     for (const std::uint32_t block : grid.fineBlock) fits = fits && block <= blocks;
     if (!fits) throw InvalidArgument("point field grid: its fine blocks do not fit it");
+    for (const auto* table : {&grid.cellTable, &grid.fineCells}) {
+      for (const Cell& cell : *table) {
+        if (cell.exponent < -126) {  // Cell::scale would not be a normal float
+          throw InvalidArgument("point field grid: a cell's curvature exponent " +
+                                std::to_string(cell.exponent) + " is below -126");
+        }
+      }
+    }
     fineBlocks_ += blocks;
   }
 }

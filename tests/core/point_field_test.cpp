@@ -291,7 +291,7 @@ TEST(PointField, RefusesModelsItCannotTabulateAndBadOptions) {
 
 // Fine blocks are tabulated where the grids' bounds left sampled queries undecided, within their
 // budget, and only when the grids leave more than fineFrom of the samples; a field whose blocks
-// do not fit its grids is refused.
+// do not fit its grids, or whose cells' curvatures are out of range, is refused.
 TEST(PointField, FineBlocksWithinTheirBudget) {
   const auto model = pointTermModel(6, 1000, KernelType::RationalQuadratic, 10, 10);
   PointFieldOptions options;
@@ -320,6 +320,14 @@ TEST(PointField, FineBlocksWithinTheirBudget) {
     ADD_FAILURE() << "expected a refusal";
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("fine blocks"), std::string::npos) << e.what();
+  }
+  grids = field.grids();
+  grids[0].cellTable[0].exponent = -127;
+  try {
+    const PointField broken(grids, field.roundingFloor(), field.spacing(), field.refinement());
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("exponent -127"), std::string::npos) << e.what();
   }
 }
 

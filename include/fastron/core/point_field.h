@@ -97,7 +97,7 @@ class PointField {
     std::int8_t curvature[3] = {0, 0, 0};
     std::int8_t exponent = 0;
 
-    /// 2^exponent (exponent within [-126, 127]: a normal float).
+    /// 2^exponent (a normal float: PointField refuses an exponent below -126).
     float scale() const {
       return std::bit_cast<float>(static_cast<std::uint32_t>(exponent + 127) << 23);
     }
@@ -118,7 +118,9 @@ class PointField {
     std::vector<Cell> fineCells;
   };
 
-  /// `refinement`: fine cells per coarse cell edge in the grids' fine blocks.
+  /// `refinement`: fine cells per coarse cell edge in the grids' fine blocks. Throws
+  /// InvalidArgument when a grid's nodes, cells or fine blocks do not fit its size, or a cell's
+  /// curvature exponent is below -126.
   PointField(std::vector<Grid> grids, float roundingFloor, double spacing,
              std::uint32_t refinement);
 
