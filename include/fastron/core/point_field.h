@@ -10,7 +10,7 @@
 // record per point instead of |S| kernel terms. Trilinear interpolation errs by about
 // h^2 F_aa t_a (1 - t_a) / 2 along each axis a (h the spacing, t_a the place in the cell); each
 // cell keeps that term with F_aa from the second differences of the nodes at its corners and
-// subtracts it, which leaves about a quarter of the error on the models measured
+// subtracts it, which leaves a quarter to a fourteenth of the error on the models measured
 // (docs/performance.md). Each cell also keeps a bound on what is left: the larger of the error
 // measured at build time at its centre and the spread of its corners' second differences (what
 // the correction cannot follow), the largest of the cell's and its neighbours', times a safety
@@ -86,7 +86,7 @@ class PointField {
  public:
   /// What a query reads of a cell besides its corners: 8 bytes, so that a grid's records take
   /// twice its nodes' memory, not four times (16-byte records with float curvatures made the
-  /// grids' part of a query 1.1-1.7 times slower, from cache misses).
+  /// grids' part of a query 1.05-1.8 times slower, from cache misses).
   struct Cell {
     /// errorFactor x the largest error measured of the cell and its neighbours (which includes
     /// what the curvatures' rounding to 8 bits may cost), plus the rounding floor.
