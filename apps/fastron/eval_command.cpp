@@ -39,6 +39,9 @@ namespace {
 
 struct EvalOptions {
   std::string model, data, path, out;
+  /// A joint-space model (the original Fastron's kind) timed with the original's query on the
+  /// same configurations, beside this model's fastest answers.
+  std::string original;
   RobotOptions robot;
   SceneOptions scene;
   std::size_t samples = 20000;
@@ -256,11 +259,55 @@ double printPointField(const EvalOptions& o, const Model& model, const Dataset& 
   return query;
 }
 
+/// --original: a joint-space model of one rational-quadratic term, as the original Fastron learns
+/// (e.g. `fastron train --data` on the same configurations). Throws InvalidArgument naming the
+/// file when it is another kind of model.
+Model loadOriginal(const std::string& path) {
+  const std::string wanted =
+      ": --original takes a joint-space model of one rational-quadratic term (the original "
+      "Fastron's: fastron train --data D --features joints), not one of ";
+  if (readModelHeader(path).features != FeatureKind::JointScaling) {
+    throw InvalidArgument(path + wanted + "task-space features");
+  }
+  Model original = loadModel(path);
+  if (!OriginalFastronQuery::accepts(original.kernel())) {
+    throw InvalidArgument(path + wanted + "kernel " +
+                          std::string(toString(original.kernel().type)) + ", " +
+                          describeTerms(original.kernel(), original.featureDim()));
+  }
+  return original;
+}
+
+/// The --original model's accuracy and TPR on `data` and its time per configuration with the
+/// original's query, against `fastest` (this model's fastest answers, `how`). The two models
+/// differ, so their accuracies are printed side by side.
+void printAgainstOriginal(const std::string& path, const Model& original, const Dataset& data,
+                          double fastest, const std::string& how) {
+  const ConfusionCounts c = evaluate(original, data.points, data.labels);
+  const OriginalFastronQuery query(original);
+  const double seconds = experiments::meanSecondsPerCall(
+      data.points, [&](const double* q) { return query.inCollision(q); }, kTimingSeconds);
+  std::cout << "against     " << path << ": " << original.supportCount()
+            << " support points, accuracy " << rate(c.accuracy()) << ", TPR " << rate(c.tpr())
+            << "; " << durationText(seconds)
+            << " per configuration with the original Fastron's query: this model (" << how
+            << ") is " << times(seconds / fastest) << " faster\n";
+}
+
 int runEval(const EvalOptions& o) {
   checkEvalOptions(o);
   std::optional<Robot> robot;
   if (!o.robot.robot.empty()) robot = loadRobotFromOptions(o.robot);
   const Model model = robot ? loadModelFor(o.model, *robot) : loadModel(o.model);
+  std::optional<Model> original;
+  if (!o.original.empty()) {
+    original = loadOriginal(o.original);
+    if (original->dim() != model.dim()) {
+      throw InvalidArgument(o.original + " has dimension " + std::to_string(original->dim()) +
+                            ", but the model " + o.model + " has dimension " +
+                            std::to_string(model.dim()));
+    }
+  }
 
   Dataset data;
   std::shared_ptr<const SceneChecker> exact;
@@ -329,6 +376,10 @@ int runEval(const EvalOptions& o) {
               << " per configuration: " << times(query / *fieldQuery)
               << " faster than the full sum\n";
   }
+  if (original) {
+    printAgainstOriginal(o.original, *original, data, fieldQuery.value_or(query),
+                         fieldQuery ? "its point field" : "its query");
+  }
   if (exact) {
     const double seconds = experiments::meanSecondsPerCheck(data.points, *exact, kTimingSeconds);
     std::cout << std::left << std::setw(12) << "FK+" + exact->name() << durationText(seconds)
@@ -352,6 +403,11 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--data", o->data, "CSV or .npy labelled dataset")->check(CLI::ExistingFile);
   addRobotOptions(*cmd, o->robot, false);
+  cmd->add_option("--original", o->original,
+                  "a joint-space model of the same robot (fastron train --data D --features "
+                  "joints): its accuracy on the same configurations and its time with the "
+                  "original Fastron's query, against this model's")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--path", o->path,
                   "with --scene: the states along this path (CSV as fastron plan --out writes it) "
                   "instead of uniform samples, with the free states' clearance")
