@@ -141,8 +141,11 @@ BENCHMARK(BM_CheckPath)->Arg(0)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchm
 /// Paths to verify on a robot's generated cage problems, with both exact checkers: each problem's
 /// path planned on FCL as found and simplified (free), and its straight line from start to goal
 /// (mostly colliding).
+/// Metres a self-pair table's node may lose to the levers in BM_VerifyPath's third checker.
+constexpr double kSelfPairSlack = 0.007;
+
 struct VerificationPaths {
-  std::shared_ptr<const FclChecker> dense, certified;
+  std::shared_ptr<const FclChecker> dense, certified, tables;
   std::vector<JointPath> paths;
   std::size_t states = 0, invalid = 0;
   bool sameVerdicts = true;  ///< the two checkers agree on every path
@@ -165,6 +168,11 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
         robot, problem.scene, CheckerOptions{.selfCollision = true, .proveMotionsFree = false});
     auto certified =
         std::make_shared<FclChecker>(robot, problem.scene, CheckerOptions{.selfCollision = true});
+    // Tables once per robot (they depend on the robot alone): a copy of the first checker's
+    // geometry would do, but a checker is built from options, so the last one's are timed.
+    auto tables = std::make_shared<FclChecker>(
+        robot, problem.scene,
+        CheckerOptions{.selfCollision = true, .selfPairSlack = kSelfPairSlack});
     const Eigen::VectorXd start = Eigen::Map<const Eigen::VectorXd>(
         problem.start.data(), static_cast<Eigen::Index>(problem.start.size()));
     const Eigen::VectorXd goal = Eigen::Map<const Eigen::VectorXd>(
@@ -178,11 +186,14 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
       if (path.empty()) continue;
       const PathCheck a = checkPathParallel(*dense, path, kOptions.resolution, 1);
       const PathCheck b = checkPathParallel(*certified, path, kOptions.resolution, 1);
+      const PathCheck c = checkPathParallel(*tables, path, kOptions.resolution, 1);
       v.sameVerdicts = v.sameVerdicts && a.invalidWaypoints == b.invalidWaypoints &&
-                       a.invalidEdges == b.invalidEdges;
+                       a.invalidEdges == b.invalidEdges &&
+                       a.invalidWaypoints == c.invalidWaypoints && a.invalidEdges == c.invalidEdges;
     }
     v.dense = dense;
     v.certified = certified;
+    v.tables = tables;
   }
   // Timed on the last problem's scene: its paths only.
   const auto& last = problems.back();
@@ -208,12 +219,15 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
 const std::vector<std::string> kVerifiedRobots{"panda-mesh", "gripper-arm", "mobile-arm", "panda"};
 
 // Verification of paths on generated cage problems (verify_repair's check, one thread): every
-// state checked (certified 0), or the states clearance bounds do not prove free (certified 1).
+// state checked (certified 0), or the states clearance bounds do not prove free (certified 1; 2:
+// with tables of the distance of self pairs of meshes, CheckerOptions::selfPairSlack).
 // `same_verdicts` is 1 when both checks agree on every path of four problems.
 void BM_VerifyPath(benchmark::State& state) {
   const VerificationPaths& v =
       verificationPaths(kVerifiedRobots[static_cast<std::size_t>(state.range(0))]);
-  const FclChecker& checker = state.range(1) == 0 ? *v.dense : *v.certified;
+  const FclChecker& checker = state.range(1) == 0   ? *v.dense
+                              : state.range(1) == 1 ? *v.certified
+                                                    : *v.tables;
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(checkPathParallel(checker, v.paths[i], kOptions.resolution, 1));
@@ -227,6 +241,7 @@ void BM_VerifyPath(benchmark::State& state) {
 }
 BENCHMARK(BM_VerifyPath)
     ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->Args({0, 2})  // the mesh Panda's self pairs of meshes with tables (the others have none)
     ->ArgNames({"robot", "certified"})
     ->Unit(benchmark::kMicrosecond);
 

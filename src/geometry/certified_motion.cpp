@@ -179,6 +179,7 @@ bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exac
                          PlacedBalls& balls, const double* q) {
   balls.place(exact, q);
   for (const ClearancePair& pair : model.pairs) {
+    if (model.tableBound(pair, q) - kMargin > 0) continue;
     if (balls.lowerBound(pair, model.obstacles, kMargin) - kMargin > 0) continue;
     if (exact.touches(pair)) return true;
   }
@@ -239,10 +240,14 @@ class MotionLooks {
     ++placed_;
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
-      const double bound =
-          close(p)
-              ? 0
-              : balls_.lowerBound(pair, model_.obstacles, steps * perStep_[p] + kMargin) - kMargin;
+      // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
+      double bound = model_.tableBound(pair, q_.data()) - kMargin;
+      if (!(bound > 0)) {
+        bound = close(p)
+                    ? 0
+                    : balls_.lowerBound(pair, model_.obstacles, steps * perStep_[p] + kMargin) -
+                          kMargin;
+      }
       bounds[p] = bound > 0 ? bound : 0;
       if (bound > 0) continue;
       if (pair.askDistance && exact_.distance && steps >= kDistanceSteps) {

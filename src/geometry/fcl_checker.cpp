@@ -10,9 +10,11 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/clearance_bounds.h"
@@ -167,6 +169,9 @@ struct FclChecker::Geometry {
   // and each shape's levers relative to the robot's root.
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<Eigen::VectorXd> levers;
+  // With options.selfPairSlack: tables of the distance of self pairs of meshes that one or two
+  // coordinates turn against each other.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
   // Coordinates of prismatic joints with their limits: the levers hold within them.
   std::vector<std::tuple<std::size_t, double, double>> prismatic;
 };
@@ -281,6 +286,13 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     geometry->levers.push_back(shapeLevers(robot_, s, balls->back().balls, robot_.rootLink()));
   }
   geometry->balls = std::move(balls);
+  if (!(std::isfinite(options_.selfPairSlack) && options_.selfPairSlack >= 0)) {
+    throw InvalidArgument("FclChecker: selfPairSlack must be finite and >= 0, not " +
+                          std::to_string(options_.selfPairSlack));
+  }
+  if (options_.selfCollision && options_.proveMotionsFree && options_.selfPairSlack > 0) {
+    geometry->selfTables = selfPairTables(*geometry);
+  }
   geometry->reach = reachBound(robot_, options_.padding);
   proofs_ = !options_.proveMotionsFree ? MotionProofs::None
             : meshes                   ? MotionProofs::Verification
@@ -424,6 +436,40 @@ double FclChecker::cloudDistance(const Cloud& cloud, std::size_t shape,
   }
 }
 
+std::size_t FclChecker::selfPairTableCount() const {
+  return geometry_->selfTables ? geometry_->selfTables->size() : 0;
+}
+
+/// Most nodes of one self-pair table (0.2 MB of floats; each costs an FCL distance to build: the
+/// mesh Panda's four tables at 7 mm of slack took 11 s, at 5 mm three of them needed more).
+constexpr std::size_t kSelfTableNodes = 50000;
+
+std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
+    const Geometry& geometry) const {
+  auto tables = std::make_shared<std::vector<SelfPairTable>>();
+  KinematicsData kinematics = makeKinematicsData(robot_);
+  for (const auto& [a, b] : robot_.selfCollisionPairs({})) {
+    if (geometry.meshes[a] == 0 && geometry.meshes[b] == 0) continue;  // primitives: FCL's distance
+    const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
+    const Eigen::VectorXd levers = shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
+                                   shapeLevers(robot_, b, (*geometry.balls)[b].balls, from);
+    const auto distance = [&](const double* q) {
+      forwardKinematics(robot_, q, kinematics);
+      fcl::DistanceRequestd request;
+      fcl::DistanceResultd result;
+      fcl::distance(geometry.shapes[a].distance.get(), toFcl(shapePose(robot_, kinematics, a)),
+                    geometry.shapes[b].distance.get(), toFcl(shapePose(robot_, kinematics, b)),
+                    request, result);
+      return result.min_distance;
+    };
+    if (auto table = tabulateSelfPair(a, b, levers, robot_.limits(), options_.selfPairSlack,
+                                      kSelfTableNodes, distance)) {
+      tables->push_back(std::move(*table));
+    }
+  }
+  return tables;
+}
+
 void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
   const Geometry& geometry = *geometry_;
   ClearanceModel& model = world.clearance;
@@ -438,12 +484,22 @@ void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
     }
   }
   // Two links move apart only by the joints between them and the link they both hang from.
+  model.selfTables = geometry.selfTables;
   for (const auto& [a, b] : world.movingSelfPairs) {
     const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
-    model.pairs.push_back({a, b, true,
-                           shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
-                               shapeLevers(robot_, b, (*geometry.balls)[b].balls, from),
-                           primitives(robot_.shapes()[a].shape, robot_.shapes()[b].shape)});
+    ClearancePair pair{a, b, true,
+                       shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
+                           shapeLevers(robot_, b, (*geometry.balls)[b].balls, from),
+                       primitives(robot_.shapes()[a].shape, robot_.shapes()[b].shape)};
+    if (geometry.selfTables) {
+      const auto& tables = *geometry.selfTables;
+      const auto same = [&](const SelfPairTable& t) {
+        return (t.shapeA == a && t.shapeB == b) || (t.shapeA == b && t.shapeB == a);
+      };
+      if (const auto found = std::ranges::find_if(tables, same); found != tables.end())
+        pair.table = static_cast<int>(found - tables.begin());
+    }
+    model.pairs.push_back(std::move(pair));
   }
 }
 

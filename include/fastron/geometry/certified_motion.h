@@ -12,11 +12,13 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include "fastron/core/export.h"
 #include "fastron/geometry/clearance_bounds.h"
+#include "fastron/geometry/self_pair_table.h"
 
 namespace FASTRON_API fastron {
 
@@ -30,6 +32,9 @@ struct ClearancePair {
   /// ExactPairCheck::distance may be asked about the pair (the checker's distance is cheap for
   /// it: FCL's between primitives, not a mesh's, which cost 20-50 collision checks).
   bool askDistance = false;
+  /// A self pair's table of distances in ClearanceModel::selfTables, or -1: its bound is read
+  /// before the balls'.
+  int table = -1;
 };
 
 /// A robot against one scene, as the certificate sees it.
@@ -38,6 +43,16 @@ struct ClearanceModel {
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<EnclosingVolume> obstacles;  ///< per obstacle
   std::vector<ClearancePair> pairs;
+  /// The robot's self-pair tables (CheckerOptions::selfPairSlack), shared by every scene's model;
+  /// null for none.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
+
+  /// The bound of pair's table at q (less nothing: the caller takes its margin off), or
+  /// -infinity when the pair has none.
+  double tableBound(const ClearancePair& pair, const double* q) const {
+    if (pair.table < 0) return -std::numeric_limits<double>::infinity();
+    return (*selfTables)[static_cast<std::size_t>(pair.table)].lowerBound(q);
+  }
 };
 
 /// What the certificate asks of an exact checker, about the configuration it last placed.

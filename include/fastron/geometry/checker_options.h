@@ -19,6 +19,13 @@ struct CheckerOptions {
   /// Check whole motions with clearance bounds, skipping the states they prove free
   /// (certified_motion.h; FclChecker): the same answers as a check of every state.
   bool proveMotionsFree = true;
+  /// With selfCollision and proveMotionsFree (FclChecker): each self pair that holds a mesh and
+  /// that one or two joint coordinates alone turn against each other gets a table of the two
+  /// shapes' exact distance over those coordinates (self_pair_table.h), with nodes close enough
+  /// that the levers take at most this much (metres) off a node's distance; the certificate
+  /// reads its bound before the balls'. 0: no tables. Building one costs an FCL mesh distance per
+  /// node (55-400 µs each on the mesh Panda), so this is for checkers that check many states.
+  double selfPairSlack = 0;
 };
 
 /// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it

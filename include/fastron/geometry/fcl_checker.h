@@ -51,6 +51,8 @@ class FclChecker final : public SceneChecker {
   /// and asks FCL only about the pairs they do not keep apart (certifiedStateCheck): with
   /// options.proveMotionsFree, no point clouds and at most 256 robot shape-obstacle pairs.
   bool boundsStateChecks() const;
+  /// Self pairs with a table of their distance (CheckerOptions::selfPairSlack).
+  std::size_t selfPairTableCount() const;
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
@@ -96,6 +98,9 @@ class FclChecker final : public SceneChecker {
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
   /// The shapes no configuration moves, placed in `world`, and their contacts (Obstacles).
   void placeFixedShapes(Obstacles& world) const;
+  /// The tables of CheckerOptions::selfPairSlack for the robot's self pairs of meshes that one or
+  /// two coordinates turn against each other, from `geometry`'s distance shapes and covers.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables(const Geometry& geometry) const;
   /// The pairs that must not touch in `world`, with the bounds that prove them apart.
   void buildClearance(Obstacles& world, const Scene& scene) const;
   /// True when the levers hold along the motion: every prismatic coordinate within its limits.
