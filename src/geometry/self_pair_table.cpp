@@ -31,8 +31,8 @@ std::optional<SelfPairTable> tabulateSelfPair(
     throw InvalidArgument("self-pair table: slack must be finite and > 0, not " +
                           std::to_string(slack));
   }
-  if (static_cast<std::size_t>(levers.size()) != limits.dim() ||
-      !levers.allFinite() || (levers.array() < 0).any()) {
+  if (static_cast<std::size_t>(levers.size()) != limits.dim() || !levers.allFinite() ||
+      (levers.array() < 0).any()) {
     throw InvalidArgument("self-pair table: levers need " + std::to_string(limits.dim()) +
                           " finite values >= 0");
   }

@@ -36,8 +36,8 @@ double smoothDistance(const double* q) {
 TEST(SelfPairTable, BoundsNeverExceedTheDistanceAndMissItByAtMostTheSlack) {
   const JointLimits limits(Eigen::Vector3d(-2, -1, -3), Eigen::Vector3d(2, 1, 3));
   const double slack = 0.004;
-  const auto table = tabulateSelfPair(4, 7, Eigen::Vector3d(0.1, 0, 0.05), limits, slack, 100000,
-                                      smoothDistance);
+  const auto table =
+      tabulateSelfPair(4, 7, Eigen::Vector3d(0.1, 0, 0.05), limits, slack, 100000, smoothDistance);
   ASSERT_TRUE(table.has_value());
   EXPECT_EQ(table->axes, 2U);
   EXPECT_EQ(table->coordinate[0], 0U);
@@ -50,13 +50,12 @@ TEST(SelfPairTable, BoundsNeverExceedTheDistanceAndMissItByAtMostTheSlack) {
     // bound must hold anyway).
     Eigen::Vector3d q;
     for (int c = 0; c < 3; ++c) {
-      q[c] = limits.lower()[c] - 0.5 +
-             (limits.upper()[c] - limits.lower()[c] + 1) * unit(rng);
+      q[c] = limits.lower()[c] - 0.5 + (limits.upper()[c] - limits.lower()[c] + 1) * unit(rng);
     }
     const double bound = table->lowerBound(q.data()), exact = smoothDistance(q.data());
     ASSERT_LE(bound, exact) << "at " << q.transpose();
-    const bool inside = (q.array() >= limits.lower().array()).all() &&
-                        (q.array() <= limits.upper().array()).all();
+    const bool inside =
+        (q.array() >= limits.lower().array()).all() && (q.array() <= limits.upper().array()).all();
     if (inside) worst = std::max(worst, exact - bound);
   }
   // The levers are twice the slopes' bound at the worst node, so the bound may miss by twice the
@@ -134,9 +133,10 @@ TEST(SelfPairTable, MeshPandaChecksWithTablesAnswerAsTheDenseCheck) {
   }
   EXPECT_GT(colliding, 0U);
   EXPECT_LT(colliding, kMotions);
-  std::cout << "mesh Panda with " << tables.selfPairTableCount() << " self-pair tables: "
-            << selfColliding << " of " << kStates << " states in self-contact, " << colliding
-            << " of " << kMotions << " motions colliding\n";
+  std::cout << "mesh Panda with " << tables.selfPairTableCount()
+            << " self-pair tables: " << selfColliding << " of " << kStates
+            << " states in self-contact, " << colliding << " of " << kMotions
+            << " motions colliding\n";
 }
 
 }  // namespace

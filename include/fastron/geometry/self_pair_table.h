@@ -20,12 +20,12 @@ namespace FASTRON_API fastron {
 
 /// Immutable once built: read from any number of threads.
 struct SelfPairTable {
-  std::size_t shapeA = 0, shapeB = 0;           ///< robot shapes (Robot::shapes() indices)
-  std::size_t axes = 0;                         ///< the coordinates tabulated: 1 or 2
-  std::array<std::size_t, 2> coordinate{};      ///< their indices in a configuration
-  std::array<double, 2> lower{}, spacing{};     ///< each axis's first node and node spacing
-  std::array<double, 2> lever{};                ///< how fast the distance can shrink along each
-  std::array<std::size_t, 2> nodes{1, 1};       ///< nodes along each axis
+  std::size_t shapeA = 0, shapeB = 0;        ///< robot shapes (Robot::shapes() indices)
+  std::size_t axes = 0;                      ///< the coordinates tabulated: 1 or 2
+  std::array<std::size_t, 2> coordinate{};   ///< their indices in a configuration
+  std::array<double, 2> lower{}, spacing{};  ///< each axis's first node and node spacing
+  std::array<double, 2> lever{};             ///< how fast the distance can shrink along each
+  std::array<std::size_t, 2> nodes{1, 1};    ///< nodes along each axis
   std::vector<float> distance;  ///< per node, the first axis fastest; rounded down to float
 
   /// A lower bound on the shapes' distance at configuration q: the nearest node's distance less
