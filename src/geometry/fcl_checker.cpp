@@ -448,7 +448,9 @@ std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
     const Geometry& geometry) const {
   auto tables = std::make_shared<std::vector<SelfPairTable>>();
   KinematicsData kinematics = makeKinematicsData(robot_);
-  for (const auto& [a, b] : robot_.selfCollisionPairs({})) {
+  for (const auto& shapes : robot_.selfCollisionPairs({})) {
+    // Named, not structured bindings: clang 14 does not capture those in the lambda below.
+    const std::size_t a = shapes.first, b = shapes.second;
     if (geometry.meshes[a] == 0 && geometry.meshes[b] == 0) continue;  // primitives: FCL's distance
     const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
     const Eigen::VectorXd levers = shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
@@ -485,7 +487,8 @@ void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
   }
   // Two links move apart only by the joints between them and the link they both hang from.
   model.selfTables = geometry.selfTables;
-  for (const auto& [a, b] : world.movingSelfPairs) {
+  for (const auto& shapes : world.movingSelfPairs) {
+    const std::size_t a = shapes.first, b = shapes.second;  // captured below: see selfPairTables
     const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
     ClearancePair pair{a, b, true,
                        shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
