@@ -266,6 +266,8 @@ Model loadOriginal(const std::string& path) {
   const std::string wanted =
       ": --original takes a joint-space model of one rational-quadratic term (the original "
       "Fastron's: fastron train --data D --features joints), not one of ";
+  // The header first: loading a task-space model without its robot would fail with advice about
+  // the robot, not about what --original takes.
   if (readModelHeader(path).features != FeatureKind::JointScaling) {
     throw InvalidArgument(path + wanted + "task-space features");
   }

@@ -179,7 +179,7 @@ bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exac
                          PlacedBalls& balls, const double* q) {
   balls.place(exact, q);
   for (const ClearancePair& pair : model.pairs) {
-    if (model.tableBound(pair, q) - kMargin > 0) continue;
+    if (pair.tableBound(q) - kMargin > 0) continue;
     if (balls.lowerBound(pair, model.obstacles, kMargin) - kMargin > 0) continue;
     if (exact.touches(pair)) return true;
   }
@@ -241,7 +241,7 @@ class MotionLooks {
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
       // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
-      double bound = model_.tableBound(pair, q_.data()) - kMargin;
+      double bound = pair.tableBound(q_.data()) - kMargin;
       if (!(bound > 0)) {
         bound = close(p)
                     ? 0

@@ -270,6 +270,10 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
       }) {
   if (robot_.dof() == 0)
     throw InvalidArgument("FclChecker: robot '" + robot_.name() + "' has no actuated joints");
+  if (!(std::isfinite(options_.selfPairSlack) && options_.selfPairSlack >= 0)) {
+    throw InvalidArgument("FclChecker: selfPairSlack must be finite and >= 0, not " +
+                          std::to_string(options_.selfPairSlack));
+  }
   auto geometry = std::make_shared<Geometry>();
   geometry->moves = shapesMovedByConfiguration(robot_);
   auto balls = std::make_shared<std::vector<BallCover>>();
@@ -286,10 +290,6 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     geometry->levers.push_back(shapeLevers(robot_, s, balls->back().balls, robot_.rootLink()));
   }
   geometry->balls = std::move(balls);
-  if (!(std::isfinite(options_.selfPairSlack) && options_.selfPairSlack >= 0)) {
-    throw InvalidArgument("FclChecker: selfPairSlack must be finite and >= 0, not " +
-                          std::to_string(options_.selfPairSlack));
-  }
   if (options_.selfCollision && options_.proveMotionsFree && options_.selfPairSlack > 0) {
     geometry->selfTables = selfPairTables(*geometry);
   }
@@ -444,6 +444,14 @@ std::size_t FclChecker::selfPairTableCount() const {
 /// mesh Panda's four tables at 7 mm of slack took 11 s, at 5 mm three of them needed more).
 constexpr std::size_t kSelfTableNodes = 50000;
 
+Eigen::VectorXd FclChecker::selfPairLevers(const Geometry& geometry, std::size_t a,
+                                           std::size_t b) const {
+  // Two links move apart only by the joints between them and the link they both hang from.
+  const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
+  return shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
+         shapeLevers(robot_, b, (*geometry.balls)[b].balls, from);
+}
+
 std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
     const Geometry& geometry) const {
   auto tables = std::make_shared<std::vector<SelfPairTable>>();
@@ -452,9 +460,6 @@ std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
     // Named, not structured bindings: clang 14 does not capture those in the lambda below.
     const std::size_t a = shapes.first, b = shapes.second;
     if (geometry.meshes[a] == 0 && geometry.meshes[b] == 0) continue;  // primitives: FCL's distance
-    const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
-    const Eigen::VectorXd levers = shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
-                                   shapeLevers(robot_, b, (*geometry.balls)[b].balls, from);
     const auto distance = [&](const double* q) {
       forwardKinematics(robot_, q, kinematics);
       fcl::DistanceRequestd request;
@@ -464,8 +469,8 @@ std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
                     request, result);
       return result.min_distance;
     };
-    if (auto table = tabulateSelfPair(a, b, levers, robot_.limits(), options_.selfPairSlack,
-                                      kSelfTableNodes, distance)) {
+    if (auto table = tabulateSelfPair(a, b, selfPairLevers(geometry, a, b), robot_.limits(),
+                                      options_.selfPairSlack, kSelfTableNodes, distance)) {
       tables->push_back(std::move(*table));
     }
   }
@@ -485,22 +490,14 @@ void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
                              primitives(robot_.shapes()[s].shape, scene.obstacles()[o].shape)});
     }
   }
-  // Two links move apart only by the joints between them and the link they both hang from.
   model.selfTables = geometry.selfTables;
-  for (const auto& shapes : world.movingSelfPairs) {
-    const std::size_t a = shapes.first, b = shapes.second;  // captured below: see selfPairTables
-    const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
-    ClearancePair pair{a, b, true,
-                       shapeLevers(robot_, a, (*geometry.balls)[a].balls, from) +
-                           shapeLevers(robot_, b, (*geometry.balls)[b].balls, from),
+  for (const auto& [a, b] : world.movingSelfPairs) {
+    ClearancePair pair{a, b, true, selfPairLevers(geometry, a, b),
                        primitives(robot_.shapes()[a].shape, robot_.shapes()[b].shape)};
     if (geometry.selfTables) {
-      const auto& tables = *geometry.selfTables;
-      const auto same = [&](const SelfPairTable& t) {
-        return (t.shapeA == a && t.shapeB == b) || (t.shapeA == b && t.shapeB == a);
-      };
-      if (const auto found = std::ranges::find_if(tables, same); found != tables.end())
-        pair.table = static_cast<int>(found - tables.begin());
+      for (const SelfPairTable& t : *geometry.selfTables) {
+        if ((t.shapeA == a && t.shapeB == b) || (t.shapeA == b && t.shapeB == a)) pair.table = &t;
+      }
     }
     model.pairs.push_back(std::move(pair));
   }

@@ -58,8 +58,8 @@ TEST(SelfPairTable, BoundsNeverExceedTheDistanceAndMissItByAtMostTheSlack) {
         (q.array() >= limits.lower().array()).all() && (q.array() <= limits.upper().array()).all();
     if (inside) worst = std::max(worst, exact - bound);
   }
-  // The levers are twice the slopes' bound at the worst node, so the bound may miss by twice the
-  // slack, not more.
+  // The levers equal the slopes' bounds: between the nearest node and q the distance may rise by
+  // as much as the bound takes off, so the bound may miss by twice the slack, not more.
   EXPECT_LE(worst, 2 * slack + 1e-6);
   EXPECT_GT(worst, 0);
   const double nan[3] = {std::nan(""), 0, 0};

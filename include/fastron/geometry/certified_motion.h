@@ -32,9 +32,15 @@ struct ClearancePair {
   /// ExactPairCheck::distance may be asked about the pair (the checker's distance is cheap for
   /// it: FCL's between primitives, not a mesh's, which cost 20-50 collision checks).
   bool askDistance = false;
-  /// A self pair's table of distances in ClearanceModel::selfTables, or -1: its bound is read
-  /// before the balls'.
-  int table = -1;
+  /// A self pair's table of distances (held by ClearanceModel::selfTables), or null: its bound
+  /// is read before the balls'.
+  const SelfPairTable* table = nullptr;
+
+  /// The bound of the pair's table at q (the caller takes its margin off), or -infinity when it
+  /// has none.
+  double tableBound(const double* q) const {
+    return table ? table->lowerBound(q) : -std::numeric_limits<double>::infinity();
+  }
 };
 
 /// A robot against one scene, as the certificate sees it.
@@ -43,16 +49,9 @@ struct ClearanceModel {
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<EnclosingVolume> obstacles;  ///< per obstacle
   std::vector<ClearancePair> pairs;
-  /// The robot's self-pair tables (CheckerOptions::selfPairSlack), shared by every scene's model;
-  /// null for none.
+  /// The robot's self-pair tables (CheckerOptions::selfPairSlack) that pairs point to, shared
+  /// by every scene's model; null for none.
   std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
-
-  /// The bound of pair's table at q (less nothing: the caller takes its margin off), or
-  /// -infinity when the pair has none.
-  double tableBound(const ClearancePair& pair, const double* q) const {
-    if (pair.table < 0) return -std::numeric_limits<double>::infinity();
-    return (*selfTables)[static_cast<std::size_t>(pair.table)].lowerBound(q);
-  }
 };
 
 /// What the certificate asks of an exact checker, about the configuration it last placed.

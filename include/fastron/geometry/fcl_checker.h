@@ -98,6 +98,9 @@ class FclChecker final : public SceneChecker {
   void placeRobot(Scratch& scratch, const Eigen::Isometry3d& base, const double* q) const;
   /// The shapes no configuration moves, placed in `world`, and their contacts (Obstacles).
   void placeFixedShapes(Obstacles& world) const;
+  /// How fast the distance of robot shapes a and b can shrink per unit of each coordinate: the
+  /// levers of the joints between their links and the link they both hang from.
+  Eigen::VectorXd selfPairLevers(const Geometry& geometry, std::size_t a, std::size_t b) const;
   /// The tables of CheckerOptions::selfPairSlack for the robot's self pairs of meshes that one or
   /// two coordinates turn against each other, from `geometry`'s distance shapes and covers.
   std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables(const Geometry& geometry) const;
