@@ -120,6 +120,9 @@ void addMotionBenchOptions(CLI::App& cmd, BenchOptions& o) {
                "motion-bench: FCL also checks the robot against itself (SRDF pairs skipped); "
                "the default method 'Fastron' then models each scene's obstacles alone and "
                "leaves self-collisions to verification");
+  cmd.add_flag("!--no-self-pair-tables", o.settings.selfPairTables,
+               "motion-bench: FCL checks self pairs of meshes without the robot's self-pair tables "
+               "(built once per robot and kept in the cache; for comparison)");
   cmd.add_flag("--dense-checks", o.settings.denseChecks,
                "motion-bench: FCL checks every state of a motion instead of skipping what "
                "clearance bounds prove free (the same answers, slower; for comparison)");

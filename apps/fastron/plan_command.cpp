@@ -24,6 +24,7 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
+#include "fastron/pipeline/self_pair_tables.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
@@ -63,6 +64,7 @@ struct PlanOptions {
   std::size_t rangeStage = PlannerOptions{}.rangeStage;
   std::uint64_t seed = 1;
   PathSimplification simplification = PathSimplification::Full;
+  bool selfPairTables = true;
 };
 
 /// "Fastron: no path within the time limit (1.70 ms, 812 checks in 0.61 ms); Fastron+FCL: solved
@@ -197,12 +199,13 @@ PlanQuery planQuery(const PlanOptions& o, const Scene& scene) {
 /// The plan of the method --checker names: an exact checker's (verified with `exact` when it is
 /// another), or Fastron's (with --self-model, a --model file, or the default method).
 VerifiedPlan planByMethod(const PlanOptions& o, const PlanQuery& q, const Scene& scene,
+                          const CheckerOptions& checking,
                           const std::shared_ptr<const SceneChecker>& exact,
                           const PlannerOptions& options) {
   const JointLimits limits = q.robot.limits();
   if (o.checker == o.scene.checker) return planExactly(exact, limits, q.start, q.goal, options);
   if (o.checker != "fastron") {  // another exact checker, verified with `exact`
-    const auto other = makeSceneChecker(o.checker, q.robot, scene, checkerOptionsFrom(o.scene));
+    const auto other = makeSceneChecker(o.checker, q.robot, scene, checking);
     return planVerified(other, exact, limits, q.start, q.goal, options);
   }
   if (!o.selfModel.empty())
@@ -264,7 +267,6 @@ int runPlan(const PlanOptions& o) {
   if (!o.selfModel.empty() && o.checker != "fastron") {
     throw InvalidArgument("--self-model goes with --checker fastron, not " + o.checker);
   }
-  const std::shared_ptr<const SceneChecker> exact = checkerFromOptions(o.scene, query.robot, scene);
   const PlannerOptions options{.type = parsePlannerType(o.planner),
                                .range = o.range,
                                .rangeStage = o.rangeStage,
@@ -278,13 +280,28 @@ int runPlan(const PlanOptions& o) {
   std::cout << "robot    " << query.robot.name() << ", " << query.robot.dof()
             << " actuated joints\n"
             << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
+  CheckerOptions checking = checkerOptionsFrom(o.scene);
+  if (o.scene.selfCollision && o.selfPairTables && pipeline::hasMeshSelfPairs(query.robot)) {
+    const pipeline::SelfPairTables tables =
+        pipeline::selfPairTables(query.robot, {.padding = o.scene.padding});
+    checking.selfPairTables = tables.tables;
+    std::cout << "tables   " << tables.tables->size() << " self pairs of meshes tabulated, "
+              << (tables.fromCache
+                      ? "read from " + tables.file.string()
+                      : "built in " + durationText(tables.buildSeconds) +
+                            (tables.file.empty() ? "" : " and kept in " + tables.file.string()))
+              << '\n';
+    if (!tables.warning.empty()) std::cerr << "fastron: warning: " << tables.warning << '\n';
+  }
+  const std::shared_ptr<const SceneChecker> exact =
+      makeSceneChecker(o.scene.checker, query.robot, scene, checking);
   for (const auto& [what, q] : {std::pair{"start", &query.start}, std::pair{"goal", &query.goal}}) {
     if (const std::string contact = contactAt(*exact, *q); !contact.empty()) {
       std::cout << what << " in collision under " << exact->name() << ": " << contact << '\n';
       return 1;
     }
   }
-  const VerifiedPlan plan = planByMethod(o, query, scene, exact, options);
+  const VerifiedPlan plan = planByMethod(o, query, scene, checking, exact, options);
   printPlan(o, plan, *exact, options);
   if (!plan.solved()) return 1;
   if (!o.out.empty()) {
@@ -367,6 +384,10 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0, true));
   addSimplificationOption(*cmd, [o](PathSimplification s) { o->simplification = s; });
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
+  cmd->add_flag("!--no-self-pair-tables", o->selfPairTables,
+                "with --self-collision on a robot of meshes: check its self pairs without the "
+                "robot's tables of their distances (built once and kept in the cache, "
+                "$FASTRON_CACHE_DIR, else ~/.cache/fastron)");
   cmd->add_option("--out", o->out,
                   "write the path as CSV (a header of joint names, a waypoint per row)");
   cmd->callback([o, &exitCode] { exitCode = runPlan(*o); });

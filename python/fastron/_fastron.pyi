@@ -186,7 +186,10 @@ class SceneChecker(CollisionChecker):
 
 class FclChecker(SceneChecker):
     def __init__(self, robot: Robot, scene: Scene, *, self_collision: bool = False,
-                 padding: float = 0.0, prove_motions_free: bool = True) -> None: ...
+                 padding: float = 0.0, prove_motions_free: bool = True,
+                 self_pair_tables: bool = False) -> None: ...
+    @property
+    def self_pair_table_count(self) -> int: ...
 
 class GjkChecker(SceneChecker):
     def __init__(self, robot: Robot, scene: Scene, *, self_collision: bool = False,
@@ -194,7 +197,8 @@ class GjkChecker(SceneChecker):
 
 def scene_checker_names() -> list[str]: ...
 def scene_checker(name: str, robot: Robot, scene: Scene, *, self_collision: bool = False,
-                  padding: float = 0.0, prove_motions_free: bool = True) -> SceneChecker: ...
+                  padding: float = 0.0, prove_motions_free: bool = True,
+                  self_pair_tables: bool = False) -> SceneChecker: ...
 
 class StepReport:
     update: UpdateReport

@@ -18,6 +18,7 @@
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_checkers.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/self_pair_tables.h"
 
 namespace fastron::python {
 
@@ -63,13 +64,30 @@ void addObstacle(Scene& scene, const std::string& name, Shape shape, py::handle 
   scene.add(Obstacle{name, std::move(shape), pose(position, rpy), std::nullopt});
 }
 
+/// The checker options of the bindings' keywords; with `selfPairTables`, the robot's tables from
+/// the cache (pipeline::selfPairTables, as `fastron plan` reads them), a warning when they cannot
+/// be kept there.
+CheckerOptions checkerOptions(const Robot& robot, bool selfCollision, double padding,
+                              bool proveMotionsFree, bool selfPairTables) {
+  CheckerOptions options{
+      .selfCollision = selfCollision, .padding = padding, .proveMotionsFree = proveMotionsFree};
+  if (!(selfPairTables && selfCollision && proveMotionsFree)) return options;
+  pipeline::SelfPairTables tables;
+  {
+    py::gil_scoped_release released;
+    tables = pipeline::selfPairTables(robot, {.padding = padding});
+  }
+  if (!tables.warning.empty()) PyErr_WarnEx(PyExc_RuntimeWarning, tables.warning.c_str(), 1);
+  options.selfPairTables = tables.tables;
+  return options;
+}
+
 template <class Checker>
 std::shared_ptr<Checker> makeChecker(const Robot& robot, const Scene& scene, bool selfCollision,
-                                     double padding, bool proveMotionsFree) {
-  return std::make_shared<Checker>(robot, scene,
-                                   CheckerOptions{.selfCollision = selfCollision,
-                                                  .padding = padding,
-                                                  .proveMotionsFree = proveMotionsFree});
+                                     double padding, bool proveMotionsFree, bool selfPairTables) {
+  return std::make_shared<Checker>(
+      robot, scene,
+      checkerOptions(robot, selfCollision, padding, proveMotionsFree, selfPairTables));
 }
 
 py::object contactObject(const std::optional<Contact>& contact) {
@@ -346,12 +364,18 @@ void bindSceneCheckers(py::module_& m) {
       m, "FclChecker", "The exact checker: forward kinematics, then FCL against the scene.")
       .def(py::init(&makeChecker<FclChecker>), py::arg("robot"), py::arg("scene"), py::kw_only(),
            py::arg("self_collision") = false, py::arg("padding") = 0.0,
-           py::arg("prove_motions_free") = true);
+           py::arg("prove_motions_free") = true, py::arg("self_pair_tables") = false,
+           "self_pair_tables: with self_collision on a robot of meshes, its self pairs that one "
+           "or two joints turn are read from tables of their distance, built once per robot "
+           "and kept in the cache ($FASTRON_CACHE_DIR, else ~/.cache/fastron), as `fastron "
+           "plan` does: the same answers, faster (docs/geometry.md).")
+      .def_property_readonly("self_pair_table_count", &FclChecker::selfPairTableCount,
+                             "Self pairs read from a table of their distance.");
 
   py::class_<GjkChecker, SceneChecker, std::shared_ptr<GjkChecker>>(
       m, "GjkChecker", "Forward kinematics, then libccd's GJK on convex shapes.")
       .def(py::init([](const Robot& robot, const Scene& scene, bool selfCollision, double padding) {
-             return makeChecker<GjkChecker>(robot, scene, selfCollision, padding, false);
+             return makeChecker<GjkChecker>(robot, scene, selfCollision, padding, false, false);
            }),
            py::arg("robot"), py::arg("scene"), py::kw_only(), py::arg("self_collision") = false,
            py::arg("padding") = 0.0);
@@ -367,17 +391,17 @@ void bindSceneCheckers(py::module_& m) {
   m.def(
       "scene_checker",
       [](const std::string& name, const Robot& robot, const Scene& scene, bool selfCollision,
-         double padding, bool proveMotionsFree) {
-        return makeSceneChecker(name, robot, scene,
-                                CheckerOptions{.selfCollision = selfCollision,
-                                               .padding = padding,
-                                               .proveMotionsFree = proveMotionsFree});
+         double padding, bool proveMotionsFree, bool selfPairTables) {
+        return makeSceneChecker(
+            name, robot, scene,
+            checkerOptions(robot, selfCollision, padding, proveMotionsFree, selfPairTables));
       },
       py::arg("name"), py::arg("robot"), py::arg("scene"), py::kw_only(),
       py::arg("self_collision") = false, py::arg("padding") = 0.0,
-      py::arg("prove_motions_free") = true,
+      py::arg("prove_motions_free") = true, py::arg("self_pair_tables") = false,
       "The exact checker `name` (scene_checker_names()) on `robot` in `scene`, as the command "
-      "line's --checker builds it.");
+      "line's --checker builds it; self_pair_tables as FclChecker's (`fastron plan` turns them "
+      "on with --self-collision).");
 }
 
 }  // namespace fastron::python

@@ -531,6 +531,24 @@ def test_moveit_files():
     assert not fcl.in_collision(start) and not fcl.in_collision(goal)
 
 
+def test_self_pair_tables_answer_as_fcl_alone(tmp_path, monkeypatch):
+    # The mesh Panda's tables, built once into the cache that `fastron plan` reads them from.
+    monkeypatch.setenv("FASTRON_CACHE_DIR", str(tmp_path))
+    panda = fastron.load_robot("panda-mesh")
+    scene = fastron.Scene()
+    scene.add_box("shelf", [0.3, 0.6, 0.04], [0.6, 0.0, 0.5])
+    tables = fastron.FclChecker(panda, scene, self_collision=True, self_pair_tables=True)
+    plain = fastron.FclChecker(panda, scene, self_collision=True)
+    assert tables.self_pair_table_count == 4 and plain.self_pair_table_count == 0
+    assert len(list(tmp_path.glob("panda-*.self-pairs"))) == 1
+    q = uniform(panda.limits, 500, seed=3)
+    expected = plain.in_collision(q)
+    assert 0 < expected.sum() < len(q)
+    assert np.array_equal(tables.in_collision(q), expected)
+    again = fastron.scene_checker("fcl", panda, scene, self_collision=True, self_pair_tables=True)
+    assert again.self_pair_table_count == 4  # read back from the cache
+
+
 def test_moveit_configuration_as_moveit_reads_it():
     shared = os.environ.get("FASTRON_SHARED_DIR")
     if not shared or not pathlib.Path(shared, "data/baxter-moveit").is_dir():

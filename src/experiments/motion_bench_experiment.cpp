@@ -23,6 +23,7 @@
 #include "fastron/geometry/urdf.h"
 #include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
+#include "fastron/pipeline/self_pair_tables.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/labelling.h"
@@ -185,6 +186,9 @@ struct RobotModels {
   std::vector<pipeline::FeatureCandidate> candidates;
   std::shared_ptr<const Model> selfModel;  ///< with MotionBenchOptions::selfModel
   double selfTrainSeconds = 0;
+  /// The robot's self-pair tables (MotionBenchOptions::selfPairTables), given to every FCL
+  /// checker of its scenes but the audit's.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
 };
 
 /// The robot's self-collision model, learned once per robot and kept in the cache
@@ -203,6 +207,27 @@ void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const 
              self.file.string());
   models.selfTrainSeconds = self.trainSeconds;
   models.selfModel = self.model;
+}
+
+/// The robot's self-pair tables, built once per robot and kept in the cache
+/// (pipeline::selfPairTables); the report says where they came from.
+void tabulateSelfPairs(const Robot& robot, const MotionBenchOptions& o, const Progress& progress,
+                       RobotModels& models, PlanRows& results) {
+  if (!pipeline::hasMeshSelfPairs(robot)) return;
+  if (progress) progress("motion-bench: the robot's self-pair tables");
+  const pipeline::SelfPairTables tables =
+      pipeline::selfPairTables(robot, {.cacheDirectory = o.selfModelCache});
+  models.selfTables = tables.tables;
+  std::ostringstream note;
+  note << "Self-pair tables of " << robot.name() << ": " << tables.tables->size() << ", "
+       << (tables.fromCache ? "read from " + tables.file.string()
+                            : "built in " + durationText(tables.buildSeconds) +
+                                  " (once per robot, not counted in any method's time)" +
+                                  (tables.file.empty() ? "" : ", kept in " + tables.file.string()))
+       << "; every FCL checker reads them but the audit's.";
+  results.notes.push_back(note.str());
+  if (!tables.warning.empty()) results.warnings.push_back(tables.warning);
+  if (progress) progress("motion-bench: " + note.str());
 }
 
 /// `rows` as results.csv so far, written whole to a new file then moved over `path`: an
@@ -256,15 +281,19 @@ ProblemRun prepareProblem(const Problem& problem, std::size_t p,
     models = {checksum, robotFeatures(robot, o.features),
               pipeline::automaticFeatureCandidates(robot, o.features), nullptr, 0};
     if (o.selfModel) learnSelfCollisions(robot, o, progress, models);
+    if (o.selfCollision && !o.denseChecks && o.selfPairTables)
+      tabulateSelfPairs(robot, o, progress, models, results);
   }
-  const CheckerOptions checking{.selfCollision = o.selfCollision,
-                                .proveMotionsFree = !o.denseChecks};
+  const CheckerOptions audited{.selfCollision = o.selfCollision,
+                               .proveMotionsFree = !o.denseChecks};
+  CheckerOptions checking = audited;
+  checking.selfPairTables = models.selfTables;
   const RequestEnds ends = requestEnds(robot, run.request, problem.request.string());
   run.start = ends.start;
   run.goal = ends.goal;
   run.note = allowGrasp(robot, scene, run.goal);
   run.fcl = makeSceneChecker("fcl", robot, scene, checking);
-  run.audit = makeSceneChecker("fcl", robot, scene, checking);
+  run.audit = makeSceneChecker("fcl", robot, scene, audited);
 
   const ProxyParams params =
       withKernelOptions(pipeline::forStaticScene(pipeline::robotProxyParams(
@@ -502,6 +531,7 @@ std::string runSummary(const PlanRows& r) {
   md << "\nPlanning group" << (groups.size() == 1 ? "" : "s") << " (the requests' group_name; "
      << "'-' for none, the robot's actuated joints): " << (groupList.empty() ? "none" : groupList)
      << ".\n";
+  for (const std::string& note : r.notes) md << "\n" << note << "\n";
   if (!r.warnings.empty()) {
     md << "\nWarnings (" << r.warnings.size() << "; the run went on past them):\n\n";
     for (const std::string& w : r.warnings) md << "- " << w << "\n";

@@ -229,6 +229,7 @@ void addPlanningExperiments(std::vector<Experiment>& all) {
                    o.rangeStage = s.rangeStage;
                    o.selfCollision = s.selfCollision;
                    o.denseChecks = s.denseChecks;
+                   o.selfPairTables = s.selfPairTables;
                    o.queriesPerScene = s.queriesPerScene;
                    o.selfModel = s.selfModel;
                    o.learnFromVerification = s.learnFromVerification;

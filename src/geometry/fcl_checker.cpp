@@ -10,11 +10,14 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/clearance_bounds.h"
@@ -290,8 +293,16 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     geometry->levers.push_back(shapeLevers(robot_, s, balls->back().balls, robot_.rootLink()));
   }
   geometry->balls = std::move(balls);
-  if (options_.selfCollision && options_.proveMotionsFree && options_.selfPairSlack > 0) {
-    geometry->selfTables = selfPairTables(*geometry);
+  if (options_.selfCollision && options_.proveMotionsFree) {
+    if (options_.selfPairTables) {
+      for (const SelfPairTable& table : *options_.selfPairTables) {
+        checkSelfPairTable(table, robot_.shapes().size(), robot_.dof(),
+                           "FclChecker of robot '" + robot_.name() + "'");
+      }
+      geometry->selfTables = options_.selfPairTables;
+    } else if (options_.selfPairSlack > 0) {
+      geometry->selfTables = tabulateSelfPairs(*geometry);
+    }
   }
   geometry->reach = reachBound(robot_, options_.padding);
   proofs_ = !options_.proveMotionsFree ? MotionProofs::None
@@ -452,27 +463,57 @@ Eigen::VectorXd FclChecker::selfPairLevers(const Geometry& geometry, std::size_t
          shapeLevers(robot_, b, (*geometry.balls)[b].balls, from);
 }
 
-std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables(
+std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::selfPairTables() const {
+  return geometry_->selfTables;
+}
+
+std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::tabulateSelfPairs(
     const Geometry& geometry) const {
-  auto tables = std::make_shared<std::vector<SelfPairTable>>();
-  KinematicsData kinematics = makeKinematicsData(robot_);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (const auto& shapes : robot_.selfCollisionPairs({})) {
-    // Named, not structured bindings: clang 14 does not capture those in the lambda below.
-    const std::size_t a = shapes.first, b = shapes.second;
-    if (geometry.meshes[a] == 0 && geometry.meshes[b] == 0) continue;  // primitives: FCL's distance
-    const auto distance = [&](const double* q) {
-      forwardKinematics(robot_, q, kinematics);
-      fcl::DistanceRequestd request;
-      fcl::DistanceResultd result;
-      fcl::distance(geometry.shapes[a].distance.get(), toFcl(shapePose(robot_, kinematics, a)),
-                    geometry.shapes[b].distance.get(), toFcl(shapePose(robot_, kinematics, b)),
-                    request, result);
-      return result.min_distance;
-    };
-    if (auto table = tabulateSelfPair(a, b, selfPairLevers(geometry, a, b), robot_.limits(),
-                                      options_.selfPairSlack, kSelfTableNodes, distance)) {
-      tables->push_back(std::move(*table));
+    // Primitives' pairs need none: FCL's distance of two primitives costs as much as a lookup.
+    if (geometry.meshes[shapes.first] != 0 || geometry.meshes[shapes.second] != 0)
+      pairs.push_back(shapes);
+  }
+  auto tables = std::make_shared<std::vector<SelfPairTable>>();
+  if (pairs.empty()) return tables;
+  // Each table costs thousands of FCL mesh distances (seconds on the mesh Panda): the pairs are
+  // shared among the cores, each thread with kinematics of its own.
+  std::vector<std::optional<SelfPairTable>> built(pairs.size());
+  std::atomic<std::size_t> nextPair{0};
+  std::exception_ptr failure;
+  std::mutex failureLock;
+  const auto work = [&] {
+    KinematicsData kinematics = makeKinematicsData(robot_);
+    for (std::size_t i = nextPair++; i < pairs.size(); i = nextPair++) {
+      const std::size_t a = pairs[i].first, b = pairs[i].second;
+      const auto distance = [&](const double* q) {
+        forwardKinematics(robot_, q, kinematics);
+        fcl::DistanceRequestd request;
+        fcl::DistanceResultd result;
+        fcl::distance(geometry.shapes[a].distance.get(), toFcl(shapePose(robot_, kinematics, a)),
+                      geometry.shapes[b].distance.get(), toFcl(shapePose(robot_, kinematics, b)),
+                      request, result);
+        return result.min_distance;
+      };
+      try {
+        built[i] = tabulateSelfPair(a, b, selfPairLevers(geometry, a, b), robot_.limits(),
+                                    options_.selfPairSlack, kSelfTableNodes, distance);
+      } catch (...) {
+        const std::lock_guard lock(failureLock);
+        if (!failure) failure = std::current_exception();
+      }
     }
+  };
+  const std::size_t helpers =
+      std::min<std::size_t>(std::max(1U, std::thread::hardware_concurrency()), pairs.size()) - 1;
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < helpers; ++t) threads.emplace_back(work);
+  work();
+  for (std::thread& thread : threads) thread.join();
+  if (failure) std::rethrow_exception(failure);
+  for (auto& table : built) {
+    if (table) tables->push_back(std::move(*table));
   }
   return tables;
 }

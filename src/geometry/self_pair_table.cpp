@@ -24,6 +24,42 @@ double SelfPairTable::lowerBound(const double* q) const {
   return static_cast<double>(distance[index]) - fall;
 }
 
+void checkSelfPairTable(const SelfPairTable& table, std::size_t shapes, std::size_t dof,
+                        const std::string& source) {
+  const auto fail = [&](const std::string& what) {
+    throw InvalidArgument(source + ": self-pair table of shapes " + std::to_string(table.shapeA) +
+                          " and " + std::to_string(table.shapeB) + ": " + what);
+  };
+  if (table.shapeA >= shapes || table.shapeB >= shapes || table.shapeA == table.shapeB)
+    fail("needs two distinct shapes of the robot's " + std::to_string(shapes));
+  if (table.axes < 1 || table.axes > 2)
+    fail("axes must be 1 or 2, not " + std::to_string(table.axes));
+  std::size_t count = 1;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string axis = "axis " + std::to_string(k) + "'s ";
+    if (k >= table.axes) {
+      if (table.nodes[k] != 1) fail(axis + "nodes must be 1 beyond the table's axes");
+      continue;
+    }
+    if (table.coordinate[k] >= dof)
+      fail(axis + "coordinate " + std::to_string(table.coordinate[k]) + " is not below " +
+           std::to_string(dof));
+    if (!std::isfinite(table.lower[k])) fail(axis + "first node is not finite");
+    if (!(std::isfinite(table.spacing[k]) && table.spacing[k] > 0))
+      fail(axis + "spacing must be finite and > 0");
+    if (!(std::isfinite(table.lever[k]) && table.lever[k] >= 0))
+      fail(axis + "lever must be finite and >= 0");
+    if (table.nodes[k] < 1 || table.nodes[k] > (std::size_t{1} << 31))
+      fail(axis + "node count " + std::to_string(table.nodes[k]) + " is out of range");
+    count *= table.nodes[k];
+  }
+  if (table.axes == 2 && table.coordinate[0] == table.coordinate[1])
+    fail("its two axes are one coordinate");
+  if (table.distance.size() != count)
+    fail(std::to_string(table.distance.size()) + " distances for " + std::to_string(count) +
+         " nodes");
+}
+
 std::optional<SelfPairTable> tabulateSelfPair(
     std::size_t a, std::size_t b, const Eigen::VectorXd& levers, const JointLimits& limits,
     double slack, std::size_t maxNodes, const std::function<double(const double*)>& distance) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "cache_key.h"
 #include "fastron/core/error.h"
 #include "fastron/core/model_file.h"
 #include "fastron/geometry/checker_options.h"
@@ -16,45 +17,6 @@
 
 namespace fastron::pipeline {
 namespace {
-
-/// 64-bit FNV-1a, fed field by field.
-class Hash {
- public:
-  void bytes(const void* data, std::size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-      h_ ^= p[i];
-      h_ *= 1099511628211ULL;
-    }
-  }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-  void doubles(const double* v, std::size_t n) { bytes(v, n * sizeof(double)); }
-  std::uint64_t digest() const { return h_; }
-
- private:
-  std::uint64_t h_ = 14695981039346656037ULL;
-};
-
-void hashShape(Hash& h, const Shape& shape) {
-  h.value(shape.index());
-  if (const auto* box = std::get_if<Box>(&shape)) h.doubles(box->size.data(), 3);
-  if (const auto* sphere = std::get_if<Sphere>(&shape)) h.value(sphere->radius);
-  if (const auto* cylinder = std::get_if<Cylinder>(&shape)) {
-    h.value(cylinder->radius);
-    h.value(cylinder->length);
-  }
-  if (const auto* capsule = std::get_if<Capsule>(&shape)) {
-    h.value(capsule->radius);
-    h.value(capsule->length);
-  }
-  if (const auto* mesh = std::get_if<Mesh>(&shape)) {
-    for (const Eigen::Vector3d& v : mesh->mesh->vertices) h.doubles(v.data(), 3);
-    for (const Eigen::Vector3i& t : mesh->mesh->triangles) h.bytes(t.data(), 3 * sizeof(int));
-  }
-}
 
 /// The preset of the self-collision model: joint-space RQ kernel, gamma 5 and beta 500, no band
 /// (docs/log/2026-11-25-a-self-collision-model-learned-once.md, "A self-collision model learned
@@ -90,22 +52,14 @@ std::filesystem::path defaultCacheDirectory() {
   if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0')
     return std::filesystem::path(home) / ".cache" / "fastron";
   throw FileError(
-      "no cache folder for self-collision models: set FASTRON_CACHE_DIR (or XDG_CACHE_HOME or "
+      "no cache folder for self-collision models and self-pair tables: set FASTRON_CACHE_DIR (or "
+      "XDG_CACHE_HOME or "
       "HOME)");
 }
 
 std::uint64_t selfModelKey(const Robot& robot, const SelfModelOptions& options) {
   Hash h;
-  h.value(kinematicsChecksum(robot));
-  for (const LinkShape& shape : robot.shapes()) {
-    h.value(shape.link);
-    h.doubles(shape.origin.matrix().data(), 16);
-    hashShape(h, shape.shape);
-  }
-  for (const auto& [a, b] : robot.selfCollisionPairs({})) {  // adjacency and allowed pairs
-    h.value(a);
-    h.value(b);
-  }
+  hashRobotCollisions(h, robot);
   h.value(options.samples);
   h.value(options.updates);
   h.value(options.seed);
@@ -114,12 +68,7 @@ std::uint64_t selfModelKey(const Robot& robot, const SelfModelOptions& options) 
 }
 
 std::filesystem::path selfModelFile(const Robot& robot, const SelfModelOptions& options) {
-  char key[17];
-  std::snprintf(key, sizeof key, "%016llx",
-                static_cast<unsigned long long>(selfModelKey(robot, options)));
-  const std::filesystem::path directory =
-      options.cacheDirectory.empty() ? defaultCacheDirectory() : options.cacheDirectory;
-  return directory / (robot.name() + "-" + key + ".fastron");
+  return cacheFile(options.cacheDirectory, robot, selfModelKey(robot, options), "fastron");
 }
 
 SelfModel selfCollisionModel(const Robot& robot, const SelfModelOptions& options) {

@@ -28,6 +28,10 @@ struct MotionBenchOptions {
   /// FCL checks every state of a motion (CheckerOptions::proveMotionsFree off): the same answers,
   /// for comparing what the clearance proof saves.
   bool denseChecks = false;
+  /// With selfCollision and a robot whose self pairs hold meshes: every FCL checker but the
+  /// audit's reads the robot's self-pair tables (pipeline::selfPairTables, built once and kept in
+  /// selfModelCache), the exact baseline's as every method's.
+  bool selfPairTables = true;
   /// Planning queries per scene: the request, then K - 1 start/goal pairs drawn uniformly and
   /// free under FCL, all on the one model trained for the scene (a robot that stays in a scene
   /// amortises the training).
@@ -43,8 +47,8 @@ struct MotionBenchOptions {
   /// The default method's repairs try gradient repair first (VerifyRepairOptions::gradientRepair).
   bool gradientRepair = false;
   std::size_t selfTrainingPoints = 20000;  ///< samples of the self-collision model
-  /// Where the self-collision model is kept and found again (pipeline::SelfModelOptions;
-  /// empty: pipeline::defaultCacheDirectory()).
+  /// Where the self-collision model and the self-pair tables are kept and found again
+  /// (pipeline::SelfModelOptions; empty: pipeline::defaultCacheDirectory()).
   std::filesystem::path selfModelCache;
   std::uint64_t seed = 1;
   bool quick = false;

@@ -87,6 +87,8 @@ struct PlanRows {
   /// What the run noticed and went on past, for the report (e.g. SRDF entries naming links the
   /// robot lacks).
   std::vector<std::string> warnings;
+  /// What the run built or read once for a robot, for the report (e.g. its self-pair tables).
+  std::vector<std::string> notes;
 
   /// results.csv: the query columns, planner, method, the plan's columns (solved, status,
   /// plan_s, simplify_s, verify_s, repair_s, total_s, path_length, waypoints, stretches,

@@ -45,6 +45,7 @@ struct ExperimentSettings {
   std::filesystem::path srdf;
   bool selfCollision = false;
   bool denseChecks = false;
+  bool selfPairTables = true;  ///< motion-bench: MotionBenchOptions::selfPairTables
   std::size_t queriesPerScene = 1;
   bool selfModel = false;
   bool learnFromVerification = false;

@@ -3,12 +3,14 @@
 // robot shapes, and the robot-obstacle pairs a scene allows to touch.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "fastron/core/collision_checker.h"
 #include "fastron/core/export.h"
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
+#include "fastron/geometry/self_pair_table.h"
 
 namespace FASTRON_API fastron {
 
@@ -26,6 +28,12 @@ struct CheckerOptions {
   /// reads its bound before the balls'. 0: no tables. Building one costs an FCL mesh distance per
   /// node (55-400 µs each on the mesh Panda), so this is for checkers that check many states.
   double selfPairSlack = 0;
+  /// With selfCollision and proveMotionsFree (FclChecker): tables built before for this robot and
+  /// padding (FclChecker::selfPairTables of another checker, or pipeline::selfPairTables, which
+  /// keeps them in a cache), used instead of building any (selfPairSlack is then not used). Null:
+  /// build them when selfPairSlack says so. The checker refuses tables that do not fit the robot
+  /// (checkSelfPairTable); it cannot tell tables of another robot of the same sizes.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables = nullptr;
 };
 
 /// Robot shape `index` grown by options.padding; throws InvalidArgument naming the link when it

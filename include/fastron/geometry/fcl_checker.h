@@ -53,6 +53,9 @@ class FclChecker final : public SceneChecker {
   bool boundsStateChecks() const;
   /// Self pairs with a table of their distance (CheckerOptions::selfPairSlack).
   std::size_t selfPairTableCount() const;
+  /// The tables of the robot's self pairs (built, or CheckerOptions::selfPairTables), for other
+  /// checkers of this robot and padding; null for none.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables() const;
 
   /// Takes the obstacles' new poses (and the scene's robot base and allowed pairs). Safe while
   /// other threads check: a check uses the obstacles it started with. A mesh obstacle's bounding
@@ -102,8 +105,10 @@ class FclChecker final : public SceneChecker {
   /// levers of the joints between their links and the link they both hang from.
   Eigen::VectorXd selfPairLevers(const Geometry& geometry, std::size_t a, std::size_t b) const;
   /// The tables of CheckerOptions::selfPairSlack for the robot's self pairs of meshes that one or
-  /// two coordinates turn against each other, from `geometry`'s distance shapes and covers.
-  std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables(const Geometry& geometry) const;
+  /// two coordinates turn against each other, from `geometry`'s distance shapes and covers; the
+  /// pairs built on every core.
+  std::shared_ptr<const std::vector<SelfPairTable>> tabulateSelfPairs(
+      const Geometry& geometry) const;
   /// The pairs that must not touch in `world`, with the bounds that prove them apart.
   void buildClearance(Obstacles& world, const Scene& scene) const;
   /// True when the levers hold along the motion: every prismatic coordinate within its limits.

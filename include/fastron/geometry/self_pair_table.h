@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -32,6 +33,14 @@ struct SelfPairTable {
   /// sum lever |q - node| over the axes. -infinity for a non-finite coordinate.
   double lowerBound(const double* q) const;
 };
+
+/// Throws InvalidArgument, naming `source` and the field, unless `table` is whole and fits a robot
+/// of `shapes` collision shapes and `dof` configuration coordinates: two distinct shapes, 1 or 2
+/// axes on distinct coordinates, finite node positions, spacings > 0, levers >= 0, nodes >= 1 and
+/// one distance per node. It cannot tell whether the distances are the robot's: a table is only
+/// as good as the robot and padding it was built for (pipeline::selfPairTables keys its cache so).
+void checkSelfPairTable(const SelfPairTable& table, std::size_t shapes, std::size_t dof,
+                        const std::string& source);
 
 /// The table of shapes a and b over the coordinates where `levers` (how fast their distance can
 /// shrink per unit of each configuration coordinate: ClearancePair::levers) is not zero, within
