@@ -16,6 +16,7 @@
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/self_pair_tables.h"
 #include "fastron/planning/parallel_check.h"
 #include "fastron/planning/planner.h"
 #include "fastron/planning/verify_repair.h"
@@ -138,9 +139,6 @@ void BM_CheckPath(benchmark::State& state) {
 }
 BENCHMARK(BM_CheckPath)->Arg(0)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMicrosecond);
 
-/// Metres a self-pair table's node may lose to the levers in BM_VerifyPath's third checker.
-constexpr double kSelfPairSlack = 0.007;
-
 /// Paths to verify on a robot's generated cage problems, with three exact checkers (every state,
 /// proofs, proofs with self-pair tables): each problem's path planned on FCL as found and
 /// simplified (free), and its straight line from start to goal (mostly colliding).
@@ -169,13 +167,15 @@ const VerificationPaths& verificationPaths(const std::string& robotName) {
         robot, problem.scene, CheckerOptions{.selfCollision = true, .proveMotionsFree = false});
     auto certified =
         std::make_shared<FclChecker>(robot, problem.scene, CheckerOptions{.selfCollision = true});
-    // The tables depend on the robot alone: built with the first scene, then moved to the next.
+    // The tables depend on the robot alone: read from the cache (built the first time, as
+    // `fastron plan` does), with the first scene, then moved to the next.
     if (v.tables) {
       v.tables->setScene(problem.scene);
     } else {
       v.tables = std::make_shared<FclChecker>(
           robot, problem.scene,
-          CheckerOptions{.selfCollision = true, .selfPairSlack = kSelfPairSlack});
+          CheckerOptions{.selfCollision = true,
+                         .selfPairTables = pipeline::selfPairTables(robot).tables});
     }
     const Eigen::VectorXd start = Eigen::Map<const Eigen::VectorXd>(
         problem.start.data(), static_cast<Eigen::Index>(problem.start.size()));
@@ -223,7 +223,7 @@ const std::vector<std::string> kVerifiedRobots{"panda-mesh", "gripper-arm", "mob
 
 // Verification of paths on generated cage problems (verify_repair's check, one thread): every
 // state checked (certified 0), or the states clearance bounds do not prove free (certified 1; 2:
-// with tables of the distance of self pairs of meshes, CheckerOptions::selfPairSlack).
+// with the robot's tables of the distance of self pairs of meshes, pipeline::selfPairTables).
 // `same_verdicts` is 1 when both checks agree on every path of four problems.
 void BM_VerifyPath(benchmark::State& state) {
   const VerificationPaths& v =

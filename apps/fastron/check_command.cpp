@@ -79,7 +79,8 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
       "Check one configuration with every exact checker (exit 0: free under --checker, 1: in "
       "collision, 2: error)");
   addRobotOptions(*cmd, o->robot);
-  addSceneOptions(*cmd, o->scene, {.checkerRole = "decides the exit code"});
+  addSceneOptions(*cmd, o->scene,
+                  {.checkerRole = "decides the exit code", .selfPairTables = false});
   cmd->add_option("--config", o->config, "joint values of the actuated joints, comma-separated")
       ->required()
       ->delimiter(',')

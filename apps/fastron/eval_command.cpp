@@ -314,7 +314,7 @@ int runEval(const EvalOptions& o) {
   Dataset data;
   std::shared_ptr<const SceneChecker> exact;
   if (!o.scene.file.empty() || selfCollisionsAlone(o)) {
-    exact = checkerFromOptions(o.scene, *robot, sceneFromOptions(o.scene));
+    exact = checkerFromOptions(o.scene, *robot, sceneFromOptions(o.scene), "tables      ");
     data = labelledSamples(o, *robot, *exact);
   } else {
     data = readDataset(o.data);

@@ -24,7 +24,6 @@
 #include "fastron/geometry/scene_file.h"
 #include "fastron/pipeline/scene_model.h"
 #include "fastron/pipeline/self_model.h"
-#include "fastron/pipeline/self_pair_tables.h"
 #include "fastron/planning/verify_repair.h"
 #include "fastron/proxy/proxy_collision_detector.h"
 #include "report_format.h"
@@ -64,7 +63,6 @@ struct PlanOptions {
   std::size_t rangeStage = PlannerOptions{}.rangeStage;
   std::uint64_t seed = 1;
   PathSimplification simplification = PathSimplification::Full;
-  bool selfPairTables = true;
 };
 
 /// "Fastron: no path within the time limit (1.70 ms, 812 checks in 0.61 ms); Fastron+FCL: solved
@@ -280,19 +278,7 @@ int runPlan(const PlanOptions& o) {
   std::cout << "robot    " << query.robot.name() << ", " << query.robot.dof()
             << " actuated joints\n"
             << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
-  CheckerOptions checking = checkerOptionsFrom(o.scene);
-  if (o.scene.selfCollision && o.selfPairTables && pipeline::hasMeshSelfPairs(query.robot)) {
-    const pipeline::SelfPairTables tables =
-        pipeline::selfPairTables(query.robot, {.padding = o.scene.padding});
-    checking.selfPairTables = tables.tables;
-    std::cout << "tables   " << tables.tables->size() << " self pairs of meshes tabulated, "
-              << (tables.fromCache
-                      ? "read from " + tables.file.string()
-                      : "built in " + durationText(tables.buildSeconds) +
-                            (tables.file.empty() ? "" : " and kept in " + tables.file.string()))
-              << '\n';
-    if (!tables.warning.empty()) std::cerr << "fastron: warning: " << tables.warning << '\n';
-  }
+  const CheckerOptions checking = checkerOptionsFor(o.scene, query.robot, "tables   ");
   const std::shared_ptr<const SceneChecker> exact =
       makeSceneChecker(o.scene.checker, query.robot, scene, checking);
   for (const auto& [what, q] : {std::pair{"start", &query.start}, std::pair{"goal", &query.goal}}) {
@@ -384,10 +370,6 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0, true));
   addSimplificationOption(*cmd, [o](PathSimplification s) { o->simplification = s; });
   cmd->add_option("--seed", o->seed, "seed of every random choice")->capture_default_str();
-  cmd->add_flag("!--no-self-pair-tables", o->selfPairTables,
-                "with --self-collision on a robot of meshes: check its self pairs without the "
-                "robot's tables of their distances (built once and kept in the cache, "
-                "$FASTRON_CACHE_DIR, else ~/.cache/fastron)");
   cmd->add_option("--out", o->out,
                   "write the path as CSV (a header of joint names, a waypoint per row)");
   cmd->callback([o, &exitCode] { exitCode = runPlan(*o); });

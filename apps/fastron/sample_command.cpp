@@ -28,7 +28,7 @@ struct SampleOptions {
 int runSample(const SampleOptions& o) {
   const Robot robot = loadRobotFromOptions(o.robot);
   const Scene scene = sceneFromOptions(o.scene);
-  const auto oracle = checkerFromOptions(o.scene, robot, scene);
+  const auto oracle = checkerFromOptions(o.scene, robot, scene, "tables: ");
   Dataset data;
   Rng rng(o.seed);
   data.points = uniformConfigurations(robot.limits(), o.count, rng);

@@ -1,7 +1,11 @@
 #include "scene_options.h"
 
+#include <iostream>
+
 #include "fastron/core/error.h"
+#include "fastron/experiments/statistics.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/self_pair_tables.h"
 
 namespace fastron::cli {
 
@@ -14,6 +18,12 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& options, const SceneOptionUse&
                  "LINK:OBSTACLE pairs that may touch (e.g. a grasped object and the hand)")
       ->delimiter(',');
   cmd.add_flag("--self-collision", options.selfCollision, use.selfCollisionHelp);
+  if (use.selfPairTables) {
+    cmd.add_flag("!--no-self-pair-tables", options.selfPairTables,
+                 "with --self-collision on a robot of meshes: check its self pairs without the "
+                 "robot's tables of their distances (built once and kept in the cache, "
+                 "$FASTRON_CACHE_DIR, else ~/.cache/fastron)");
+  }
   if (use.padding) {
     cmd.add_option("--padding", options.padding, "grow the robot's shapes by this much (m)")
         ->check(CLI::NonNegativeNumber);
@@ -51,9 +61,27 @@ CheckerOptions checkerOptionsFrom(const SceneOptions& options) {
   return checking;
 }
 
+CheckerOptions checkerOptionsFor(const SceneOptions& options, const Robot& robot,
+                                 std::string_view label) {
+  CheckerOptions checking = checkerOptionsFrom(options);
+  if (!(options.selfCollision && options.selfPairTables && pipeline::hasMeshSelfPairs(robot)))
+    return checking;
+  const pipeline::SelfPairTables tables =
+      pipeline::selfPairTables(robot, {.padding = options.padding});
+  checking.selfPairTables = tables.tables;
+  std::cout << label << tables.tables->size() << " self pairs of meshes tabulated, "
+            << (tables.fromCache
+                    ? "read from " + tables.file.string()
+                    : "built in " + durationText(tables.buildSeconds) +
+                          (tables.file.empty() ? "" : " and kept in " + tables.file.string()))
+            << '\n';
+  if (!tables.warning.empty()) std::cerr << "fastron: warning: " << tables.warning << '\n';
+  return checking;
+}
+
 std::shared_ptr<SceneChecker> checkerFromOptions(const SceneOptions& options, const Robot& robot,
-                                                 const Scene& scene) {
-  return makeSceneChecker(options.checker, robot, scene, checkerOptionsFrom(options));
+                                                 const Scene& scene, std::string_view label) {
+  return makeSceneChecker(options.checker, robot, scene, checkerOptionsFor(options, robot, label));
 }
 
 }  // namespace fastron::cli

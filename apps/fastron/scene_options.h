@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/geometry/scene.h"
@@ -18,6 +19,7 @@ struct SceneOptions {
   std::string file;                ///< --scene: the project's YAML or a MoveIt PlanningScene
   std::vector<std::string> allow;  ///< --allow: LINK:OBSTACLE pairs that may touch
   bool selfCollision = false;      ///< --self-collision
+  bool selfPairTables = true;      ///< not --no-self-pair-tables
   double padding = 0;              ///< --padding: grows the robot's shapes (m)
   std::string checker{kDefaultSceneChecker};  ///< the exact checker's name (scene_checkers.h)
 };
@@ -32,6 +34,8 @@ struct SceneOptionUse {
   /// The option naming the exact checker (plan's --checker chooses what it plans on).
   std::string checkerOption = "--checker";
   bool padding = true;  ///< offer --padding
+  /// offer --no-self-pair-tables (commands that check many states: checkerOptionsFor)
+  bool selfPairTables = true;
 };
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& options, const SceneOptionUse& use = {});
@@ -43,8 +47,14 @@ Scene sceneFromOptions(const SceneOptions& options);
 /// The exact checker's options: self-collision and padding.
 CheckerOptions checkerOptionsFrom(const SceneOptions& options);
 
-/// The exact checker the options name, on `robot` in `scene`.
+/// checkerOptionsFrom, and with --self-collision on a robot whose self pairs hold meshes (unless
+/// --no-self-pair-tables), the robot's self-pair tables (pipeline::selfPairTables: read from the
+/// cache, or built and kept there), said on one line of std::cout after `label`.
+CheckerOptions checkerOptionsFor(const SceneOptions& options, const Robot& robot,
+                                 std::string_view label);
+
+/// The exact checker the options name, on `robot` in `scene` (checkerOptionsFor's options).
 std::shared_ptr<SceneChecker> checkerFromOptions(const SceneOptions& options, const Robot& robot,
-                                                 const Scene& scene);
+                                                 const Scene& scene, std::string_view label);
 
 }  // namespace fastron::cli

@@ -186,6 +186,7 @@ int trainOnScene(const TrainOptions& o) {
     options.margins = o.margins;
     options.selfCollision = o.scene.selfCollision;
     options.padding = o.scene.padding;
+    options.selfPairTables = checkerOptionsFor(o.scene, robot, "tables        ").selfPairTables;
     options.checker = o.scene.checker;
     // The other candidates were measured with automatic task-space control points.
     if (o.secondCandidate && o.features.controlLinks.empty())
@@ -209,7 +210,8 @@ int trainOnScene(const TrainOptions& o) {
     std::cout << "time          " << durationText(made.seconds) << " for labelling and training\n";
     model = trained.model;
   } else {
-    const std::shared_ptr<const SceneChecker> oracle = checkerFromOptions(o.scene, robot, scene);
+    const std::shared_ptr<const SceneChecker> oracle =
+        checkerFromOptions(o.scene, robot, scene, "tables        ");
     ProxyCollisionDetector proxy(oracle, features, params);
     StepReport step = proxy.initialize(o.samples);
     std::cout << "samples       " << o.samples << " labelled by " << oracle->name() << " in "

@@ -56,7 +56,9 @@ HeldOutModel trainHeldOutModel(const Robot& robot, const Scene& scene, const Fea
   HeldOutModel result;
   // A scene without obstacles has nothing to grow.
   if (scene.size() > 0) result.margins = increasingMargins(options.margins);
-  const CheckerOptions checking{options.selfCollision, options.padding};
+  const CheckerOptions checking{.selfCollision = options.selfCollision,
+                                .padding = options.padding,
+                                .selfPairTables = options.selfPairTables};
   const auto oracle = makeSceneChecker(options.checker, robot, scene, checking);
   std::vector<std::shared_ptr<const SceneChecker>> grown;
   std::vector<const CollisionChecker*> grownOracles;

@@ -16,6 +16,7 @@
 #include "fastron/geometry/robot.h"
 #include "fastron/geometry/scene.h"
 #include "fastron/geometry/scene_checkers.h"
+#include "fastron/geometry/self_pair_table.h"
 #include "fastron/proxy/held_out_training.h"
 
 namespace FASTRON_API fastron {
@@ -31,7 +32,10 @@ struct HeldOutModelOptions {
   /// Labels of FCL with self-collision (and no grown obstacles or other candidates, which were
   /// measured on obstacles' labels).
   bool selfCollision = false;
-  double padding = 0;                         ///< grows the robot's shapes in every label (m)
+  double padding = 0;  ///< grows the robot's shapes in every label (m)
+  /// With selfCollision: the robot's self-pair tables for every labelling checker
+  /// (CheckerOptions::selfPairTables; pipeline::selfPairTables), or null for none.
+  std::shared_ptr<const std::vector<SelfPairTable>> selfPairTables;
   std::string checker{kDefaultSceneChecker};  ///< the labels' exact checker (scene_checkers.h)
   /// The automatic control points that `features` were chosen by, when they were: the rounds
   /// then also try one more point by each rule (otherCandidates). Empty: no other candidates.
