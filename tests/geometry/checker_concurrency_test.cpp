@@ -83,5 +83,31 @@ TEST(CheckerConcurrency, FclChecksDuringCloudUpdates) {
   EXPECT_FALSE(checker.inCollision(q));
 }
 
+// The mesh Panda's self-pair tables, their pairs built on every core at once (coarse: 5 cm of
+// slack), are the same tables each time: each pair's distances come from one thread's kinematics.
+// A checker given them answers from several threads.
+TEST(CheckerConcurrency, SelfPairTablesBuiltOnEveryCore) {
+  const Robot panda = loadRobot("panda-mesh");
+  const CheckerOptions options{.selfCollision = true, .selfPairSlack = 0.05};
+  const FclChecker first(panda, Scene{}, options), second(panda, Scene{}, options);
+  ASSERT_GE(first.selfPairTableCount(), 2U);
+  ASSERT_EQ(first.selfPairTableCount(), second.selfPairTableCount());
+  for (std::size_t t = 0; t < first.selfPairTableCount(); ++t) {
+    EXPECT_EQ((*first.selfPairTables())[t].distance, (*second.selfPairTables())[t].distance);
+  }
+  const FclChecker given(panda, ballAt(0),
+                         {.selfCollision = true, .selfPairTables = first.selfPairTables()});
+  const std::vector<double> q(panda.dof(), 0.0);
+  const bool expected = given.inCollision(q);
+  std::atomic<std::size_t> differ{0};
+  {
+    auto worker = [&] {
+      for (int i = 0; i < 200; ++i) differ += given.inCollision(q) != expected ? 1 : 0;
+    };
+    std::jthread a(worker), b(worker);
+  }
+  EXPECT_EQ(differ, 0U);
+}
+
 }  // namespace
 }  // namespace fastron
