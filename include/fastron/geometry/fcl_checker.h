@@ -51,7 +51,7 @@ class FclChecker final : public SceneChecker {
   /// and asks FCL only about the pairs they do not keep apart (certifiedStateCheck): with
   /// options.proveMotionsFree, no point clouds and at most 256 robot shape-obstacle pairs.
   bool boundsStateChecks() const;
-  /// Self pairs with a table of their distance (CheckerOptions::selfPairSlack).
+  /// Self pairs with a table of their distance (CheckerOptions::selfPairSlack or selfPairTables).
   std::size_t selfPairTableCount() const;
   /// The tables of the robot's self pairs (built, or CheckerOptions::selfPairTables), for other
   /// checkers of this robot and padding; null for none.
