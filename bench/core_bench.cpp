@@ -10,9 +10,9 @@
 
 #include "fastron/baselines/original_fastron_query.h"
 #include "fastron/core/model.h"
+#include "fastron/core/parallel_chunks.h"
 #include "fastron/core/reference_trainer.h"
 #include "fastron/core/trainer.h"
-#include "fastron/proxy/parallel_chunks.h"
 #include "test_worlds.h"
 
 namespace fastron {

@@ -251,8 +251,9 @@ BENCHMARK(BM_VerifyPath)
 // Labels of a scene model's samples (labelConfigurations on one thread; FCL without
 // self-collision, as trainSceneModel asks them, or with it, self 1): 2500 uniform configurations in
 // the first generated problem of a family, with FCL's broad phase alone (bounds 0) or clearance
-// bounds first (bounds 1, the default). `same_labels` is 1 when both label every configuration
-// alike.
+// bounds first (bounds 1, the default; 2: and the robot's self-pair tables,
+// pipeline::selfPairTables, as the commands read them with --self-collision). `same_labels` is 1
+// when both label every configuration alike.
 void BM_LabelScene(benchmark::State& state) {
   const std::string robotName = kVerifiedRobots[static_cast<std::size_t>(state.range(0))];
   const Robot robot = loadRobot(robotName);
@@ -262,8 +263,11 @@ void BM_LabelScene(benchmark::State& state) {
   options.count = 1;
   const Scene scene = experiments::generateProblems(robot, options).front().scene;
   const bool self = state.range(3) != 0;
-  const FclChecker checker(robot, scene,
-                           {.selfCollision = self, .proveMotionsFree = state.range(2) != 0});
+  const FclChecker checker(
+      robot, scene,
+      {.selfCollision = self,
+       .proveMotionsFree = state.range(2) != 0,
+       .selfPairTables = state.range(2) == 2 ? pipeline::selfPairTables(robot).tables : nullptr});
   const FclChecker broadPhase(robot, scene, {.selfCollision = self, .proveMotionsFree = false});
   Rng rng(3);
   const Configurations q = uniformConfigurations(robot.limits(), 2500, rng);
@@ -279,6 +283,9 @@ void BM_LabelScene(benchmark::State& state) {
 BENCHMARK(BM_LabelScene)
     ->ArgsProduct({{0, 1, 2}, {0, 1}, {0, 1}, {0}})  // the Panda of primitives reaches into no box
     ->ArgsProduct({{0, 1, 2}, {0}, {0, 1}, {1}})
+    ->ArgsProduct({{0}, {0, 1}, {2}, {1}})  // the mesh Panda's self pairs read from its tables
+    ->Args({0, 1, 0, 1})
+    ->Args({0, 1, 1, 1})
     ->ArgNames({"robot", "cage", "bounds", "self"})
     ->Unit(benchmark::kMicrosecond);
 

@@ -3,9 +3,8 @@
 #include <iostream>
 
 #include "fastron/core/error.h"
-#include "fastron/experiments/statistics.h"
+#include "fastron/experiments/report_text.h"
 #include "fastron/geometry/scene_file.h"
-#include "fastron/pipeline/self_pair_tables.h"
 
 namespace fastron::cli {
 
@@ -64,17 +63,12 @@ CheckerOptions checkerOptionsFrom(const SceneOptions& options) {
 CheckerOptions checkerOptionsFor(const SceneOptions& options, const Robot& robot,
                                  std::string_view label) {
   CheckerOptions checking = checkerOptionsFrom(options);
-  if (!(options.selfCollision && options.selfPairTables && pipeline::hasMeshSelfPairs(robot)))
-    return checking;
+  if (!(options.selfCollision && options.selfPairTables)) return checking;
   const pipeline::SelfPairTables tables =
       pipeline::selfPairTables(robot, {.padding = options.padding});
+  if (!tables.tables) return checking;  // no self pair of meshes
   checking.selfPairTables = tables.tables;
-  std::cout << label << tables.tables->size() << " self pairs of meshes tabulated, "
-            << (tables.fromCache
-                    ? "read from " + tables.file.string()
-                    : "built in " + durationText(tables.buildSeconds) +
-                          (tables.file.empty() ? "" : " and kept in " + tables.file.string()))
-            << '\n';
+  std::cout << label << experiments::selfPairTablesText(tables) << '\n';
   if (!tables.warning.empty()) std::cerr << "fastron: warning: " << tables.warning << '\n';
   return checking;
 }

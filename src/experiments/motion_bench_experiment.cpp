@@ -213,21 +213,17 @@ void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const 
 /// (pipeline::selfPairTables); the report says where they came from.
 void tabulateSelfPairs(const Robot& robot, const MotionBenchOptions& o, const Progress& progress,
                        RobotModels& models, PlanRows& results) {
-  if (!pipeline::hasMeshSelfPairs(robot)) return;
-  if (progress) progress("motion-bench: the robot's self-pair tables");
   const pipeline::SelfPairTables tables =
       pipeline::selfPairTables(robot, {.cacheDirectory = o.selfModelCache});
   models.selfTables = tables.tables;
-  std::ostringstream note;
-  note << "Self-pair tables of " << robot.name() << ": " << tables.tables->size() << ", "
-       << (tables.fromCache ? "read from " + tables.file.string()
-                            : "built in " + durationText(tables.buildSeconds) +
-                                  " (once per robot, not counted in any method's time)" +
-                                  (tables.file.empty() ? "" : ", kept in " + tables.file.string()))
-       << "; every FCL checker reads them but the audit's.";
-  results.notes.push_back(note.str());
+  if (!tables.tables) return;  // no self pair of meshes
+  const std::string note = "Self-pair tables of " + robot.name() + ": " +
+                           selfPairTablesText(tables) +
+                           " (once per robot, not counted in any method's time); every FCL "
+                           "checker reads them but the audit's.";
+  results.notes.push_back(note);
   if (!tables.warning.empty()) results.warnings.push_back(tables.warning);
-  if (progress) progress("motion-bench: " + note.str());
+  if (progress) progress("motion-bench: " + note);
 }
 
 /// `rows` as results.csv so far, written whole to a new file then moved over `path`: an

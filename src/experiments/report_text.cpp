@@ -25,4 +25,11 @@ std::string simplificationSentence(double simplifyTime, PathSimplification simpl
   return s.str();
 }
 
+std::string selfPairTablesText(const pipeline::SelfPairTables& tables) {
+  std::string text = std::to_string(tables.tables->size()) + " self pairs of meshes tabulated, ";
+  if (tables.fromCache) return text + "read from " + tables.file.string();
+  text += "built in " + durationText(tables.buildSeconds);
+  return tables.file.empty() ? text : text + " and kept in " + tables.file.string();
+}
+
 }  // namespace fastron::experiments

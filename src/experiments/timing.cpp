@@ -1,7 +1,7 @@
 #include "fastron/experiments/timing.h"
 
 #include <chrono>
-#include "fastron/proxy/parallel_chunks.h"
+#include "fastron/core/parallel_chunks.h"
 
 namespace fastron::experiments {
 

@@ -10,16 +10,14 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <map>
 #include <mutex>
 #include <string>
-#include <thread>
 
 #include "fastron/core/error.h"
+#include "fastron/core/parallel_chunks.h"
 #include "fastron/geometry/clearance_bounds.h"
 #include "fastron/geometry/cloud_grid.h"
 #include "fastron/geometry/kinematics.h"
@@ -172,8 +170,8 @@ struct FclChecker::Geometry {
   // and each shape's levers relative to the robot's root.
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<Eigen::VectorXd> levers;
-  // With options.selfPairSlack: tables of the distance of self pairs of meshes that one or two
-  // coordinates turn against each other.
+  // With self-collision: tables of the distance of self pairs of meshes that one or two
+  // coordinates turn against each other (options.selfPairTables, or built for selfPairSlack).
   std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
   // Coordinates of prismatic joints with their limits: the levers hold within them.
   std::vector<std::tuple<std::size_t, double, double>> prismatic;
@@ -452,7 +450,9 @@ std::size_t FclChecker::selfPairTableCount() const {
 }
 
 /// Most nodes of one self-pair table (0.2 MB of floats; each costs an FCL distance to build: the
-/// mesh Panda's four tables at 7 mm of slack took 11 s, at 5 mm three of them needed more).
+/// mesh Panda's four tables at 7 mm of slack took 11 s on one core, at 5 mm three of them needed
+/// more). Tables kept in a cache depend on it: change pipeline/self_pair_tables.cpp's
+/// kTablesVersion with it.
 constexpr std::size_t kSelfTableNodes = 50000;
 
 Eigen::VectorXd FclChecker::selfPairLevers(const Geometry& geometry, std::size_t a,
@@ -475,43 +475,25 @@ std::shared_ptr<const std::vector<SelfPairTable>> FclChecker::tabulateSelfPairs(
     if (geometry.meshes[shapes.first] != 0 || geometry.meshes[shapes.second] != 0)
       pairs.push_back(shapes);
   }
-  auto tables = std::make_shared<std::vector<SelfPairTable>>();
-  if (pairs.empty()) return tables;
-  // Each table costs thousands of FCL mesh distances (seconds on the mesh Panda): the pairs are
-  // shared among the cores, each thread with kinematics of its own.
+  // Each table costs thousands of FCL mesh distances (seconds on the mesh Panda): a pair per chunk,
+  // on every core, each with kinematics of its own.
   std::vector<std::optional<SelfPairTable>> built(pairs.size());
-  std::atomic<std::size_t> nextPair{0};
-  std::exception_ptr failure;
-  std::mutex failureLock;
-  const auto work = [&] {
+  forEachChunk(pairs.size(), 1, 0, [&](std::size_t i, std::size_t) {
+    const std::size_t a = pairs[i].first, b = pairs[i].second;
     KinematicsData kinematics = makeKinematicsData(robot_);
-    for (std::size_t i = nextPair++; i < pairs.size(); i = nextPair++) {
-      const std::size_t a = pairs[i].first, b = pairs[i].second;
-      const auto distance = [&](const double* q) {
-        forwardKinematics(robot_, q, kinematics);
-        fcl::DistanceRequestd request;
-        fcl::DistanceResultd result;
-        fcl::distance(geometry.shapes[a].distance.get(), toFcl(shapePose(robot_, kinematics, a)),
-                      geometry.shapes[b].distance.get(), toFcl(shapePose(robot_, kinematics, b)),
-                      request, result);
-        return result.min_distance;
-      };
-      try {
-        built[i] = tabulateSelfPair(a, b, selfPairLevers(geometry, a, b), robot_.limits(),
-                                    options_.selfPairSlack, kSelfTableNodes, distance);
-      } catch (...) {
-        const std::lock_guard lock(failureLock);
-        if (!failure) failure = std::current_exception();
-      }
-    }
-  };
-  const std::size_t helpers =
-      std::min<std::size_t>(std::max(1U, std::thread::hardware_concurrency()), pairs.size()) - 1;
-  std::vector<std::thread> threads;
-  for (std::size_t t = 0; t < helpers; ++t) threads.emplace_back(work);
-  work();
-  for (std::thread& thread : threads) thread.join();
-  if (failure) std::rethrow_exception(failure);
+    const auto distance = [&](const double* q) {
+      forwardKinematics(robot_, q, kinematics);
+      fcl::DistanceRequestd request;
+      fcl::DistanceResultd result;
+      fcl::distance(geometry.shapes[a].distance.get(), toFcl(shapePose(robot_, kinematics, a)),
+                    geometry.shapes[b].distance.get(), toFcl(shapePose(robot_, kinematics, b)),
+                    request, result);
+      return result.min_distance;
+    };
+    built[i] = tabulateSelfPair(a, b, selfPairLevers(geometry, a, b), robot_.limits(),
+                                options_.selfPairSlack, kSelfTableNodes, distance);
+  });
+  auto tables = std::make_shared<std::vector<SelfPairTable>>();
   for (auto& table : built) {
     if (table) tables->push_back(std::move(*table));
   }

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <thread>
 
-#include "fastron/proxy/parallel_chunks.h"
+#include "fastron/core/parallel_chunks.h"
 
 namespace fastron {
 namespace {

@@ -4,7 +4,7 @@
 #include <exception>
 #include <string>
 
-#include "fastron/proxy/parallel_chunks.h"
+#include "fastron/core/parallel_chunks.h"
 
 namespace fastron {
 namespace {

@@ -6,8 +6,8 @@
 #include <utility>
 
 #include "fastron/core/error.h"
+#include "fastron/core/parallel_chunks.h"
 #include "fastron/proxy/labelling.h"
-#include "fastron/proxy/parallel_chunks.h"
 
 namespace fastron {
 

@@ -49,8 +49,8 @@ struct ClearanceModel {
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<EnclosingVolume> obstacles;  ///< per obstacle
   std::vector<ClearancePair> pairs;
-  /// The robot's self-pair tables (CheckerOptions::selfPairSlack) that pairs point to, shared
-  /// by every scene's model; null for none.
+  /// The robot's self-pair tables (CheckerOptions::selfPairTables or selfPairSlack) that pairs
+  /// point to, shared by every scene's model; null for none.
   std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
 };
 

@@ -22,7 +22,7 @@ namespace pipeline {
 /// How a robot's self-pair tables are built, and where they are kept.
 struct SelfPairTablesOptions {
   /// Metres the levers may take off a node's distance (CheckerOptions::selfPairSlack): smaller
-  /// proves more pairs apart and costs more nodes. 7 mm: the mesh Panda's four tables in 6 s
+  /// proves more pairs apart and costs more nodes. 7 mm: the mesh Panda's four tables in 5 s
   /// on two cores, verification 3.5 times faster than dense checking (docs/geometry.md).
   double slack = 0.007;
   double padding = 0;  ///< metres the robot's shapes are grown by (CheckerOptions::padding)

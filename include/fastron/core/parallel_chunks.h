@@ -1,8 +1,9 @@
 #pragma once
 // Work split into chunks handed out from a shared counter to a few threads: the one way Fastron
-// spreads exact checks over the cores (labelling, path verification). The helper threads are
-// long-lived workers that sleep between calls: waking one took about 12 us on the project's 2-core
-// machine, starting one 30 to 300 us, as long as a short path's whole verification.
+// spreads exact work over the cores (labelling, path verification, self-pair tables). The helper
+// threads are long-lived workers that sleep between calls: waking one took about 12 us on the
+// project's 2-core machine, starting one 30 to 300 us, as long as a short path's whole
+// verification.
 
 #include <algorithm>
 #include <atomic>

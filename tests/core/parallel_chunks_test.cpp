@@ -1,7 +1,7 @@
 // forEachChunk on the process's worker threads: every index once, from many callers at once, from
 // inside a chunk, with exceptions; and the work really is shared.
 
-#include "fastron/proxy/parallel_chunks.h"
+#include "fastron/core/parallel_chunks.h"
 
 #include <gtest/gtest.h>
 

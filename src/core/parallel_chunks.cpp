@@ -1,4 +1,4 @@
-#include "fastron/proxy/parallel_chunks.h"
+#include "fastron/core/parallel_chunks.h"
 
 #include <chrono>
 #include <condition_variable>
