@@ -170,6 +170,7 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
 struct PlanQuery {
   Robot robot;
   Eigen::VectorXd start, goal;
+  std::string group;  ///< the SRDF group planned, or empty for the robot's actuated joints
 };
 
 PlanQuery planQuery(const PlanOptions& o, const Scene& scene) {
@@ -177,7 +178,7 @@ PlanQuery planQuery(const PlanOptions& o, const Scene& scene) {
   if (o.request.empty()) {
     if (o.start.empty() || o.goal.empty())
       throw InvalidArgument("give --start and --goal (or --request with a MoveIt request)");
-    PlanQuery query{std::move(description.robot), {}, {}};
+    PlanQuery query{std::move(description.robot), {}, {}, o.robot.group};
     query.start = configurationFromOption(o.start, query.robot, "--start");
     query.goal = configurationFromOption(o.goal, query.robot, "--goal");
     return query;
@@ -191,7 +192,10 @@ PlanQuery planQuery(const PlanOptions& o, const Scene& scene) {
       jointsChosen ? std::vector<SrdfGroup>{} : description.srdf.groups, scene, request, o.request);
   if (!forRequest.warning.empty()) std::cerr << "fastron: warning: " << forRequest.warning << '\n';
   RequestEnds ends = requestEnds(forRequest.robot, request, o.request);
-  return {std::move(forRequest.robot), std::move(ends.start), std::move(ends.goal)};
+  const std::string group = jointsChosen                 ? o.robot.group
+                            : forRequest.warning.empty() ? request.group
+                                                         : std::string();
+  return {std::move(forRequest.robot), std::move(ends.start), std::move(ends.goal), group};
 }
 
 /// The plan of the method --checker names: an exact checker's (verified with `exact` when it is
@@ -275,8 +279,8 @@ int runPlan(const PlanOptions& o) {
                                .simplification = o.simplification};
   validate(options);
 
-  std::cout << "robot    " << query.robot.name() << ", " << query.robot.dof()
-            << " actuated joints\n"
+  std::cout << "robot    " << query.robot.name() << ", " << query.robot.dof() << " actuated joints"
+            << (query.group.empty() ? "" : " (group " + query.group + ")") << '\n'
             << "scene    " << o.scene.file << ", " << scene.size() << " obstacle(s)\n";
   const CheckerOptions checking = checkerOptionsFor(o.scene, query.robot, "tables   ");
   const std::shared_ptr<const SceneChecker> exact =

@@ -69,7 +69,11 @@ int runProblems(const ProblemsCommandOptions& o) {
             << " to " << o.output << " (sceneNNNN.yaml, requestNNNN.yaml; " << seconds << " s"
             << (o.sensed > 0 ? ", obstacles as sensed clouds" : "")
             << "); plan them with: fastron bench motion-bench --problems " << o.output
-            << " --robot " << o.robot.robot << "\n";
+            << " --robot " << o.robot.robot;
+  // The same robot files, and self-collision checked as the ends were chosen free of it.
+  if (!o.robot.srdf.empty()) std::cout << " --srdf " << o.robot.srdf;
+  for (const std::string& dir : o.robot.packagePaths) std::cout << " --package-path " << dir;
+  std::cout << (o.noSelfCollision ? "" : " --self-collision") << "\n";
   return 0;
 }
 

@@ -116,10 +116,12 @@ int runSurvey(const RobotOptions& robotOptions, const SelfCollisionOptions& opti
   std::cout << "\nPairs MoveIt Setup Assistant would disable (default: touching at the home "
                "configuration; always: in at least "
             << options.alwaysShare * 100
-            << "% of the samples), for robots.yaml's allowed_collisions:\n";
+            << "% of the samples; never: in none of them, which only saves checking time, and more "
+               "--samples make surer), for "
+               "robots.yaml's allowed_collisions or an SRDF's disable_collisions:\n";
   std::size_t listed = 0;
   for (const LinkPairSurvey& p : survey.pairs) {
-    if (p.verdict != PairVerdict::Default && p.verdict != PairVerdict::Always) continue;
+    if (p.verdict == PairVerdict::Enabled) continue;
     std::cout << "  - [" << p.linkA << ", " << p.linkB << "]  # " << toString(p.verdict) << '\n';
     ++listed;
   }

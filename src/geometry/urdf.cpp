@@ -4,6 +4,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -165,6 +166,16 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& p) {
   return t;
 }
 
+/// The folders of a colon-separated list (an environment variable's; none when unset).
+std::vector<std::filesystem::path> pathList(const char* list) {
+  std::vector<std::filesystem::path> dirs;
+  std::istringstream entries(list == nullptr ? "" : list);
+  for (std::string dir; std::getline(entries, dir, ':');) {
+    if (!dir.empty()) dirs.emplace_back(dir);
+  }
+  return dirs;
+}
+
 std::filesystem::path resolveMesh(const std::string& uri, const UrdfOptions& options,
                                   const std::filesystem::path& baseDirectory,
                                   const std::string& where) {
@@ -174,10 +185,22 @@ std::filesystem::path resolveMesh(const std::string& uri, const UrdfOptions& opt
     const std::size_t slash = rest.find('/');
     const std::string package = rest.substr(0, slash);
     const std::string inside = slash == std::string::npos ? "" : rest.substr(slash + 1);
-    for (const auto& dir : options.searchPaths) {
+    const auto packageIn = [&](const std::filesystem::path& dir) {
       candidates.push_back(dir / package / inside);
       if (dir.filename() == package) candidates.push_back(dir / inside);
+    };
+    for (const auto& dir : options.searchPaths) packageIn(dir);
+    // As ROS finds packages when no folder is given: the URDF's folder and its ancestors (a
+    // description package's urdf/ beside its meshes/), then the ROS 1 and ROS 2 package paths.
+    if (!baseDirectory.empty()) {
+      for (std::filesystem::path dir = std::filesystem::absolute(baseDirectory);;
+           dir = dir.parent_path()) {
+        packageIn(dir);
+        if (dir == dir.parent_path()) break;
+      }
     }
+    for (const auto& dir : pathList(std::getenv("ROS_PACKAGE_PATH"))) packageIn(dir);
+    for (const auto& dir : pathList(std::getenv("AMENT_PREFIX_PATH"))) packageIn(dir / "share");
   } else {
     const std::string path = uri.rfind("file://", 0) == 0 ? uri.substr(7) : uri;
     if (std::filesystem::path(path).is_absolute()) {

@@ -134,6 +134,34 @@ TEST_F(Urdf, MeshesThroughPackageUrisRelativePathsAndSearchPaths) {
               HasSubstr("link 'arm': mesh 'package://my_robot/meshes/cube.obj' not found"));
 }
 
+// Without search paths, package:// URIs are found as ROS finds them: in a description package
+// that holds the URDF (urdf/ beside meshes/), then along ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.
+TEST_F(Urdf, PackageUrisFoundWithoutSearchPaths) {
+  const std::string xml = urdf(
+      R"(<collision><geometry><mesh filename="package://my_robot/meshes/cube.obj"/></geometry></collision>)");
+  std::filesystem::create_directories(path("ws/my_robot/urdf"));
+  std::filesystem::create_directories(path("ws/my_robot/meshes"));
+  write("ws/my_robot/meshes/cube.obj", kCubeObj);
+  write("ws/my_robot/urdf/robot.urdf", xml);
+  EXPECT_EQ(loadUrdf(path("ws/my_robot/urdf/robot.urdf")).shapes().size(), 1u);
+
+  // A URDF apart from its package: found along the package paths only.
+  std::filesystem::create_directories(path("elsewhere"));
+  write("elsewhere/robot.urdf", xml);
+  EXPECT_THAT(messageOf<FileError>([&] { loadUrdf(path("elsewhere/robot.urdf")); }),
+              HasSubstr("not found"));
+  ASSERT_EQ(setenv("ROS_PACKAGE_PATH", ("/nonexistent:" + path("ws").string()).c_str(), 1), 0);
+  EXPECT_EQ(loadUrdf(path("elsewhere/robot.urdf")).shapes().size(), 1u);
+  unsetenv("ROS_PACKAGE_PATH");
+  std::filesystem::create_directories(path("install/share"));
+  std::filesystem::rename(path("ws/my_robot"), path("install/share/my_robot"));
+  ASSERT_EQ(setenv("AMENT_PREFIX_PATH", path("install").c_str(), 1), 0);
+  EXPECT_EQ(loadUrdf(path("elsewhere/robot.urdf")).shapes().size(), 1u);
+  unsetenv("AMENT_PREFIX_PATH");
+  EXPECT_THAT(messageOf<FileError>([&] { loadUrdf(path("elsewhere/robot.urdf")); }),
+              HasSubstr("not found"));
+}
+
 TEST_F(Urdf, ReadsAsciiStl) {
   write("tri.stl", R"(solid t
 facet normal 0 0 1
