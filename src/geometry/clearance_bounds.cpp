@@ -112,7 +112,7 @@ Ball ballAround(const std::vector<Triangle>& triangles, const std::vector<int>& 
 }
 
 /// A ball contains a triangle when it contains its corners (both are convex), so groups of
-/// triangles, the widest group split in two at the median centroid along its longest side until
+/// triangles, the widest group split in two (across the axis that leaves the smaller balls) until
 /// there are maxBalls (or every group is one triangle). Each group's triangles are returned in
 /// `groups`.
 std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
@@ -134,15 +134,34 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
       from = from.cwiseMin(centroids[static_cast<std::size_t>(t)]);
       to = to.cwiseMax(centroids[static_cast<std::size_t>(t)]);
     }
-    Eigen::Index axis = 0;
-    (to - from).maxCoeff(&axis);
-    const auto middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
-    std::nth_element(group.begin(), middle, group.end(), [&](int a, int b) {
-      return centroids[static_cast<std::size_t>(a)][axis] <
-             centroids[static_cast<std::size_t>(b)][axis];
-    });
-    std::vector<int> upper(middle, group.end());
-    group.erase(middle, group.end());
+    // Of the cuts across each axis at the middle of the centroids' extent, the one that leaves
+    // the larger ball the smallest: a round link is cut into slices, whose balls sit on its axis
+    // and hug it, rather than into patches of its surface, which balls about their own middle
+    // overhang by about their radius.
+    double bestRadius = std::numeric_limits<double>::infinity();
+    std::vector<int> lower, upper, below, above;
+    for (Eigen::Index axis = 0; axis < 3; ++axis) {
+      const double cut = (from[axis] + to[axis]) / 2;
+      below.clear();
+      above.clear();
+      for (const int t : group) {
+        (centroids[static_cast<std::size_t>(t)][axis] < cut ? below : above).push_back(t);
+      }
+      if (below.empty() || above.empty()) continue;
+      const double radius =
+          std::max(ballAround(triangles, below).radius, ballAround(triangles, above).radius);
+      if (radius < bestRadius) {
+        bestRadius = radius;
+        lower.swap(below);
+        upper.swap(above);
+      }
+    }
+    if (lower.empty()) {  // every centroid in one place: halve the group as it is
+      const auto middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
+      lower.assign(group.begin(), middle);
+      upper.assign(middle, group.end());
+    }
+    group = std::move(lower);
     balls[widest] = ballAround(triangles, group);
     balls.push_back(ballAround(triangles, upper));
     groups.push_back(std::move(upper));

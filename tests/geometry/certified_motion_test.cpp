@@ -110,6 +110,57 @@ TEST(CoveringBalls, EveryPointOfEveryShapeLiesInABall) {
   EXPECT_THROW(coveringBalls(Sphere{1}, 0), InvalidArgument);
 }
 
+// A link's mesh as collision meshes often are: a closed tube (radius 4 cm, 40 cm long) of rings
+// of long, thin triangles, capped by fans.
+Shape tubeMesh() {
+  constexpr int kSides = 24, kRings = 3;
+  constexpr double kRadius = 0.04, kLength = 0.4;
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int r = 0; r < kRings; ++r) {
+    for (int k = 0; k < kSides; ++k) {
+      const double a = 2 * std::numbers::pi * k / kSides;
+      mesh->vertices.emplace_back(kRadius * std::cos(a), kRadius * std::sin(a),
+                                  kLength * r / (kRings - 1));
+    }
+  }
+  mesh->vertices.emplace_back(0, 0, 0);
+  mesh->vertices.emplace_back(0, 0, kLength);
+  const int bottom = kRings * kSides, top = bottom + 1;
+  for (int k = 0; k < kSides; ++k) {
+    const int next = (k + 1) % kSides;
+    for (int r = 0; r + 1 < kRings; ++r) {
+      mesh->triangles.push_back({r * kSides + k, r * kSides + next, (r + 1) * kSides + next});
+      mesh->triangles.push_back({r * kSides + k, (r + 1) * kSides + next, (r + 1) * kSides + k});
+    }
+    mesh->triangles.push_back({bottom, next, k});
+    mesh->triangles.push_back({top, (kRings - 1) * kSides + k, (kRings - 1) * kSides + next});
+  }
+  return Mesh{mesh};
+}
+
+TEST(CoveringBalls, ATubeOfMeshIsCutIntoSlicesOnItsAxis) {
+  const Shape tube = tubeMesh();
+  const BallCover cover = coveringBallTree(tube, 12, 8);
+  ASSERT_EQ(cover.balls.size(), 12u);
+  ASSERT_EQ(cover.children.size(), 12u);
+  // Slices about the axis, not patches of the surface: a patch's ball overhangs the tube by
+  // about its own radius (the median cut made balls of 5.6 to 7.5 cm on such a link).
+  for (const Ball& b : cover.balls) {
+    EXPECT_LT(b.radius, 0.048) << b.centre.transpose();
+    EXPECT_LT(b.centre.head<2>().norm(), 0.005) << b.centre.transpose();
+  }
+  // Every point of the tube lies in a ball, and in a child of a ball that holds it.
+  Rng rng(3);
+  for (const Eigen::Vector3d& p : pointsOf(tube, 4000, rng)) {
+    bool inChild = false;
+    for (std::size_t b = 0; b < cover.balls.size(); ++b) {
+      if (covered({cover.balls[b]}, p)) inChild = inChild || covered(cover.children[b], p);
+    }
+    ASSERT_TRUE(covered(cover.balls, p)) << p.transpose();
+    ASSERT_TRUE(inChild) << p.transpose();
+  }
+}
+
 TEST(EnclosingVolume, DistancesAreExactForPrimitivesAndBelowForMeshes) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
