@@ -100,6 +100,10 @@ void validate(const PlannerOptions& options) {
     throw InvalidArgument("stretchShare must be in (0, 1], got " +
                           std::to_string(options.verify.stretchShare));
   }
+  if (!(options.verify.bridgeMargin >= 0) || !std::isfinite(options.verify.bridgeMargin)) {
+    throw InvalidArgument("bridgeMargin must be finite and >= 0, got " +
+                          std::to_string(options.verify.bridgeMargin));
+  }
   if (!(options.verify.approximateShare > 0) || !(options.verify.approximateShare <= 1)) {
     throw InvalidArgument("approximateShare must be in (0, 1], got " +
                           std::to_string(options.verify.approximateShare));

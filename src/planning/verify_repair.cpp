@@ -92,9 +92,6 @@ FirstCollisionToward firstCollisionToward(const CollisionSource& source,
 /// about everything else.
 constexpr UncertaintyBand kAskEveryCollision{0, std::numeric_limits<double>::infinity()};
 
-/// How far (joint units) a bridge's search may go beyond the box its ends span, on every side.
-constexpr double kBridgeMargin = 0.3;
-
 /// The joint limits of a bridge's search: the box the ends span, grown by `margin` on every side,
 /// within `limits`.
 JointLimits aroundEnds(const JointLimits& limits, const Eigen::VectorXd& a,
@@ -188,8 +185,9 @@ std::optional<Bridge> bridgeStretch(const JointPath& old, std::size_t i, std::si
   // default edges wander far from a graze, and each exact edge check costs milliseconds on a mesh
   // robot (box family: repairs of 0.09-0.29 s, as long as FCL's whole plans); then in the whole
   // range, for an obstacle whose way round lies farther out.
-  PlanResult bridge = planMotion(bridgeChecker, aroundEnds(limits, from, to, kBridgeMargin), from,
-                                 to, stretchOptions);
+  PlanResult bridge =
+      planMotion(bridgeChecker, aroundEnds(limits, from, to, options.verify.bridgeMargin), from, to,
+                 stretchOptions);
   if (!bridge.solved()) bridge = planMotion(bridgeChecker, limits, from, to, stretchOptions);
   if (!bridge.solved()) return std::nullopt;
   // Joined to the waypoints kept on either side.

@@ -1304,6 +1304,34 @@ TEST_F(Planning, ReplansTheWholeMotionWhenAStretchCannotBeBridged) {
   }));
 }
 
+// A bridge is searched first within the box its ends span grown by bridgeMargin: a detour within
+// the margin is found there, and one beyond it only in the search of the whole joint range after.
+TEST_F(Planning, ABridgeIsSearchedFirstWithinItsMargin) {
+  std::atomic<int> beyond{0};  // questions about states more than 1.05 from the straight line
+  const auto slotted = std::make_shared<FunctionChecker>("slotted", 2, [&](const double* q) {
+    if (std::abs(q[1]) > 1.05) ++beyond;
+    return std::abs(q[0]) < 0.1 && !(q[1] > 0.7 && q[1] < 0.9);
+  });
+  const JointLimits limits(vec({-3, -3}), vec({3, 3}));
+  const JointPath straight{vec({-1, 0}), vec({1, 0})};
+  for (const double margin : {1.0, 0.3}) {
+    beyond = 0;
+    const PlannerOptions options{
+        .resolution = 0.01, .timeLimit = 1, .verify = {.bridgeMargin = margin}};
+    const VerifiedPlan repaired = verifyAndRepair(straight, slotted, limits, options);
+    ASSERT_TRUE(repaired.solved()) << repaired.failure;
+    EXPECT_EQ(repaired.invalidStretches, 1u);
+    EXPECT_FALSE(repaired.wholePathReplanned);
+    if (margin == 1.0) {
+      EXPECT_EQ(beyond, 0) << "the slot lies within the margin";
+    } else {
+      EXPECT_GT(beyond, 0) << "the slot lies beyond the margin";
+    }
+  }
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.bridgeMargin = -0.1}}), InvalidArgument);
+  EXPECT_THROW(validate(PlannerOptions{.verify = {.bridgeMargin = std::nan("")}}), InvalidArgument);
+}
+
 TEST_F(Planning, SaysPlainlyWhenNoValidPathIsFound) {
   const auto closed = std::make_shared<FunctionChecker>(
       "closed", 2, [](const double* q) { return std::abs(q[0]) < 0.1; });

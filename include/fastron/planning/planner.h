@@ -65,6 +65,11 @@ struct VerifyRepairOptions {
   /// verifyAndRepair: the share of timeLimit that replanning one invalid stretch may take before
   /// the whole motion is planned on the exact checker instead.
   double stretchShare = 0.02;
+  /// verifyAndRepair: a stretch's bridge is searched first within the box its two ends span,
+  /// grown by this much (joint units) on every side, then within the joint limits. A wide box
+  /// leaves room for the detours of a robot that folds onto itself (an arm of ±2π joints whose
+  /// wrist meets its forearm); a narrow one keeps the planner near an obstacle's graze.
+  double bridgeMargin = 1.0;
   /// planVerifiedLearning: how many times a model whose path verification finds colliding learns
   /// the exact answers it got wrong and plans again, before its last path is repaired (0: repair
   /// at once).

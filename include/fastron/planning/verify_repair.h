@@ -80,7 +80,7 @@ struct VerifiedPlan {
 /// core, bisection order); cuts out each invalid stretch (from the last free state before its
 /// first collision to the first free state after its last one, walking the edges at
 /// options.resolution), bridges it with the same planner on `exact` within the box those two
-/// states span grown by 0.3 joint units, then within the joint limits (options.verify.stretchShare
+/// states span grown by options.verify.bridgeMargin, then within the joint limits (stretchShare
 /// of the time limit each; when both fail, the whole motion with the full time limit), splices the
 /// pieces and checks the whole path again (up to three rounds). planTime is left 0.
 VerifiedPlan verifyAndRepair(const JointPath& path,
