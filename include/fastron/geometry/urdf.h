@@ -13,7 +13,9 @@ namespace FASTRON_API fastron {
 struct UrdfOptions {
   /// Where `package://name/...` and relative mesh paths are looked up: for package URIs, a
   /// folder that contains `name/` or is itself named `name`. Relative paths are tried next to the
-  /// URDF file first.
+  /// URDF file first; package URIs, after these folders, as ROS finds packages: the URDF's folder
+  /// and its ancestors, then the folders of ROS_PACKAGE_PATH and the `share/` of those of
+  /// AMENT_PREFIX_PATH.
   std::vector<std::filesystem::path> searchPaths;
   /// Turn a cylinder with a sphere of its radius on each end (in one link) into one capsule.
   bool mergeCapsules = true;
