@@ -294,6 +294,7 @@ def plan_verified(approximate: Union[Source, ProxyCollisionDetector], exact: Col
                   learning_rounds: int = 0, static_scene: bool = False,
                   approximate_share: float = 0.1, model_share: Optional[float] = None,
                   substitute_share: float = 0.002, stretch_share: float = 0.02,
+                  bridge_margin: float = 1.0,
                   enclosed_after: int = 256, hybrid_range: Optional[float] = None,
                   oracle_relaxes_exact: bool = False,
                   gradient_repair: bool = False) -> VerifiedPlan: ...

@@ -37,7 +37,7 @@ PlannerOptions plannerOptions(const std::string& planner, double range, std::siz
 /// plan_verified's settings of the pipeline beyond the plan itself (VerifyRepairOptions' shares and
 /// planVerifiedLearning's), as Python passes them.
 struct PipelineSettings {
-  double approximateShare, substituteShare, stretchShare;
+  double approximateShare, substituteShare, stretchShare, bridgeMargin;
   std::size_t enclosedAfter;
   unsigned learningRounds;
   bool learns;  ///< planVerifiedLearning plans: static_scene, or learning_rounds > 0
@@ -51,6 +51,7 @@ void applyPipeline(const PipelineSettings& settings, PlannerOptions& options) {
   options.verify.approximateShare = settings.approximateShare;
   options.verify.substituteShare = settings.substituteShare;
   options.verify.stretchShare = settings.stretchShare;
+  options.verify.bridgeMargin = settings.bridgeMargin;
   options.enclosedAfter = settings.enclosedAfter;
   options.verify.learningRounds = settings.learningRounds;
   for (const auto& [given, name] : {std::pair{settings.modelShare.has_value(), "model_share"},
@@ -243,8 +244,8 @@ void bindPlanVerified(py::module_& m) {
          double timeLimit, double simplifyTime, const std::string& simplification,
          unsigned learningRounds, bool staticScene, double approximateShare,
          std::optional<double> modelShare, double substituteShare, double stretchShare,
-         std::size_t enclosedAfter, std::optional<double> hybridRange, bool oracleRelaxesExact,
-         bool gradientRepair) {
+         double bridgeMargin, std::size_t enclosedAfter, std::optional<double> hybridRange,
+         bool oracleRelaxesExact, bool gradientRepair) {
         PlannerOptions options =
             plannerOptions(planner, range, rangeStage, resolution, modelResolution, timeLimit,
                            simplifyTime, simplification);
@@ -255,8 +256,8 @@ void bindPlanVerified(py::module_& m) {
               ": only a ProxyCollisionDetector learns, got " + typeName(approximate));
         }
         applyPipeline(
-            {approximateShare, substituteShare, stretchShare, enclosedAfter, learningRounds, learns,
-             modelShare, hybridRange, oracleRelaxesExact, gradientRepair},
+            {approximateShare, substituteShare, stretchShare, bridgeMargin, enclosedAfter,
+             learningRounds, learns, modelShare, hybridRange, oracleRelaxesExact, gradientRepair},
             options);
         const JointLimits l = limitsOf(approximate, limits);
         const Eigen::VectorXd a = vector(start, l.dim(), "start"),
@@ -290,6 +291,7 @@ void bindPlanVerified(py::module_& m) {
       py::arg("model_share") = py::none(),
       py::arg("substitute_share") = PlannerOptions{}.verify.substituteShare,
       py::arg("stretch_share") = PlannerOptions{}.verify.stretchShare,
+      py::arg("bridge_margin") = PlannerOptions{}.verify.bridgeMargin,
       py::arg("enclosed_after") = PlannerOptions{}.enclosedAfter,
       py::arg("hybrid_range") = py::none(), py::arg("oracle_relaxes_exact") = false,
       py::arg("gradient_repair") = false,

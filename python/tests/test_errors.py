@@ -100,6 +100,7 @@ def test_bad_robot_and_planning_arguments(baxter, baxter_fcl):
     with pytest.raises(fastron.InvalidArgument, match="static_scene: only a ProxyCollisionDetector"):
         fastron.plan_verified(baxter_fcl, baxter_fcl, np.zeros(7), np.zeros(7), static_scene=True)
     for setting, message in (({"stretch_share": 0}, "stretchShare must be in"),
+                             ({"bridge_margin": -1}, "bridgeMargin must be finite and >= 0"),
                              ({"approximate_share": 1.5}, "approximateShare must be in"),
                              ({"substitute_share": -1}, "substituteShare must be in")):
         with pytest.raises(fastron.InvalidArgument, match=message):
