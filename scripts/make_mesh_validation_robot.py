@@ -156,15 +156,13 @@ def urdf(parts):
 
 
 def srdf(parts):
-    arm = ["base_link", "shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
-           "wrist_2_link", "wrist_3_link"]
     gripper = [name for name, triangles, _ in parts if triangles is not None and
                (name.startswith("gripper") or "knuckle" in name or "finger" in name)]
     pairs = []
     for name, triangles, joint in parts:
         if joint is not None and triangles is not None:
             parent = joint[0]
-            while parent == "tool0":
+            if parent == "tool0":  # a frame without a shape: the link that carries it
                 parent = "wrist_3_link"
             pairs.append((parent, name, "Adjacent"))
     # As the Setup Assistant finds them: links that can never touch, and the gripper's own links.
@@ -194,7 +192,6 @@ def srdf(parts):
               'child_link="base_link"/>']
     lines += [f'  <disable_collisions link1="{a}" link2="{b}" reason="{r}"/>' for a, b, r in pairs]
     lines.append("</robot>")
-    del arm
     return "\n".join(lines) + "\n"
 
 

@@ -140,6 +140,7 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
     // overhang by about their radius.
     double bestRadius = std::numeric_limits<double>::infinity();
     std::vector<int> lower, upper, below, above;
+    Ball lowerBall, upperBall;
     for (Eigen::Index axis = 0; axis < 3; ++axis) {
       const double cut = (from[axis] + to[axis]) / 2;
       below.clear();
@@ -148,22 +149,26 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
         (centroids[static_cast<std::size_t>(t)][axis] < cut ? below : above).push_back(t);
       }
       if (below.empty() || above.empty()) continue;
-      const double radius =
-          std::max(ballAround(triangles, below).radius, ballAround(triangles, above).radius);
-      if (radius < bestRadius) {
-        bestRadius = radius;
+      const Ball belowBall = ballAround(triangles, below);
+      const Ball aboveBall = ballAround(triangles, above);
+      if (std::max(belowBall.radius, aboveBall.radius) < bestRadius) {
+        bestRadius = std::max(belowBall.radius, aboveBall.radius);
         lower.swap(below);
         upper.swap(above);
+        lowerBall = belowBall;
+        upperBall = aboveBall;
       }
     }
     if (lower.empty()) {  // every centroid in one place: halve the group as it is
       const auto middle = group.begin() + static_cast<std::ptrdiff_t>(group.size() / 2);
       lower.assign(group.begin(), middle);
       upper.assign(middle, group.end());
+      lowerBall = ballAround(triangles, lower);
+      upperBall = ballAround(triangles, upper);
     }
     group = std::move(lower);
-    balls[widest] = ballAround(triangles, group);
-    balls.push_back(ballAround(triangles, upper));
+    balls[widest] = lowerBall;
+    balls.push_back(upperBall);
     groups.push_back(std::move(upper));
   }
   return balls;

@@ -1317,7 +1317,7 @@ TEST_F(Planning, ABridgeIsSearchedFirstWithinItsMargin) {
   for (const double margin : {1.0, 0.3}) {
     beyond = 0;
     const PlannerOptions options{
-        .resolution = 0.01, .timeLimit = 1, .verify = {.bridgeMargin = margin}};
+        .resolution = 0.01, .timeLimit = 5, .verify = {.bridgeMargin = margin}};
     const VerifiedPlan repaired = verifyAndRepair(straight, slotted, limits, options);
     ASSERT_TRUE(repaired.solved()) << repaired.failure;
     EXPECT_EQ(repaired.invalidStretches, 1u);
