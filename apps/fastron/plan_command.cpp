@@ -161,8 +161,9 @@ VerifiedPlan planWithSelfModel(const PlanOptions& o, const Robot& robot, const S
   }
   const auto obstacles = !o.model.empty() ? readModel(o.model, robot, "model    ")
                                           : trainObstacleModel(o, robot, scene).detector->model();
-  return pipeline::planOnSplitModel(pipeline::splitModel(obstacles, self), exact, robot.limits(),
-                                    start, goal, options);
+  return pipeline::planOnSplitModel(
+      pipeline::splitModel(obstacles, pipeline::selfModelChecker(robot, self)), exact,
+      robot.limits(), start, goal, options);
 }
 
 /// The robot to plan (the request's group, unless --joints or --group chose the joints; other

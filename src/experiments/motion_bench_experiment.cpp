@@ -184,7 +184,9 @@ struct RobotModels {
   /// depends on the robot more than on the scene:
   /// docs/log/2026-11-29-control-points-of-scene-models.md).
   std::vector<pipeline::FeatureCandidate> candidates;
-  std::shared_ptr<const Model> selfModel;  ///< with MotionBenchOptions::selfModel
+  /// With MotionBenchOptions::selfModel: the robot's self-collision model as a checker of its
+  /// configurations (pipeline::selfModelChecker).
+  std::shared_ptr<const CollisionChecker> selfModel;
   double selfTrainSeconds = 0;
   /// The robot's self-pair tables (MotionBenchOptions::selfPairTables), given to every FCL
   /// checker of its scenes but the audit's.
@@ -206,7 +208,7 @@ void learnSelfCollisions(const Robot& robot, const MotionBenchOptions& o, const 
              std::string(self.fromCache ? "read from " : "trained and kept in ") +
              self.file.string());
   models.selfTrainSeconds = self.trainSeconds;
-  models.selfModel = self.model;
+  models.selfModel = pipeline::selfModelChecker(robot, self.model);
 }
 
 /// The robot's self-pair tables, built once per robot and kept in the cache

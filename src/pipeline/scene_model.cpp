@@ -116,10 +116,9 @@ VerifiedPlan planOnSceneModel(SceneModel& model,
 }
 
 std::shared_ptr<const CollisionChecker> splitModel(std::shared_ptr<const Model> obstacles,
-                                                   std::shared_ptr<const Model> self) {
+                                                   std::shared_ptr<const CollisionChecker> self) {
   return std::make_shared<const AnyOfChecker>(std::vector<std::shared_ptr<const CollisionChecker>>{
-      std::make_shared<const ModelChecker>(std::move(obstacles)),
-      std::make_shared<const ModelChecker>(std::move(self), "Fastron self")});
+      std::make_shared<const ModelChecker>(std::move(obstacles)), std::move(self)});
 }
 
 VerifiedPlan planOnSplitModel(const std::shared_ptr<const CollisionChecker>& split,

@@ -1,12 +1,16 @@
 #include "fastron/pipeline/self_model.h"
 
 #include <unistd.h>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 
 #include "cache_key.h"
 #include "fastron/core/error.h"
+#include "fastron/core/model_checker.h"
 #include "fastron/core/model_file.h"
 #include "fastron/geometry/checker_options.h"
 #include "fastron/geometry/point_kinematics.h"
@@ -25,13 +29,40 @@ ProxyParams selfModelParams(std::uint64_t seed) {
   return withoutBand(robotProxyParams(5, 500, seed));
 }
 
+constexpr double kTurn = 2 * std::numbers::pi;
+
+/// A self-collision model whose coordinates `wrapped` are angles it learned on [-pi, pi]: each is
+/// wrapped onto that turn before the model answers.
+class TurnWrappingChecker final : public CollisionChecker {
+ public:
+  TurnWrappingChecker(std::shared_ptr<const Model> model, std::vector<std::size_t> wrapped,
+                      std::string name)
+      : model_(std::move(model)), wrapped_(std::move(wrapped)), name_(std::move(name)) {}
+  std::string name() const override { return name_; }
+  std::size_t dof() const override { return model_->dim(); }
+  bool answersFromAModel() const override { return true; }
+
+ protected:
+  bool check(const double* q) const override {
+    std::array<double, kMaxFeatureDimension> onOneTurn;  // a joint-scaling model's dim() <= it
+    std::copy(q, q + model_->dim(), onOneTurn.begin());
+    for (const std::size_t i : wrapped_) onOneTurn[i] = std::remainder(q[i], kTurn);
+    return model_->inCollision(onOneTurn.data());
+  }
+
+ private:
+  std::shared_ptr<const Model> model_;
+  std::vector<std::size_t> wrapped_;
+  std::string name_;
+};
+
 /// The cached model, or none when the file is absent or does not fit the robot (a file of
 /// another version, cut short, or of other limits).
 std::shared_ptr<const Model> readCached(const std::filesystem::path& file, const Robot& robot) {
   if (!std::filesystem::is_regular_file(file)) return nullptr;
   try {
     auto model = std::make_shared<const Model>(loadModel(file));
-    const JointLimits limits = robot.limits();
+    const JointLimits limits = selfModelLimits(robot);
     if (model->dim() != robot.dof() || model->features().kind() != FeatureKind::JointScaling ||
         !model->limits().lower().isApprox(limits.lower()) ||
         !model->limits().upper().isApprox(limits.upper()))
@@ -55,6 +86,45 @@ std::filesystem::path defaultCacheDirectory() {
       "no cache folder for self-collision models and self-pair tables: set FASTRON_CACHE_DIR (or "
       "XDG_CACHE_HOME or "
       "HOME)");
+}
+
+JointLimits selfModelLimits(const Robot& robot) {
+  const JointLimits limits = robot.limits();
+  Eigen::VectorXd lower = limits.lower(), upper = limits.upper();
+  for (std::size_t i = 0; i < robot.dof(); ++i) {
+    const JointType type = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[i])].type;
+    const auto k = static_cast<Eigen::Index>(i);
+    if (type == JointType::Revolute && upper[k] - lower[k] > kTurn) {
+      lower[k] = -std::numbers::pi;
+      upper[k] = std::numbers::pi;
+    }
+  }
+  return JointLimits(lower, upper);
+}
+
+std::shared_ptr<const CollisionChecker> selfModelChecker(const Robot& robot,
+                                                         std::shared_ptr<const Model> model,
+                                                         std::string name) {
+  if (!model) throw InvalidArgument("selfModelChecker: no model");
+  if (model->dim() != robot.dof()) {
+    throw InvalidArgument("selfModelChecker: a model of " + std::to_string(model->dim()) +
+                          " joints for robot '" + robot.name() + "' of " +
+                          std::to_string(robot.dof()));
+  }
+  const JointLimits full = robot.limits(), oneTurn = selfModelLimits(robot);
+  const JointLimits& learned = model->limits();
+  std::vector<std::size_t> wrapped;
+  for (Eigen::Index i = 0; i < full.lower().size(); ++i) {
+    const bool narrowed =
+        oneTurn.lower()[i] != full.lower()[i] || oneTurn.upper()[i] != full.upper()[i];
+    if (narrowed && learned.lower()[i] == oneTurn.lower()[i] &&
+        learned.upper()[i] == oneTurn.upper()[i])
+      wrapped.push_back(static_cast<std::size_t>(i));
+  }
+  if (wrapped.empty())
+    return std::make_shared<const ModelChecker>(std::move(model), std::move(name));
+  return std::make_shared<const TurnWrappingChecker>(std::move(model), std::move(wrapped),
+                                                     std::move(name));
 }
 
 std::uint64_t selfModelKey(const Robot& robot, const SelfModelOptions& options) {
@@ -81,7 +151,8 @@ SelfModel selfCollisionModel(const Robot& robot, const SelfModelOptions& options
   ProxyCollisionDetector self(
       makeSceneChecker(kDefaultSceneChecker, robot, Scene{},
                        CheckerOptions{.selfCollision = true, .padding = options.padding}),
-      robotFeatures(robot, FeatureKind::JointScaling), selfModelParams(options.seed));
+      robotFeatures(robot, FeatureKind::JointScaling, selfModelLimits(robot)),
+      selfModelParams(options.seed));
   result.trainSeconds =
       std::chrono::duration<double>(trainStatic(self, options.samples, options.updates).total)
           .count();

@@ -12,6 +12,7 @@
 #include "fastron/geometry/robot_features.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/geometry/scene_file.h"
+#include "fastron/pipeline/self_model.h"
 #include "fastron/planning/motion.h"
 #include "fastron/planning/planner.h"
 
@@ -163,7 +164,7 @@ TEST(SceneModel, ASplitModelThatEnclosesAnEndStillPlans) {
       FeatureMap::jointScaling(baxter.limits()), Kernel{KernelType::RationalQuadratic, 5},
       Configurations(start.transpose()), Eigen::VectorXd::Constant(1, 10.0));
   ASSERT_TRUE(self->inCollision(start.data()));
-  const auto split = splitModel(model.detector->model(), self);
+  const auto split = splitModel(model.detector->model(), selfModelChecker(baxter, self));
   EXPECT_EQ(split->name(), "Fastron+Fastron self");
   const auto exact = std::make_shared<const FclChecker>(baxter, scene);
   seedPlanners(1, 0);

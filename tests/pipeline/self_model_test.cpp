@@ -7,10 +7,13 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <numbers>
+#include <span>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
 #include "fastron/core/metrics.h"
+#include "fastron/core/model.h"
 #include "fastron/geometry/fcl_checker.h"
 #include "fastron/geometry/robot_library.h"
 #include "fastron/proxy/labelling.h"
@@ -45,13 +48,83 @@ TEST_F(SelfModelCache, TrainedOnceThenReadBackTheSame) {
   const Configurations q = uniformConfigurations(ur3.limits(), 500, rng);
   EXPECT_EQ(again.model->scoreBatch(q), first.model->scoreBatch(q));
 
-  // It models the robot's self-collisions: better than always answering the commoner label.
+  // It models the robot's self-collisions over the robot's whole range (through its checker,
+  // which wraps the joints of two turns onto the one it learned): better than always answering
+  // the commoner label.
   const FclChecker fcl(ur3, Scene{}, {.selfCollision = true});
   const Labels truth = labelConfigurations(fcl, q, 1);
-  const ConfusionCounts quality = evaluate(*again.model, q, truth);
+  const Labels answers = labelConfigurations(*selfModelChecker(ur3, again.model), q, 1);
+  ConfusionCounts quality;
+  for (std::size_t i = 0; i < truth.size(); ++i) quality.add(answers[i] > 0, truth[i] > 0);
   const double colliding =
       static_cast<double>(quality.truePositives + quality.falseNegatives) / 500.0;
   EXPECT_GT(quality.accuracy(), std::max(colliding, 1 - colliding));
+}
+
+// A UR3's joints of two turns (+-2 pi) are learned on one: the same pose repeats every turn. The
+// elbow's single turn (+-pi) is left as it is.
+TEST(SelfModelLimits, JointsOfMoreThanATurnAreLearnedOnOne) {
+  const Robot ur3 = loadRobot("ur3");
+  const JointLimits limits = selfModelLimits(ur3);
+  const std::vector<std::string> names = ur3.actuatedJointNames();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    SCOPED_TRACE(names[i]);
+    EXPECT_GT(ur3.limits().upper()[k] - ur3.limits().lower()[k], 2 * std::numbers::pi - 1e-9);
+    EXPECT_DOUBLE_EQ(limits.lower()[k], -std::numbers::pi);
+    EXPECT_DOUBLE_EQ(limits.upper()[k], std::numbers::pi);
+  }
+  // A robot of narrower joints keeps its limits.
+  const Robot panda = loadRobot("panda");
+  EXPECT_EQ(selfModelLimits(panda).lower(), panda.limits().lower());
+  EXPECT_EQ(selfModelLimits(panda).upper(), panda.limits().upper());
+}
+
+// The checker answers a configuration as the model answers the same pose on its one turn, so q
+// and q + 2 pi on a joint of two turns get one answer; a model of the robot's own limits (a file
+// of an earlier version) answers as it is.
+TEST(SelfModelLimits, TheCheckerWrapsJointsOntoTheTurnTheModelLearned) {
+  const Robot ur3 = loadRobot("ur3");
+  Rng rng(9);
+  const Configurations points = uniformConfigurations(selfModelLimits(ur3), 40, rng);
+  const Eigen::VectorXd weights = Eigen::VectorXd::LinSpaced(40, -3, 3);
+  const auto oneTurn =
+      std::make_shared<const Model>(FeatureMap::jointScaling(selfModelLimits(ur3)),
+                                    Kernel{KernelType::RationalQuadratic, 5}, points, weights);
+  const auto checker = selfModelChecker(ur3, oneTurn);
+  EXPECT_EQ(checker->name(), "Fastron self");
+  EXPECT_TRUE(checker->answersFromAModel());
+  const Configurations q = uniformConfigurations(selfModelLimits(ur3), 200, rng);
+  std::size_t colliding = 0;
+  const auto answerOf = [&](const Eigen::VectorXd& v) {
+    return checker->inCollision(
+        std::span<const double>(v.data(), static_cast<std::size_t>(v.size())));
+  };
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    const Eigen::VectorXd same = q.row(i).transpose();
+    Eigen::VectorXd turned = same;
+    turned[0] += 2 * std::numbers::pi;  // shoulder pan, +-2 pi
+    turned[4] -= 2 * std::numbers::pi;  // wrist 2, +-2 pi
+    const bool answer = oneTurn->inCollision(same.data());
+    EXPECT_EQ(answerOf(same), answer);
+    EXPECT_EQ(answerOf(turned), answer);
+    colliding += answer;
+  }
+  EXPECT_GT(colliding, 0u);  // both answers were asked
+  EXPECT_LT(colliding, 200u);
+
+  const auto wholeRange =
+      std::make_shared<const Model>(FeatureMap::jointScaling(ur3.limits()),
+                                    Kernel{KernelType::RationalQuadratic, 5}, points, weights);
+  const auto asItIs = selfModelChecker(ur3, wholeRange, "mine");
+  EXPECT_EQ(asItIs->name(), "mine");
+  Eigen::VectorXd far = Eigen::VectorXd::Constant(6, 0.5);
+  far[0] = 5.0;
+  EXPECT_EQ(asItIs->inCollision(std::span<const double>(far.data(), 6)),
+            wholeRange->inCollision(far.data()));
+
+  EXPECT_THROW(selfModelChecker(ur3, nullptr), InvalidArgument);
+  EXPECT_THROW(selfModelChecker(loadRobot("panda"), oneTurn), InvalidArgument);
 }
 
 // A changed URDF (a shape), SRDF (an allowed pair), joint choice or training setting is another

@@ -92,12 +92,12 @@ VerifiedPlan planOnSceneModel(SceneModel& model,
                               const JointLimits& limits, const Eigen::VectorXd& start,
                               const Eigen::VectorXd& goal, PlannerOptions options);
 
-/// A scene's obstacle model and the robot's self-collision model (pipeline::selfCollisionModel)
-/// as one checker: in collision when either says so. Named "Fastron+Fastron self". Throws
-/// InvalidArgument on a null model or models of different joints.
+/// A scene's obstacle model and the robot's self-collision model (pipeline::selfCollisionModel,
+/// asked through pipeline::selfModelChecker) as one checker: in collision when either says so.
+/// Named "Fastron+" and the self checker's name. Throws InvalidArgument on a null model or checker,
+/// or ones of different joints.
 std::shared_ptr<const CollisionChecker> splitModel(std::shared_ptr<const Model> obstacles,
-                                                   std::shared_ptr<const Model> self);
-
+                                                   std::shared_ptr<const CollisionChecker> self);
 /// The plan of `fastron plan --self-model` and motion-bench's "Fastron split": on `split`
 /// (splitModel), then, as the default method does when its model closes the way, on a hybrid
 /// that trusts its "free" and asks `exact` about its "collides" (AllOfChecker), then on `exact`;
