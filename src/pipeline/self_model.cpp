@@ -117,8 +117,9 @@ std::shared_ptr<const CollisionChecker> selfModelChecker(const Robot& robot,
   for (Eigen::Index i = 0; i < full.lower().size(); ++i) {
     const bool narrowed =
         oneTurn.lower()[i] != full.lower()[i] || oneTurn.upper()[i] != full.upper()[i];
-    if (narrowed && learned.lower()[i] == oneTurn.lower()[i] &&
-        learned.upper()[i] == oneTurn.upper()[i])
+    // As the file kept them: a model file's limits need not round-trip to the last bit.
+    if (narrowed && std::abs(learned.lower()[i] - oneTurn.lower()[i]) < 1e-9 &&
+        std::abs(learned.upper()[i] - oneTurn.upper()[i]) < 1e-9)
       wrapped.push_back(static_cast<std::size_t>(i));
   }
   if (wrapped.empty())
