@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
+#include <span>
 
 #include "fastron/core/active_learning.h"
 #include "fastron/core/error.h"
@@ -163,6 +165,42 @@ int defaultTip(const Robot& robot) {
 
 }  // namespace
 
+void takeTurnsNearestStart(const Robot& robot, std::span<const double> start,
+                           std::span<double> goal) {
+  if (start.size() != robot.dof() || goal.size() != robot.dof()) {
+    throw InvalidArgument("takeTurnsNearestStart: start and goal need " +
+                          std::to_string(robot.dof()) + " values, got " +
+                          std::to_string(start.size()) + " and " + std::to_string(goal.size()));
+  }
+  constexpr double kTurn = 2 * std::numbers::pi;
+  const JointLimits limits = robot.limits();
+  KinematicsData kinematics = makeKinematicsData(robot);
+  forwardKinematics(robot, goal.data(), kinematics);
+  const auto poses = kinematics.linkPoses;  // where the drawn goal puts the links
+  for (std::size_t i = 0; i < robot.dof(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const Joint& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[i])];
+    if (joint.type != JointType::Revolute || limits.upper()[k] - limits.lower()[k] <= kTurn)
+      continue;
+    const double nearest = start[i] + std::remainder(goal[i] - start[i], kTurn);
+    double best = goal[i];
+    for (const double value : {nearest, nearest - kTurn, nearest + kTurn}) {
+      if (value >= limits.lower()[k] && value <= limits.upper()[k] &&
+          std::abs(value - start[i]) < std::abs(best - start[i]))
+        best = value;
+    }
+    const double drawn = goal[i];
+    goal[i] = best;
+    forwardKinematics(robot, goal.data(), kinematics);
+    for (std::size_t link = 0; link < poses.size(); ++link) {
+      if (!kinematics.linkPoses[link].isApprox(poses[link], 1e-9)) {
+        goal[i] = drawn;
+        break;
+      }
+    }
+  }
+}
+
 std::string_view toString(ProblemFamily family) {
   return family == ProblemFamily::Cage ? "cage" : "box";
 }
@@ -208,8 +246,10 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
       if (findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, nearTarget,
                             problem.goal) &&
           findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, ready,
-                            problem.start))
+                            problem.start)) {
+        takeTurnsNearestStart(robot, problem.start, problem.goal);
         return true;
+      }
     }
     return false;
   };

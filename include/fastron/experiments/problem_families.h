@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,9 +41,22 @@ struct ProblemOptions {
   std::size_t samplesPerAttempt = 200000;
 };
 
+/// Takes `goal`'s value of each revolute joint of more than a turn (a UR arm's +-2 pi), among
+/// those a whole turn apart within its limits, nearest `start`'s, when every link of `robot` stays
+/// where it is (a joint that a mimic follows at another ratio keeps its value): the same pose, the
+/// same answer from every checker. Goals drawn anywhere in +-2 pi are otherwise a turn away from
+/// the start on some joint as often as not, and a turn can be closed to every planner (the arm
+/// would sweep through the table or itself): of ten UR3 cage problems drawn so, four went
+/// unsolved by every method in 5 s (docs/log/2026-12-01-an-arms-collisions-with-itself.md).
+/// `start` and `goal` hold robot.dof() values.
+void takeTurnsNearestStart(const Robot& robot, std::span<const double> start,
+                           std::span<double> goal);
+
 /// One problem: obstacles, and start and goal over the robot's actuated joints, both free under
 /// FCL (with self-collision when asked); the start puts the tip in front of the robot, outside the
-/// structure, the goal near the object inside it.
+/// structure, the goal near the object inside it. A revolute joint of more than a turn (a UR arm's
+/// +-2 pi) has the goal's value, of those a whole turn apart within its limits that leave every
+/// link where it is, nearest the start's.
 struct GeneratedProblem {
   Scene scene;
   std::vector<double> start, goal;
