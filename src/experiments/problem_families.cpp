@@ -177,11 +177,8 @@ void takeTurnsNearestStart(const Robot& robot, std::span<const double> start,
   KinematicsData kinematics = makeKinematicsData(robot);
   forwardKinematics(robot, goal.data(), kinematics);
   const auto poses = kinematics.linkPoses;  // where the drawn goal puts the links
-  for (std::size_t i = 0; i < robot.dof(); ++i) {
+  for (const std::size_t i : coordinatesOfMoreThanATurn(robot)) {
     const auto k = static_cast<Eigen::Index>(i);
-    const Joint& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[i])];
-    if (joint.type != JointType::Revolute || limits.upper()[k] - limits.lower()[k] <= kTurn)
-      continue;
     const double nearest = start[i] + std::remainder(goal[i] - start[i], kTurn);
     double best = goal[i];
     for (const double value : {nearest, nearest - kTurn, nearest + kTurn}) {

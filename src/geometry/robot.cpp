@@ -312,4 +312,17 @@ std::vector<std::pair<std::size_t, std::size_t>> Robot::selfCollisionPairs(
   return pairs;
 }
 
+std::vector<std::size_t> coordinatesOfMoreThanATurn(const Robot& robot) {
+  const JointLimits limits = robot.limits();
+  std::vector<std::size_t> coordinates;
+  for (std::size_t i = 0; i < robot.dof(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const Joint& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[i])];
+    if (joint.type == JointType::Revolute &&
+        limits.upper()[k] - limits.lower()[k] > 2 * std::numbers::pi)
+      coordinates.push_back(i);
+  }
+  return coordinates;
+}
+
 }  // namespace fastron

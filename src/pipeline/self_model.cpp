@@ -91,13 +91,9 @@ std::filesystem::path defaultCacheDirectory() {
 JointLimits selfModelLimits(const Robot& robot) {
   const JointLimits limits = robot.limits();
   Eigen::VectorXd lower = limits.lower(), upper = limits.upper();
-  for (std::size_t i = 0; i < robot.dof(); ++i) {
-    const JointType type = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[i])].type;
-    const auto k = static_cast<Eigen::Index>(i);
-    if (type == JointType::Revolute && upper[k] - lower[k] > kTurn) {
-      lower[k] = -std::numbers::pi;
-      upper[k] = std::numbers::pi;
-    }
+  for (const std::size_t i : coordinatesOfMoreThanATurn(robot)) {
+    lower[static_cast<Eigen::Index>(i)] = -std::numbers::pi;
+    upper[static_cast<Eigen::Index>(i)] = std::numbers::pi;
   }
   return JointLimits(lower, upper);
 }
@@ -111,16 +107,15 @@ std::shared_ptr<const CollisionChecker> selfModelChecker(const Robot& robot,
                           " joints for robot '" + robot.name() + "' of " +
                           std::to_string(robot.dof()));
   }
-  const JointLimits full = robot.limits(), oneTurn = selfModelLimits(robot);
+  // The coordinates the model learned on one turn (a model of the robot's own limits, none).
   const JointLimits& learned = model->limits();
   std::vector<std::size_t> wrapped;
-  for (Eigen::Index i = 0; i < full.lower().size(); ++i) {
-    const bool narrowed =
-        oneTurn.lower()[i] != full.lower()[i] || oneTurn.upper()[i] != full.upper()[i];
+  for (const std::size_t i : coordinatesOfMoreThanATurn(robot)) {
+    const auto k = static_cast<Eigen::Index>(i);
     // As the file kept them: a model file's limits need not round-trip to the last bit.
-    if (narrowed && std::abs(learned.lower()[i] - oneTurn.lower()[i]) < 1e-9 &&
-        std::abs(learned.upper()[i] - oneTurn.upper()[i]) < 1e-9)
-      wrapped.push_back(static_cast<std::size_t>(i));
+    if (std::abs(learned.lower()[k] + std::numbers::pi) < 1e-9 &&
+        std::abs(learned.upper()[k] - std::numbers::pi) < 1e-9)
+      wrapped.push_back(i);
   }
   if (wrapped.empty())
     return std::make_shared<const ModelChecker>(std::move(model), std::move(name));

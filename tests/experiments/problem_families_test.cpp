@@ -1,5 +1,5 @@
-// Problem families generated for any robot (fastron problems): ends free, where they belong, and
-// not a turn apart on a joint of two turns.
+// Problem families generated for any robot (fastron problems): ends free and not a turn apart on
+// a joint of two turns.
 
 #include "fastron/experiments/problem_families.h"
 

@@ -198,6 +198,15 @@ TEST(JointBounds, ValuesWithinTheMarginAreClampedAndContinuousJointsWrapped) {
   EXPECT_NEAR(jointValueWithinLimits(wrist, -7.0, "goal"), -7.0 + 2 * std::numbers::pi, 1e-12);
 }
 
+// A revolute joint of more than a turn (a UR arm's ±2π) is one whose value a turn away is the
+// same pose; a continuous joint's range is one turn, a prismatic joint's is a length.
+TEST(JointBounds, JointsOfMoreThanATurnAreNamedByCoordinate) {
+  EXPECT_TRUE(coordinatesOfMoreThanATurn(trolley()).empty());  // a continuous wrist, ±π, 0.4 m
+  const Robot ur3 = loadRobot("ur3");
+  EXPECT_EQ(ur3.actuatedJointNames()[2], "elbow_joint");  // ±π
+  EXPECT_EQ(coordinatesOfMoreThanATurn(ur3), (std::vector<std::size_t>{0, 1, 3, 4, 5}));
+}
+
 // A request plans its group; the other joints stay where the scene's robot state, and over it
 // the request's start state, put them.
 TEST(RequestRobot, PlansTheGroupWithTheOtherJointsWhereTheSceneHoldsThem) {

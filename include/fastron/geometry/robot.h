@@ -135,4 +135,9 @@ class Robot {
                    const std::vector<Joint>& joints);
 };
 
+/// The configuration coordinates of `robot` that are revolute joints of more than a turn (a UR
+/// arm's +-2 pi): a value and that value a whole turn away are the same pose. A continuous joint's
+/// range is one turn (-pi to pi), so it is not among them.
+std::vector<std::size_t> coordinatesOfMoreThanATurn(const Robot& robot);
+
 }  // namespace fastron

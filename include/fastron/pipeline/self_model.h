@@ -42,19 +42,19 @@ std::uint64_t selfModelKey(const Robot& robot, const SelfModelOptions& options);
 /// The cache file of `robot`'s model: NAME-KEY.fastron in the cache directory.
 std::filesystem::path selfModelFile(const Robot& robot, const SelfModelOptions& options);
 
-/// The joint limits a self-collision model of `robot` learns on: the robot's, with each revolute
-/// coordinate whose range exceeds one turn (a UR arm's +-2 pi) narrowed to [-pi, pi]. A pose
-/// repeats every turn, so one turn holds every answer, and a model of two turns must learn each
-/// answer twice per such joint: on a UR3 with four joints of two turns, 20000 labels made a model
-/// of accuracy 0.811 at the 5000-point cap over two turns, 0.907 with 3214 points over one
+/// The joint limits a self-collision model of `robot` learns on: the robot's, with each coordinate
+/// of more than a turn (coordinatesOfMoreThanATurn: a UR arm's +-2 pi) narrowed to [-pi, pi]. A
+/// pose repeats every turn, so one turn holds every answer, and a model of two turns must learn
+/// each answer twice per such joint: on a UR3 with five joints of two turns, 20000 labels made a
+/// model of accuracy 0.811 at the 5000-point cap over two turns, 0.907 with 3214 points over one
 /// (docs/log/2026-12-01-an-arms-collisions-with-itself.md).
 JointLimits selfModelLimits(const Robot& robot);
 
 /// `model`, a self-collision model over `robot`'s actuated joints, as a checker of the robot's
-/// configurations named `name`: each coordinate that selfModelLimits narrows to one turn, and
-/// that `model` learned on that turn, is wrapped onto it (the same pose) before the model answers;
-/// a model of the robot's own limits (a file of an earlier version) answers as it is. Throws
-/// InvalidArgument on a null model or one of another number of joints.
+/// configurations named `name`: each coordinate of more than a turn that `model` learned on one
+/// turn, [-pi, pi] (as selfModelLimits gives it), is wrapped onto it (the same pose) before the
+/// model answers; a model of the robot's own limits (a file of an earlier version) answers as it
+/// is. Throws InvalidArgument on a null model or one of another number of joints.
 std::shared_ptr<const CollisionChecker> selfModelChecker(const Robot& robot,
                                                          std::shared_ptr<const Model> model,
                                                          std::string name = "Fastron self");
