@@ -138,9 +138,9 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
     // the larger ball the smallest: a round link is cut into slices, whose balls sit on its axis
     // and hug it, rather than into patches of its surface, which balls about their own middle
     // overhang by about their radius.
-    double bestRadius = std::numeric_limits<double>::infinity();
     std::vector<int> lower, upper, below, above;
-    Ball lowerBall, upperBall;
+    constexpr double kNone = std::numeric_limits<double>::infinity();
+    Ball lowerBall{.radius = kNone}, upperBall{.radius = kNone};  // of the best cut so far
     for (Eigen::Index axis = 0; axis < 3; ++axis) {
       const double cut = (from[axis] + to[axis]) / 2;
       below.clear();
@@ -151,8 +151,8 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
       if (below.empty() || above.empty()) continue;
       const Ball belowBall = ballAround(triangles, below);
       const Ball aboveBall = ballAround(triangles, above);
-      if (std::max(belowBall.radius, aboveBall.radius) < bestRadius) {
-        bestRadius = std::max(belowBall.radius, aboveBall.radius);
+      if (std::max(belowBall.radius, aboveBall.radius) <
+          std::max(lowerBall.radius, upperBall.radius)) {
         lower.swap(below);
         upper.swap(above);
         lowerBall = belowBall;

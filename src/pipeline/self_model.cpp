@@ -34,6 +34,8 @@ constexpr double kTurn = 2 * std::numbers::pi;
 /// A self-collision model whose coordinates `wrapped` are angles it learned on [-pi, pi]: each is
 /// wrapped onto that turn before the model answers.
 class TurnWrappingChecker final : public CollisionChecker {
+  static constexpr std::size_t kBlock = 16;
+
  public:
   TurnWrappingChecker(std::shared_ptr<const Model> model, std::vector<std::size_t> wrapped,
                       std::string name)
@@ -43,11 +45,23 @@ class TurnWrappingChecker final : public CollisionChecker {
   bool answersFromAModel() const override { return true; }
 
  protected:
-  bool check(const double* q) const override {
-    std::array<double, kMaxFeatureDimension> onOneTurn;  // a joint-scaling model's dim() <= it
-    std::copy(q, q + model_->dim(), onOneTurn.begin());
-    for (const std::size_t i : wrapped_) onOneTurn[i] = std::remainder(q[i], kTurn);
-    return model_->inCollision(onOneTurn.data());
+  bool check(const double* q) const override { return checkFirst(q, 1) == 0; }
+  /// A planner's edge wrapped a block of states at a time, each block answered by the model's
+  /// batched path (as ModelChecker answers one).
+  std::size_t checkFirst(const double* q, std::size_t n) const override {
+    const std::size_t d = model_->dim();  // a joint-scaling model's: <= kMaxFeatureDimension
+    std::array<double, kBlock * kMaxFeatureDimension> onOneTurn;
+    for (std::size_t first = 0; first < n; first += kBlock) {
+      const std::size_t rows = std::min(kBlock, n - first);
+      std::copy(q + first * d, q + (first + rows) * d, onOneTurn.begin());
+      for (std::size_t r = 0; r < rows; ++r) {
+        for (const std::size_t i : wrapped_)
+          onOneTurn[r * d + i] = std::remainder(onOneTurn[r * d + i], kTurn);
+      }
+      const std::size_t hit = model_->firstInCollision(onOneTurn.data(), rows);
+      if (hit < rows) return first + hit;
+    }
+    return n;
   }
 
  private:

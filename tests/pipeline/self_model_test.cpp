@@ -85,6 +85,11 @@ TEST(SelfModelLimits, JointsOfMoreThanATurnAreLearnedOnOne) {
   EXPECT_EQ(selfModelLimits(panda).upper(), panda.limits().upper());
 }
 
+// A whole turn that takes `value`, within [-pi, pi], to the same angle within +-2 pi.
+double aTurnWithin(double value) {
+  return value > 0 ? -2 * std::numbers::pi : 2 * std::numbers::pi;
+}
+
 // The checker answers a configuration as the model answers the same pose on its one turn, so q
 // and q + 2 pi on a joint of two turns get one answer; a model of the robot's own limits (a file
 // of an earlier version) answers as it is.
@@ -108,8 +113,8 @@ TEST(SelfModelLimits, TheCheckerWrapsJointsOntoTheTurnTheModelLearned) {
   for (Eigen::Index i = 0; i < q.rows(); ++i) {
     const Eigen::VectorXd same = q.row(i).transpose();
     Eigen::VectorXd turned = same;
-    turned[0] += 2 * std::numbers::pi;  // shoulder pan, +-2 pi
-    turned[4] -= 2 * std::numbers::pi;  // wrist 2, +-2 pi
+    turned[0] += aTurnWithin(turned[0]);  // shoulder pan, +-2 pi
+    turned[4] += aTurnWithin(turned[4]);  // wrist 2, +-2 pi
     const bool answer = oneTurn->inCollision(same.data());
     EXPECT_EQ(answerOf(same), answer);
     EXPECT_EQ(answerOf(turned), answer);
@@ -117,6 +122,21 @@ TEST(SelfModelLimits, TheCheckerWrapsJointsOntoTheTurnTheModelLearned) {
   }
   EXPECT_GT(colliding, 0u);  // both answers were asked
   EXPECT_LT(colliding, 200u);
+  // A run of states (a planner's edge) is wrapped block by block: its free states first, each a
+  // turn away, then its colliding ones; the first collision is found past the first blocks.
+  Configurations edge(q.rows(), q.cols());
+  Eigen::Index row = 0;
+  for (const bool colliding : {false, true}) {
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      if (oneTurn->inCollision(q.row(i).data()) != colliding) continue;
+      edge.row(row) = q.row(i);
+      edge(row, 3) += aTurnWithin(edge(row, 3));  // wrist 1, +-2 pi
+      ++row;
+    }
+  }
+  const std::size_t free = 200 - colliding;
+  ASSERT_GT(free, 32u);
+  EXPECT_EQ(checker->firstInCollision(edge), free);
 
   const auto wholeRange =
       std::make_shared<const Model>(FeatureMap::jointScaling(ur3.limits()),
