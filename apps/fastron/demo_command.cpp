@@ -101,6 +101,12 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                   "fk: the whole feature vector's share of the kernel (default 0.5); 0: point "
                   "terms alone, answered by a point field")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option_function<std::string>(
+         "--field-answers",
+         [o](const std::string& text) { o->demo.fieldAnswers = parseFieldAnswers(text); },
+         "with --kernel-whole-share 0: what the point field answers where its grids leave the "
+         "sign undecided: exact (the full sum's sign) or estimate (the grids' estimate alone)")
+      ->check(CLI::IsMember({"exact", "estimate"}));
   cmd->add_option("--gamma", o->demo.gamma, "fk: kernel width (default 40)")->check(numberAbove(0));
   cmd->add_option("--beta", o->demo.beta, "conditional bias of the models (default: the case's)")
       ->check(numberAbove(0, true));

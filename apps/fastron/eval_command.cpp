@@ -228,26 +228,43 @@ void printDataLine(const EvalOptions& o, const Dataset& data, const ConfusionCou
             << " in collision\n";
 }
 
+/// The query times of a model's point field: its exact answers and its estimate alone.
+struct FieldTimes {
+  double exact = 0, estimate = 0;
+};
+
 /// For a model of point terms only: its point field, how many of the samples the grids answered
 /// (alone, and with their fine blocks), that every answer equals the full sum's, and the field's
-/// query time. Returns that time.
-double printPointField(const EvalOptions& o, const Model& model, const Dataset& data) {
+/// query time; then the same grids answering by their estimate alone (FieldAnswers::Estimate):
+/// how many answers differ from the full sum's, its accuracy and TPR against the labels beside
+/// the full sum's `full`, and its time.
+FieldTimes printPointField(const EvalOptions& o, const Model& model, const Dataset& data,
+                           const ConfusionCounts& full) {
   const auto start = std::chrono::steady_clock::now();
   const auto tabulated = model.withPointField(o.field);
   const double build =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PointFieldOptions estimateOptions = o.field;
+  estimateOptions.answers = FieldAnswers::Estimate;
+  const auto estimated = model.withPointField(estimateOptions);
   const PointField& field = *tabulated->pointField();
-  std::size_t decided = 0, fine = 0, equal = 0;
+  std::size_t decided = 0, fine = 0, equal = 0, estimateEqual = 0;
   std::vector<float> x(model.featureDim());
   for (Eigen::Index i = 0; i < data.points.rows(); ++i) {
     const double* q = data.points.row(i).data();
     model.features().map(q, x.data());
     decided += field.sign(x.data()) != 0;
     fine += field.signWithFineBlocks(x.data()) != 0;
-    equal += tabulated->inCollision(q) == (model.score(q) > 0);
+    const bool collides = model.score(q) > 0;
+    equal += tabulated->inCollision(q) == collides;
+    estimateEqual += estimated->inCollision(q) == collides;
   }
-  const double query = experiments::meanSecondsPerCall(
+  FieldTimes times;
+  times.exact = experiments::meanSecondsPerCall(
       data.points, [&](const double* q) { return tabulated->inCollision(q); }, kTimingSeconds);
+  times.estimate = experiments::meanSecondsPerCall(
+      data.points, [&](const double* q) { return estimated->inCollision(q); }, kTimingSeconds);
+  const ConfusionCounts c = evaluate(*estimated, data.points, data.labels);
   const auto n = static_cast<double>(data.size());
   std::cout << "point field " << field.grids().size() << " grids of " << field.spacing() * 100
             << " cm cells, " << field.nodeCount() << " nodes ("
@@ -256,7 +273,12 @@ double printPointField(const EvalOptions& o, const Model& model, const Dataset& 
             << " of the samples answered by the grids, " << rate(static_cast<double>(fine) / n)
             << " with their " << field.fineBlockCount() << " fine blocks, the rest by exact sums; "
             << equal << " of " << data.size() << " answers equal to the full sum's\n";
-  return query;
+  std::cout << "estimate    the grids' estimate alone (answers \"estimate\"): "
+            << data.size() - estimateEqual << " of " << data.size()
+            << " answers differ from the full sum's; accuracy " << rate(c.accuracy()) << ", TPR "
+            << rate(c.tpr()) << " (the full sum's " << rate(full.accuracy()) << ", "
+            << rate(full.tpr()) << ")\n";
+  return times;
 }
 
 /// --original: a joint-space model of one rational-quadratic term, as the original Fastron learns
@@ -372,11 +394,15 @@ int runEval(const EvalOptions& o) {
               << times(seconds / query) << " faster\n";
   }
   std::optional<double> fieldQuery;
+  std::optional<double> estimateQuery;
   if (o.pointField && model.hasOnlyPointTerms()) {
-    fieldQuery = printPointField(o, model, data);
-    std::cout << "field query " << durationText(*fieldQuery)
-              << " per configuration: " << times(query / *fieldQuery)
-              << " faster than the full sum\n";
+    const FieldTimes field = printPointField(o, model, data, c);
+    fieldQuery = field.exact;
+    estimateQuery = field.estimate;
+    std::cout << "field query " << durationText(field.exact)
+              << " per configuration: " << times(query / field.exact)
+              << " faster than the full sum; its estimate alone " << durationText(field.estimate)
+              << ", " << times(query / field.estimate) << "\n";
   }
   if (original) {
     printAgainstOriginal(o.original, *original, data, fieldQuery.value_or(query),
@@ -387,6 +413,7 @@ int runEval(const EvalOptions& o) {
     std::cout << std::left << std::setw(12) << "FK+" + exact->name() << durationText(seconds)
               << " per configuration: the model is " << times(seconds / query) << " faster";
     if (fieldQuery) std::cout << ", with its point field " << times(seconds / *fieldQuery);
+    if (estimateQuery) std::cout << ", its estimate alone " << times(seconds / *estimateQuery);
     std::cout << '\n';
   }
   if (alongPath) writeAlongPath(o, *alongPath);

@@ -97,7 +97,7 @@ std::shared_ptr<const Model> readModel(const std::string& path, const Robot& rob
             << model->features().summary();
   if (const PointField* field = model->pointField()) {
     std::cout << ", answered by a point field of " << field->grids().size() << " grids of "
-              << field->spacing() * 100 << " cm cells";
+              << field->spacing() * 100 << " cm cells, answers " << toString(field->answers());
   }
   std::cout << '\n';
   return model;

@@ -229,8 +229,9 @@ void bindModel(py::module_& m) {
           "with_point_field",
           [](const Model& model, double spacing, std::size_t samples, std::uint64_t seed,
              double errorFactor, std::uint32_t refinement, std::size_t maxFineNodes,
-             double fineFrom) {
+             double fineFrom, const std::string& answers) {
             PointFieldOptions options;
+            options.answers = parseFieldAnswers(answers);
             options.spacing = spacing;
             options.samples = samples;
             options.seed = seed;
@@ -248,12 +249,16 @@ void bindModel(py::module_& m) {
           py::arg("refinement") = PointFieldOptions{}.refinement,
           py::arg("max_fine_nodes") = PointFieldOptions{}.maxFineNodes,
           py::arg("fine_from") = PointFieldOptions{}.fineFrom,
+          py::arg("answers") = toString(PointFieldOptions{}.answers),
           "A copy whose collision answers (in_collision, first_in_collision) read the point terms "
           "from grids of `spacing` metres where they decide the sign, and sum every term where "
           "not: the same answers, faster for large support sets (docs/performance.md). Where the "
           "grids leave more than `fine_from` of their samples undecided, the least certain "
           "cells get fine blocks (`refinement` fine cells per edge, at most `max_fine_nodes` "
-          "nodes). score still sums every term. Raises ValueError unless has_only_point_terms.")
+          "nodes). answers='estimate': the sign of the grids' estimate everywhere inside them, "
+          "faster still, differing from the full sum only on the model's boundary (no fine "
+          "blocks). score still sums every term. Raises ValueError unless has_only_point_terms "
+          "or on bad options.")
       .def_property_readonly(
           "point_field",
           [](const Model& model) -> py::object {
@@ -265,10 +270,11 @@ void bindModel(py::module_& m) {
             d["nodes"] = field->nodeCount();
             d["memory_bytes"] = field->memoryBytes();
             d["fine_blocks"] = field->fineBlockCount();
+            d["answers"] = toString(field->answers());
             return d;
           },
           "None, or the grids of with_point_field: {'grids', 'spacing', 'nodes', "
-          "'memory_bytes', 'fine_blocks'}.")
+          "'memory_bytes', 'fine_blocks', 'answers'}.")
       .def(
           "save",
           [](const Model& model, const std::filesystem::path& path) { saveModel(model, path); },

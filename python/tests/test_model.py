@@ -175,6 +175,14 @@ def test_a_point_field_answers_as_the_full_sum(baxter, baxter_fcl):
     assert refined.point_field["fine_blocks"] > 0
     assert refined.point_field["memory_bytes"] > field["memory_bytes"]
     assert np.array_equal(refined.in_collision(q), model.score(q) > 0)
+    assert field["answers"] == "exact"
+    # The estimate alone: the full sum's answers but on the model's boundary, no fine blocks.
+    estimated = model.with_point_field(spacing=0.05, answers="estimate", fine_from=0)
+    assert estimated.point_field["answers"] == "estimate"
+    assert estimated.point_field["fine_blocks"] == 0
+    assert np.count_nonzero(estimated.in_collision(q) != (model.score(q) > 0)) < len(q) // 100
+    with pytest.raises(fastron.InvalidArgument, match="'roughly'"):
+        model.with_point_field(answers="roughly")
     with pytest.raises(fastron.InvalidArgument, match="spacing"):
         model.with_point_field(spacing=0)
     with pytest.raises(fastron.InvalidArgument, match="refinement"):

@@ -17,6 +17,16 @@
 
 namespace fastron {
 
+const char* toString(FieldAnswers answers) {
+  return answers == FieldAnswers::Estimate ? "estimate" : "exact";
+}
+
+FieldAnswers parseFieldAnswers(const std::string& text) {
+  if (text == "exact") return FieldAnswers::Exact;
+  if (text == "estimate") return FieldAnswers::Estimate;
+  throw InvalidArgument("point field answers must be 'exact' or 'estimate', got '" + text + "'");
+}
+
 void validate(const PointFieldOptions& options) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!positive(options.spacing)) {
@@ -40,11 +50,12 @@ void validate(const PointFieldOptions& options) {
 }
 
 PointField::PointField(std::vector<Grid> grids, float roundingFloor, double spacing,
-                       std::uint32_t refinement)
+                       std::uint32_t refinement, FieldAnswers answers)
     : grids_(std::move(grids)),
       roundingFloor_(roundingFloor),
       spacing_(spacing),
-      refinement_(refinement) {
+      refinement_(refinement),
+      answers_(answers) {
   const std::size_t r = refinement_;
   for (const Grid& grid : grids_) {
     const std::size_t cells = std::size_t{grid.cells[0]} * grid.cells[1] * grid.cells[2];
@@ -587,14 +598,14 @@ std::shared_ptr<const Model> Model::withPointField(const PointFieldOptions& opti
   for (std::size_t g = 0; g < terms; ++g) {
     tabulate(grids[g], termView(g), options, roundingFloor);
   }
-  {
+  if (options.answers == FieldAnswers::Exact) {  // an estimate alone never reads fine blocks
     std::vector<detail::SupportView> views;
     for (std::size_t g = 0; g < terms; ++g) views.push_back(termView(g));
     addFineBlocks(grids, views, features, options, roundingFloor);
   }
   auto copy = std::make_shared<Model>(*this);
-  copy->pointField_ = std::make_shared<const PointField>(std::move(grids), roundingFloor,
-                                                         options.spacing, options.refinement);
+  copy->pointField_ = std::make_shared<const PointField>(
+      std::move(grids), roundingFloor, options.spacing, options.refinement, options.answers);
   return copy;
 }
 
@@ -605,6 +616,7 @@ std::shared_ptr<const Model> withFastestAnswers(std::shared_ptr<const Model> mod
   }
   PointFieldOptions options;
   options.refinement = 1;
+  options.answers = FieldAnswers::Estimate;
   return model->withPointField(options);
 }
 
@@ -625,6 +637,10 @@ bool Model::inCollisionByField(const float* x) const {
   std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
     float value = 0, bound = 0;
+    if (field.answers() == FieldAnswers::Estimate) {
+      for (std::size_t g = 0; g < terms; ++g) value += values[g];
+      return value > 0;
+    }
     if (const int sign = field.signOf(values.data(), bounds.data(), value, bound); sign != 0) {
       return sign > 0;
     }

@@ -30,6 +30,7 @@ ProxyParams demoProxyParams(const DemoOptions& o) {
   if (o.gamma) params.train.kernel.gamma = *o.gamma;
   if (o.beta) params.train.beta = *o.beta;
   params.pointField = true;  // models of point terms alone answer from their grids
+  params.fieldAnswers = o.fieldAnswers;
   return params;
 }
 
@@ -230,7 +231,8 @@ std::string demoReport(const DemoResults& r, const DemoOptions& o) {
        << ", " << describeTerms(r.model->kernel(), r.model->featureDim());
     if (const PointField* field = r.model->pointField()) {
       md << "; answers from a point field of " << field->grids().size() << " grids of "
-         << field->spacing() * 100 << " cm cells (Fastron's query time above)";
+         << field->spacing() * 100 << " cm cells, answers " << toString(field->answers())
+         << " (Fastron's query time above)";
     }
     if (const auto& kinematics = r.model->features().kinematics())
       md << "; features: the positions of " << kinematics->pointCount() << " control points";

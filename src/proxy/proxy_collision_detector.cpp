@@ -74,6 +74,7 @@ StepReport ProxyCollisionDetector::finish(StepReport report, Clock::time_point s
     // Fine blocks would cost each update's build more: on the demo's models (|S| about 330) they
     // added 40 ms to an 80 ms build and answered no faster.
     field.refinement = 1;
+    field.answers = params_.fieldAnswers;
     next = next->withPointField(field);
   }
   if (!heldOutLabels.empty()) {

@@ -139,6 +139,79 @@ TEST(PointField, FirstInCollisionEqualsTheFullSums) {
   }
 }
 
+// Answers by the estimate alone (FieldAnswers::Estimate) are the sign of the grids' summed
+// estimates; they differ from the full sum's only where the full sum lies within the estimates'
+// summed bounds (on the model's boundary), and rarely; beyond the grids the full sum answers. No
+// fine blocks are built, and edges answer as their states do.
+TEST(PointField, EstimatedAnswersDifferFromTheFullSumOnlyWithinTheBounds) {
+  for (const auto& [dim, beta] :
+       {std::pair{std::size_t{6}, 1.0}, std::pair{std::size_t{9}, 10.0}}) {
+    SCOPED_TRACE(std::to_string(dim) + " features");
+    const auto model = pointTermModel(dim, 1500, KernelType::RationalQuadratic, 10, beta);
+    PointFieldOptions options;
+    options.answers = FieldAnswers::Estimate;
+    options.fineFrom = 0;  // would build fine blocks for exact answers
+    options.refinement = 2;
+    const auto estimated = model->withPointField(options);
+    const PointField& field = *estimated->pointField();
+    EXPECT_EQ(field.answers(), FieldAnswers::Estimate);
+    EXPECT_EQ(field.fineBlockCount(), 0u);
+    const Configurations q = test::uniformPoints(20'000, dim, 411);
+    std::size_t differ = 0, collides = 0;
+    std::array<float, kMaxFeatureDimension> x{};
+    std::array<float, kMaxPointTerms> values{}, bounds{};
+    for (Eigen::Index i = 0; i < q.rows(); ++i) {
+      const double* row = q.row(i).data();
+      const double score = model->score(row);
+      const bool answer = estimated->inCollision(row);
+      ASSERT_EQ(estimated->score(row), score);  // score still sums every term
+      model->features().map(row, x.data());
+      ASSERT_TRUE(field.estimateTerms(x.data(), values.data(), bounds.data())) << "query " << i;
+      float value = 0, bound = 0;
+      for (std::size_t g = 0; g < field.grids().size(); ++g) {
+        value += values[g];
+        bound += bounds[g];
+      }
+      ASSERT_EQ(answer, value > 0) << "query " << i;
+      if (answer != (score > 0)) {
+        ++differ;
+        ASSERT_LE(std::abs(score), bound) << "query " << i << ": an answer off the boundary";
+      }
+      collides += score > 0;
+    }
+    ASSERT_GT(collides, q.rows() / 200) << "the model should predict some collisions";
+    EXPECT_LT(differ, 200u) << "of " << q.rows();  // under 1%
+    for (const std::size_t n : {1u, 16u, 40u}) {
+      for (std::size_t offset = 0; offset + n <= 400; offset += 41) {
+        const double* rows = q.row(static_cast<Eigen::Index>(offset)).data();
+        std::size_t first = n;
+        for (std::size_t k = 0; k < n && first == n; ++k) {
+          if (estimated->inCollision(rows + k * dim)) first = k;
+        }
+        EXPECT_EQ(estimated->firstInCollision(rows, n), first) << "n " << n << ", " << offset;
+      }
+    }
+  }
+  // Beyond the grids (a box of two cells around one configuration) the full sum answers.
+  const auto model = pointTermModel(3, 800, KernelType::RationalQuadratic, 10, 1);
+  PointFieldOptions options;
+  options.samples = 1;
+  options.answers = FieldAnswers::Estimate;
+  const auto estimated = model->withPointField(options);
+  const Configurations q = test::uniformPoints(2000, 3, 412);
+  for (Eigen::Index i = 0; i < q.rows(); ++i) {
+    ASSERT_EQ(estimated->inCollision(q.row(i).data()), model->score(q.row(i).data()) > 0);
+  }
+  EXPECT_EQ(parseFieldAnswers("estimate"), FieldAnswers::Estimate);
+  EXPECT_EQ(parseFieldAnswers(toString(FieldAnswers::Exact)), FieldAnswers::Exact);
+  try {
+    (void)parseFieldAnswers("approximate");
+    ADD_FAILURE() << "no exception";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("'approximate'"), std::string::npos) << e.what();
+  }
+}
+
 // A model of one point term has no other terms whose spare bounds could cover an error beyond its
 // own: the grid's estimate must lie within its cell's bound of the exact term everywhere. The
 // centre's error alone (errorFactor 1.5 on it, before the curvature correction, the axes' curvature
@@ -337,7 +410,8 @@ TEST(PointField, FastestAnswersTabulateLargeModelsOfPointTermsOnly) {
   const auto large = pointTermModel(12, 600, KernelType::RationalQuadratic, 10, 1);
   ASSERT_GE(large->supportCount(), kPointFieldMinSupport);
   const auto tabulated = withFastestAnswers(large);
-  EXPECT_NE(tabulated->pointField(), nullptr);
+  ASSERT_NE(tabulated->pointField(), nullptr);
+  EXPECT_EQ(tabulated->pointField()->answers(), FieldAnswers::Estimate);
   EXPECT_EQ(withFastestAnswers(tabulated), tabulated);  // already tabulated: itself
   const Configurations s = test::uniformPoints(kPointFieldMinSupport - 1, 6, 409);
   const Eigen::VectorXd w = Eigen::VectorXd::LinSpaced(s.rows(), -1, 1);

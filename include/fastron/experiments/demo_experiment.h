@@ -41,6 +41,8 @@ struct DemoOptions {
   /// width; unset: the defaults (0.5, 40). A share of 0 leaves point terms alone, and every
   /// model is published with its point field (ProxyParams::pointField).
   std::optional<double> wholeShare, gamma;
+  /// How those point fields answer what their grids leave undecided (ProxyParams::fieldAnswers).
+  FieldAnswers fieldAnswers = FieldAnswers::Exact;
   /// The conditional bias (TrainParams::beta); unset: the case's.
   std::optional<double> beta;
   /// Task-space features: how the robot's control points are chosen (defaultControlPoints).

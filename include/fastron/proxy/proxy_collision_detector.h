@@ -80,6 +80,9 @@ struct ProxyParams {
   /// 1 shares it): its collision answers then cost grid reads instead of |S| kernel terms. Other
   /// models are published as they are.
   bool pointField = false;
+  /// How a published point field answers what its grids leave undecided (FieldAnswers): exactly
+  /// by default, or by the grids' estimate alone.
+  FieldAnswers fieldAnswers = FieldAnswers::Exact;
 };
 
 /// The pipeline tuned for each kind of features: defaultTrainParams(kind, selfCollisionLabels);
