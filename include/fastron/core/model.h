@@ -194,7 +194,7 @@ inline constexpr std::size_t kPointFieldMinSupport = 200;
 /// kPointFieldMinSupport support points, else `model` itself: the fastest way this library has to
 /// give its answers to a few plans (`fastron plan --model`), whose paths are verified anyway. The
 /// estimate differs from the full sum's sign only on the model's boundary (on the scene models
-/// measured, 6-32 of 20000 answers, accuracy and TPR against FCL unchanged).
+/// measured, 9-32 of 20000 answers, accuracy and TPR against FCL unchanged).
 std::shared_ptr<const Model> withFastestAnswers(std::shared_ptr<const Model> model);
 
 /// A joint-space model from support points given in input space [-1, 1]^d, where the paper's SVM
