@@ -41,9 +41,10 @@ enum class FieldAnswers {
   /// sign is decided. Every answer equals the sign of Model::score.
   Exact,
   /// The sign of the grids' estimate alone, a tolerance: an answer differs from the full sum's
-  /// only where f lies within the summed bounds of the estimate's cells, on the model's own
-  /// decision boundary, where its answers are about as often wrong as right against the exact
-  /// checker. On the scene models of `fastron train --robot R --scene S` 9-32 of 20000 answers
+  /// only where f lies within the summed bounds of the estimate's cells (bounds measured at build
+  /// time, as for exact answers), i.e. on the model's own decision boundary, where it is least
+  /// sure of its answer anyway. On the scene models of `fastron train --robot R --scene S` 9-32 of
+  /// 20000 answers
   /// differed and accuracy and TPR against FCL did not move in the fourth decimal
   /// (docs/performance.md, "The estimate alone"). No fine blocks are built.
   Estimate,
