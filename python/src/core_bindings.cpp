@@ -249,7 +249,7 @@ void bindModel(py::module_& m) {
           py::arg("refinement") = PointFieldOptions{}.refinement,
           py::arg("max_fine_nodes") = PointFieldOptions{}.maxFineNodes,
           py::arg("fine_from") = PointFieldOptions{}.fineFrom,
-          py::arg("answers") = toString(PointFieldOptions{}.answers),
+          py::arg("answers") = std::string(toString(PointFieldOptions{}.answers)),
           "A copy whose collision answers (in_collision, first_in_collision) read the point terms "
           "from grids of `spacing` metres where they decide the sign, and sum every term where "
           "not: the same answers, faster for large support sets (docs/performance.md). Where the "
@@ -270,7 +270,7 @@ void bindModel(py::module_& m) {
             d["nodes"] = field->nodeCount();
             d["memory_bytes"] = field->memoryBytes();
             d["fine_blocks"] = field->fineBlockCount();
-            d["answers"] = toString(field->answers());
+            d["answers"] = std::string(toString(field->answers()));
             return d;
           },
           "None, or the grids of with_point_field: {'grids', 'spacing', 'nodes', "

@@ -17,14 +17,15 @@
 
 namespace fastron {
 
-const char* toString(FieldAnswers answers) {
+std::string_view toString(FieldAnswers answers) {
   return answers == FieldAnswers::Estimate ? "estimate" : "exact";
 }
 
-FieldAnswers parseFieldAnswers(const std::string& text) {
+FieldAnswers parseFieldAnswers(std::string_view text) {
   if (text == "exact") return FieldAnswers::Exact;
   if (text == "estimate") return FieldAnswers::Estimate;
-  throw InvalidArgument("point field answers must be 'exact' or 'estimate', got '" + text + "'");
+  throw InvalidArgument("point field answers must be 'exact' or 'estimate', got '" +
+                        std::string(text) + "'");
 }
 
 void validate(const PointFieldOptions& options) {
@@ -637,13 +638,10 @@ bool Model::inCollisionByField(const float* x) const {
   std::array<float, kMaxPointTerms> values, bounds;
   if (field.estimateTerms(x, values.data(), bounds.data())) {
     float value = 0, bound = 0;
-    if (field.answers() == FieldAnswers::Estimate) {
-      for (std::size_t g = 0; g < terms; ++g) value += values[g];
-      return value > 0;
-    }
     if (const int sign = field.signOf(values.data(), bounds.data(), value, bound); sign != 0) {
       return sign > 0;
     }
+    if (field.answers() == FieldAnswers::Estimate) return value > 0;  // the tolerance taken
     auto order = leastCertainFirst(bounds.data(), terms);
     if (field.fineBlockCount() > 0) {
       const int sign =

@@ -25,7 +25,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <string_view>
 #include <vector>
 
 #include "fastron/core/export.h"
@@ -44,16 +44,15 @@ enum class FieldAnswers {
   /// only where f lies within the summed bounds of the estimate's cells (bounds measured at build
   /// time, as for exact answers), i.e. on the model's own decision boundary, where it is least
   /// sure of its answer anyway. On the scene models of `fastron train --robot R --scene S` 9-32 of
-  /// 20000 answers
-  /// differed and accuracy and TPR against FCL did not move in the fourth decimal
+  /// 20000 answers differed and accuracy and TPR against FCL did not move in the fourth decimal
   /// (docs/performance.md, "The estimate alone"). No fine blocks are built.
   Estimate,
 };
 
 /// "exact" or "estimate".
-const char* toString(FieldAnswers answers);
+std::string_view toString(FieldAnswers answers);
 /// Parses "exact" or "estimate"; throws InvalidArgument naming the value otherwise.
-FieldAnswers parseFieldAnswers(const std::string& text);
+FieldAnswers parseFieldAnswers(std::string_view text);
 
 /// How a PointField is built. The defaults measured best on the shipped and generated robots
 /// (docs/performance.md): 4 cm cells.
