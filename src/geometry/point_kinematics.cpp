@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
+#ifdef __SSE2__
+#include <immintrin.h>
+#endif
 
 #include "fastron/core/error.h"
 #include "fastron/geometry/kinematics.h"
@@ -47,10 +51,20 @@ Frame toFrame(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translatio
   return f;
 }
 
-template <class To, std::size_t N, class From>
-std::array<To, N> castArray(const std::array<From, N>& a) {
-  std::array<To, N> out;
-  for (std::size_t i = 0; i < N; ++i) out[i] = static_cast<To>(a[i]);
+/// Below this magnitude a constant of the float chain is the rounding of a double computation
+/// (cos(pi/2) is 6e-17, a URDF's rpy leaves 1e-17 in its rotations), not a length or a direction
+/// (a nanometre, a billionth of a radian): the float chain takes it as 0. Left in, the products of
+/// three of them along the chain are subnormal floats, which the processor handles slowly: the
+/// mobile arm's positions took 95 ns instead of 72 (a 2-core AMD EPYC).
+constexpr double kNegligibleConstant = 1e-9;
+
+/// The float chain's copy of the double chain's constants `a`.
+template <std::size_t N>
+std::array<float, N> floatConstants(const std::array<double, N>& a) {
+  std::array<float, N> out;
+  for (std::size_t i = 0; i < N; ++i) {
+    out[i] = std::abs(a[i]) < kNegligibleConstant ? 0.0f : static_cast<float>(a[i]);
+  }
   return out;
 }
 
@@ -186,10 +200,10 @@ void RobotPointKinematics::buildFloatChains() {
                              static_cast<float>(step.scale),
                              static_cast<float>(step.offset),
                              step.prismatic,
-                             {castArray<float>(step.fixed.m)}});
+                             {floatConstants(step.fixed.m)}});
   }
   for (const auto& point : chain_.points) {
-    chainF_.points.push_back({point.step, castArray<float>(point.local)});
+    chainF_.points.push_back({point.step, floatConstants(point.local)});
   }
   for (const auto& step : chainF_.steps) {
     detail::LaneStep& lane = laneSteps_.emplace_back();
@@ -270,11 +284,90 @@ Eigen::Array<T, 4, 1> pointPosition(const PointT& p, const FrameColumns<T>* fram
   return f[0] * p.local[0] + f[1] * p.local[1] + f[2] * p.local[2] + f[3];
 }
 
+#ifdef __SSE2__
+/// a * b + c, in one rounding where the build has FMA instructions.
+inline __m128 mulAdd(__m128 a, __m128 b, __m128 c) {
+#ifdef __FMA__
+  return _mm_fmadd_ps(a, b, c);
+#else
+  return _mm_add_ps(_mm_mul_ps(a, b), c);
+#endif
+}
+/// Lane `lane` of v in every lane (a shuffle within the register).
+template <int lane>
+__m128 splatLane(__m128 v) {
+  return _mm_shuffle_ps(v, v, lane * 0x55);
+}
+
+/// A frame in registers: its x, y and z axes, then its origin.
+struct RegisterFrame {
+  __m128 column[4];  // NOLINT(modernize-avoid-c-arrays): std::array drops __m128's alignment
+};
+
+/// The float chain's positions (stepFrames and pointPosition for float) in SSE registers: the
+/// step's turned transform stays in registers and lends its numbers to the product by shuffles.
+/// Through Eigen's arrays the compiler stored it on the stack and broadcast each number back
+/// from there: BM_ControlPoints<float> took 97 ns on Baxter (7 points) and 92 ns on the Panda
+/// (4 points) that way, 81 and 74 ns this way (one run each, a 2-core AMD EPYC).
+template <class ChainT>
+void placeInRegisters(const ChainT& c, const double* q, float* out) {
+  const std::size_t n = c.steps.size();
+  // NOLINTBEGIN(cppcoreguidelines-pro-type-member-init): filled before they are read
+  std::array<float, kMaxKinematicSteps> values, cosines, sines;
+  std::array<RegisterFrame, kMaxKinematicSteps> frames;
+  // NOLINTEND(cppcoreguidelines-pro-type-member-init)
+  for (std::size_t s = 0; s < n; ++s)
+    values[s] = c.steps[s].scale * static_cast<float>(q[c.steps[s].joint]) + c.steps[s].offset;
+  cosSin(values.data(), n, cosines.data(), sines.data());
+  for (std::size_t s = 0; s < n; ++s) {
+    const auto& step = c.steps[s];
+    RegisterFrame fixed;  // NOLINT(cppcoreguidelines-pro-type-member-init): loaded next
+    __m128* g = fixed.column;
+    for (std::size_t k = 0; k < 4; ++k) g[k] = _mm_loadu_ps(step.fixed.m.data() + 4 * k);
+    if (step.prismatic) {
+      g[3] = mulAdd(_mm_set1_ps(values[s]), g[2], g[3]);
+    } else {  // fixed * Rz(value)
+      const __m128 co = _mm_set1_ps(cosines[s]), si = _mm_set1_ps(sines[s]), x = g[0];
+      g[0] = mulAdd(co, x, _mm_mul_ps(si, g[1]));
+      g[1] = mulAdd(co, g[1], _mm_sub_ps(_mm_setzero_ps(), _mm_mul_ps(si, x)));
+    }
+    if (step.parent < 0) {
+      frames[s] = fixed;
+      continue;
+    }
+    __m128* f = frames[s].column;
+    const __m128* a = frames[static_cast<std::size_t>(step.parent)].column;
+    for (std::size_t k = 0; k < 4; ++k) {
+      f[k] = mulAdd(a[0], splatLane<0>(g[k]),
+                    mulAdd(a[1], splatLane<1>(g[k]), _mm_mul_ps(a[2], splatLane<2>(g[k]))));
+    }
+    f[3] = _mm_add_ps(f[3], a[3]);
+  }
+  for (std::size_t k = 0; k < c.points.size(); ++k) {
+    const auto& p = c.points[k];
+    alignas(16) std::array<float, 4> position{p.local[0], p.local[1], p.local[2], 0.0f};
+    if (p.step >= 0) {
+      const __m128* f = frames[static_cast<std::size_t>(p.step)].column;
+      _mm_store_ps(position.data(), mulAdd(f[0], _mm_set1_ps(p.local[0]),
+                                           mulAdd(f[1], _mm_set1_ps(p.local[1]),
+                                                  mulAdd(f[2], _mm_set1_ps(p.local[2]), f[3]))));
+    }
+    std::copy_n(position.data(), 3, out + 3 * k);
+  }
+}
+#endif
+
 }  // namespace
 
 template <class T>
 void RobotPointKinematics::place(const double* q, T* out) const {
   const Chain<T>& c = chain<T>();
+#ifdef __SSE2__
+  if constexpr (std::is_same_v<T, float>) {
+    placeInRegisters(c, q, out);
+    return;
+  }
+#endif
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-member-init): filled before they are read
   std::array<FrameColumns<T>, kMaxKinematicSteps> frames;
   stepFrames(c, q, frames.data());
