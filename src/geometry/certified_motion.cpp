@@ -1,5 +1,6 @@
 #include "fastron/geometry/certified_motion.h"
 
+#include <algorithm>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -41,7 +42,12 @@ void PlacedBalls::place(const ExactPairCheck& exact, const double* q) {
 }
 
 double PlacedBalls::lowerBound(const ClearancePair& pair,
-                               const std::vector<EnclosingVolume>& obstacles, double wanted) {
+                               const std::vector<EnclosingVolume>& obstacles) {
+  // The finer bound only where the coarse one proves nothing: finer bounds that would prove a
+  // pair apart over more steps of a motion cost more than the looks they saved (the mesh Panda's
+  // paths verified 1.2 times faster without them, with 24% more looks;
+  // docs/log/2026-12-01-cheap-looks-and-shared-ends.md).
+  const double wanted = kMargin;
   const std::vector<BallCover>& covers = *covers_;
   const double radius = covers[pair.shape].whole.radius;
   const Eigen::Vector3d& whole = wholeCentre(pair.shape);
@@ -180,7 +186,7 @@ bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exac
   balls.place(exact, q);
   for (const ClearancePair& pair : model.pairs) {
     if (pair.tableBound(q) - kMargin > 0) continue;
-    if (balls.lowerBound(pair, model.obstacles, kMargin) - kMargin > 0) continue;
+    if (balls.lowerBound(pair, model.obstacles) - kMargin > 0) continue;
     if (exact.touches(pair)) return true;
   }
   return false;
@@ -227,11 +233,11 @@ class MotionLooks {
   double perStep(std::size_t p) const { return perStep_[p]; }
 
   /// Places state i; writes each active pair's bound (0 where none proves it apart); with
-  /// `decide`, asks the exact checker about those pairs and returns true at a contact. A bound
-  /// that proves a pair apart over `steps` steps on its own is precise enough; a pair without one
-  /// at both ends of the stretch (`close`) goes to the exact checker without a bound: its bound
-  /// was not positive there, and a bound costs as much as the check on the mesh Panda's pairs
-  /// that sit millimetres apart.
+  /// `decide`, asks the exact checker about those pairs and returns true at a contact. `steps`:
+  /// how many steps of the motion the state's bounds are to cover, where an exact distance pays.
+  /// A pair without a bound at both ends of the stretch (`close`) goes to the exact checker
+  /// without one: its bound was not positive there, and a bound costs as much as the check on
+  /// the mesh Panda's pairs that sit millimetres apart.
   template <class Close>
   bool look(std::size_t i, const std::vector<std::uint32_t>& active, std::vector<double>& bounds,
             bool decide, double steps, const Close& close) {
@@ -242,12 +248,7 @@ class MotionLooks {
       const ClearancePair& pair = model_.pairs[p];
       // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
       double bound = pair.tableBound(q_.data()) - kMargin;
-      if (!(bound > 0)) {
-        bound = close(p)
-                    ? 0
-                    : balls_.lowerBound(pair, model_.obstacles, steps * perStep_[p] + kMargin) -
-                          kMargin;
-      }
+      if (!(bound > 0)) bound = close(p) ? 0 : balls_.lowerBound(pair, model_.obstacles) - kMargin;
       bounds[p] = bound > 0 ? bound : 0;
       if (bound > 0) continue;
       if (pair.askDistance && exact_.distance && steps >= kDistanceSteps) {
@@ -277,9 +278,18 @@ class MotionLooks {
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
                                      const double* from, const double* to, std::size_t dim,
-                                     std::size_t segments) {
+                                     std::size_t segments, MotionEndBounds* carried) {
   CertifiedMotion answer;
   if (segments == 0) return answer;
+  // The start's bounds, when the last motion ended here (a path's edges share their waypoints).
+  Bounds known;
+  if (carried != nullptr) {
+    if (carried->q.size() == dim && carried->bounds.size() == model.pairs.size() &&
+        std::equal(from, from + dim, carried->q.begin())) {
+      known = std::make_shared<const std::vector<double>>(std::move(carried->bounds));
+    }
+    carried->q.clear();
+  }
   const std::size_t pairs = model.pairs.size();
   MotionLooks looks(model, exact, from, to, dim, segments, answer.statesPlaced);
   const auto never = [](std::uint32_t) { return false; };
@@ -292,6 +302,10 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     answer.collidingState = segments;
     return answer;
   }
+  if (carried != nullptr) {
+    carried->q.assign(to, to + dim);
+    carried->bounds = *atTo;
+  }
   if (segments == 1) return answer;
   // The midpoint next, before `from` is placed for its bounds: a motion that collides (most of a
   // planner's extensions) is found after the looks of the dense check's order, and pays for
@@ -302,8 +316,12 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
     answer.collidingState = half;
     return answer;
   }
-  auto atFrom = std::make_shared<std::vector<double>>(pairs, 0.0);
-  looks.look(0, every, *atFrom, false, all / 2, never);
+  Bounds atFrom = known;
+  if (!atFrom) {
+    auto placed = std::make_shared<std::vector<double>>(pairs, 0.0);
+    looks.look(0, every, *placed, false, all / 2, never);
+    atFrom = std::move(placed);
+  }
 
   // Breadth first, as the dense check's bisection order: a collision anywhere on the motion is met
   // after a few looks (depth first walked the first half's every unproven state before the

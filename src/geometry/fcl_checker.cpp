@@ -10,6 +10,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -220,6 +221,9 @@ struct FclChecker::Scratch {
   // shapes it asks FCL about, each once per configuration (placedAt[s] == placing).
   std::size_t placing = 0;
   std::vector<std::size_t> placedAt;
+  // The last motion's end bounds (certifiedMotionCheck), for the world of that generation.
+  MotionEndBounds carried;
+  std::uint64_t carriedGeneration = 0;
 };
 
 struct FclChecker::Obstacles {
@@ -255,6 +259,14 @@ struct FclChecker::Obstacles {
   bool statesProven = false;
   // Point-cloud obstacles; their entries in objects and distanceShapes are null.
   std::vector<Cloud> clouds;
+  // Distinct for every world a checker makes (never 0), so that a scratch's carried bounds are
+  // never read against a later world that happens to reuse this one's address.
+  std::uint64_t generation = nextGeneration();
+
+  static std::uint64_t nextGeneration() {
+    static std::atomic<std::uint64_t> last{0};
+    return last.fetch_add(1, std::memory_order_relaxed) + 1;
+  }
 };
 
 FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
@@ -712,8 +724,13 @@ CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const 
     return checkMotionStateByState(from, to, segments);
   if (world->fixedContact) return {segments, 1};  // every state collides; `to` is looked at first
   auto scratch = scratch_.lease();
-  const CertifiedMotion answer = certifiedMotionCheck(
-      world->clearance, exactPairs(*world, *scratch), from, to, robot_.dof(), segments);
+  if (scratch->carriedGeneration != world->generation) {
+    scratch->carried.q.clear();
+    scratch->carriedGeneration = world->generation;
+  }
+  const CertifiedMotion answer =
+      certifiedMotionCheck(world->clearance, exactPairs(*world, *scratch), from, to, robot_.dof(),
+                           segments, &scratch->carried);
   return {answer.collidingState, answer.statesPlaced};
 }
 

@@ -30,29 +30,34 @@ constexpr std::chrono::microseconds kParallelWork{250};
 // enough that a checker's batch path (one world read, one scratch lease) pays.
 constexpr std::size_t kChunk = 8;
 
-/// checkPathParallel for a checker that proves motions free (motionProofs): the waypoints
-/// in one batch, then each edge as one motion (its states between the waypoints), edges handed
-/// out one at a time. An edge whose end waypoint collides has its interior states checked one by
-/// one, as motionCollision would stop at that end.
+/// checkPathParallel for a checker that proves motions free (motionProofs): the first waypoint,
+/// then each edge as one motion (its states between the waypoints, its end included), edges
+/// handed out one at a time. The motion check decides its end waypoint as well: a checker that
+/// proves motions free looks at the end first (certifiedMotionCheck), so checking the waypoints
+/// in a batch before placed each of them once more (the mesh Panda's paths: BM_VerifyPath,
+/// docs/planning.md). An edge whose end collides has its interior states checked one by one, as
+/// motionCollision stops at that end; an edge whose interior collides has its end checked alone.
 PathCheck checkByMotions(const CollisionChecker& checker, const JointPath& path, double resolution,
                          unsigned threads) {
   const std::size_t dim = checker.dof();
   const std::size_t edges = path.size() - 1;
-  std::vector<double> waypoints;
-  for (const Eigen::VectorXd& q : path) waypoints.insert(waypoints.end(), q.data(), q.data() + dim);
   std::vector<std::uint8_t> waypointHit(path.size());
-  checker.inCollisionEach(waypoints.data(), path.size(), waypointHit.data());
+  waypointHit[0] = checker.firstInCollision(path[0].data(), 1) == 0 ? 1 : 0;
   std::vector<std::uint8_t> edgeHit(edges);
   const auto checkEdge = [&](std::size_t e) {
     const std::size_t n = segmentCount(path[e], path[e + 1], resolution);
-    if (waypointHit[e + 1] == 0) {
-      edgeHit[e] =
-          checker.motionCollision(path[e].data(), path[e + 1].data(), n).collidingState != 0;
+    const std::size_t hit =
+        checker.motionCollision(path[e].data(), path[e + 1].data(), n).collidingState;
+    if (hit == 0) return;
+    if (hit != n) {
+      edgeHit[e] = 1;
+      waypointHit[e + 1] = checker.firstInCollision(path[e + 1].data(), 1) == 0 ? 1 : 0;
       return;
     }
+    waypointHit[e + 1] = 1;
     std::vector<double> states;  // rows 1..n-1: the interior
     motionStates(path[e].data(), path[e + 1].data(), dim, n, states);
-    edgeHit[e] = checker.firstInCollision(states.data() + dim, n - 1) < n - 1;
+    edgeHit[e] = checker.firstInCollision(states.data() + dim, n - 1) < n - 1 ? 1 : 0;
   };
   std::size_t first = 0;  // the edges checked before the hand-out
   if (threads == 0 && edges > 0) {

@@ -400,6 +400,63 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
   }
 }
 
+// A path's edges share their waypoints: a motion that starts where the last one ended reads the
+// bounds kept at that end (MotionEndBounds) instead of placing the robot there again. The same
+// verdicts as the dense check along a walk of free waypoints, and fewer states placed than the
+// same walk with the kept bounds thrown away before each edge (an unrelated motion in between).
+TEST(CertifiedMotion, AMotionFromTheLastEndReadsItsBoundsWithTheSameVerdicts) {
+  Rng rng(11);
+  std::normal_distribution<double> gauss;
+  for (const RobotEntry& entry : shippedRobots()) {
+    const Robot robot = loadRobot(entry.name);
+    const JointLimits limits = robot.limits();
+    const Scene scene = clutterWithFreeRoom(robot, rng);
+    const FclChecker dense(robot, scene, {.selfCollision = true, .proveMotionsFree = false});
+    const FclChecker chained(robot, scene, {.selfCollision = true});
+    const FclChecker fresh(robot, scene, {.selfCollision = true});
+    const std::size_t dim = robot.dof();
+    const auto freeConfiguration = [&] {
+      for (int draws = 0; draws < 100000; ++draws) {
+        const Eigen::VectorXd q = uniformConfigurations(limits, 1, rng).row(0).transpose();
+        if (!dense.inCollision(std::span<const double>(q.data(), dim))) return q;
+      }
+      ADD_FAILURE() << entry.name << ": no free configuration among the clutter";
+      return Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dim)));
+    };
+    const Eigen::VectorXd aside = freeConfiguration();
+    Eigen::VectorXd from = freeConfiguration();
+    std::size_t chainedLooked = 0, freshLooked = 0, edges = 0;
+    for (std::size_t m = 0; m < kMotions / 2; ++m) {
+      Eigen::VectorXd direction(dim);
+      for (auto& v : direction) v = gauss(rng);
+      const double length = std::uniform_real_distribution<double>(0.05, 0.6)(rng);
+      const Eigen::VectorXd to = (from + length * direction.normalized())
+                                     .cwiseMax(limits.lower())
+                                     .cwiseMin(limits.upper());
+      const std::size_t n = segmentCount(from.data(), to.data(), dim, 0.03);
+      std::vector<double> all;
+      motionStates(from.data(), to.data(), dim, n, all);
+      const bool denseHit = dense.firstInCollision(all.data(), n) < n;
+      const auto a = chained.motionCollision(from.data(), to.data(), n);
+      fresh.motionCollision(from.data(), aside.data(), 1);  // keeps another end
+      const auto b = fresh.motionCollision(from.data(), to.data(), n);
+      ASSERT_EQ(a.collidingState != 0, denseHit) << entry.name << ": motion " << m;
+      ASSERT_EQ(b.collidingState != 0, denseHit) << entry.name << ": motion " << m;
+      if (denseHit) {  // the walk goes on from a free configuration: no bounds kept
+        from = freeConfiguration();
+        continue;
+      }
+      chainedLooked += a.looked;
+      freshLooked += b.looked;
+      ++edges;
+      from = to;
+    }
+    EXPECT_GT(edges, 0U) << entry.name;
+    // Each free edge after the first skips placing its start once.
+    EXPECT_LT(chainedLooked, freshLooked) << entry.name;
+  }
+}
+
 // A configuration's check skips the pairs that bounds keep apart: the same answers as FCL asked
 // about every pair (its broad phase, then its narrow phase), with and without self-collision, on
 // uniform configurations and on the states of motions among the clutter, which pass close to

@@ -80,11 +80,10 @@ class PlacedBalls {
   void place(const ExactPairCheck& exact, const double* q);
 
   /// A lower bound on the pair's distance at the configuration last placed: from the shapes'
-  /// enclosing balls when that already exceeds `wanted`, else from their balls (and the
-  /// children of balls that overlap), the larger of the valid bounds. `obstacles` are the
-  /// scene's, as the pair indexes them.
-  double lowerBound(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles,
-                    double wanted);
+  /// enclosing balls when that keeps them apart, else from their balls (and the children of
+  /// balls that overlap), the larger of the valid bounds. `obstacles` are the scene's, as the
+  /// pair indexes them.
+  double lowerBound(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles);
 
  private:
   struct Shape {
@@ -125,13 +124,24 @@ struct CertifiedMotion {
   std::size_t statesPlaced = 0;
 };
 
+/// The bounds a motion check found at its end, kept by the caller for the next motion that starts
+/// there (a path's next edge): certifiedMotionCheck reads them instead of placing that start
+/// again, and writes its own end's. Valid for one ClearanceModel: the caller empties `q` when
+/// the model changes.
+struct MotionEndBounds {
+  std::vector<double> q;       ///< the end; empty: none kept
+  std::vector<double> bounds;  ///< per pair of the model: a lower bound on its distance, or 0
+};
+
 /// Checks the states from + (i / segments) (to - from), i = 1..segments (`to` itself for
 /// i = segments), as a dense check would, and answers as it: looks at `to` first, then bisects,
 /// proving stretches free pair by pair and asking `exact` only about pairs at states no bound
-/// proves apart. `from` is placed for its bounds, never checked. Every configuration between the
-/// two must be one that the levers hold for (prismatic joints within their limits).
+/// proves apart. `from` is placed for its bounds, never checked (unless `carried` holds them: a
+/// start equal to its `q`, value for value); `carried`, when given, then keeps `to`'s bounds when
+/// `to` is free, and nothing when it collides. Every configuration between the two must be one
+/// that the levers hold for (prismatic joints within their limits).
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
                                      const double* from, const double* to, std::size_t dim,
-                                     std::size_t segments);
+                                     std::size_t segments, MotionEndBounds* carried = nullptr);
 
 }  // namespace fastron
