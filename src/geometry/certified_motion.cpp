@@ -1,10 +1,9 @@
 #include "fastron/geometry/certified_motion.h"
 
 #include <algorithm>
-#include <deque>
 #include <limits>
 #include <memory>
-#include <numeric>
+#include <span>
 #include <utility>
 
 #include "fastron/core/motion_states.h"
@@ -37,8 +36,42 @@ PlacedBalls::PlacedBalls(std::shared_ptr<const std::vector<BallCover>> covers)
 }
 
 void PlacedBalls::place(const ExactPairCheck& exact, const double* q) {
-  exact.place(q, poses_);
+  exact.place(q, poses_, axes_);
   ++now_;
+}
+
+double PlacedBalls::speed(const ClearancePair& pair,
+                          const std::vector<std::vector<ShapeMover>>& movers,
+                          const std::vector<double>& stride) {
+  double sum = shapeSpeeds(pair.shape, movers[pair.shape], stride)[pair.shapeMovers];
+  if (pair.selfPair) sum += shapeSpeeds(pair.other, movers[pair.other], stride)[pair.otherMovers];
+  return sum;
+}
+
+/// Per k, the summed speed of the shape's first k movers: a joint moves the shape's enclosing
+/// ball's points at most by their distance from its axis per unit (revolute), or by 1
+/// (prismatic), times its multiplier.
+const std::vector<double>& PlacedBalls::shapeSpeeds(std::size_t shape,
+                                                    const std::vector<ShapeMover>& movers,
+                                                    const std::vector<double>& stride) {
+  Shape& s = shapes_[shape];
+  if (s.speedStamp == now_) return s.speeds;
+  const Eigen::Vector3d& centre = wholeCentre(shape);
+  const double radius = (*covers_)[shape].whole.radius;
+  s.speeds.resize(movers.size() + 1);
+  s.speeds[0] = 0;
+  for (std::size_t m = 0; m < movers.size(); ++m) {
+    const ShapeMover& mover = movers[m];
+    double arm = 1;
+    if (!mover.prismatic) {
+      const JointAxis& axis = axes_[static_cast<std::size_t>(mover.joint)];
+      const Eigen::Vector3d away = centre - axis.origin;
+      arm = (away - away.dot(axis.direction) * axis.direction).norm() + radius;
+    }
+    s.speeds[m + 1] = s.speeds[m] + stride[mover.coordinate] * mover.multiplier * arm;
+  }
+  s.speedStamp = now_;
+  return s.speeds;
 }
 
 double PlacedBalls::lowerBound(const ClearancePair& pair,
@@ -192,69 +225,113 @@ bool certifiedStateCheck(const ClearanceModel& model, const ExactPairCheck& exac
   return false;
 }
 
+MotionScratch::MotionScratch(std::shared_ptr<const std::vector<BallCover>> covers)
+    : balls(std::move(covers)) {}
+
+void MotionScratch::forgetEnd() {
+  endQ.clear();
+}
+
 namespace {
-
-using Bounds = std::shared_ptr<const std::vector<double>>;  // per pair, at one checked state
-
-/// States lo < i < hi, between two checked ones, that the pairs in `active` are not yet proven
-/// apart over.
-struct Stretch {
-  std::size_t lo, hi;
-  Bounds atLo, atHi;
-  std::vector<std::uint32_t> active;
-};
 
 /// The looks of one motion at its states: each places the robot at a state, bounds the pairs
 /// still open and, when told to decide, asks the exact checker about the pairs no bound keeps
-/// apart.
+/// apart. Its buffers are the scratch's.
 class MotionLooks {
  public:
-  MotionLooks(const ClearanceModel& model, const ExactPairCheck& exact, const double* from,
-              const double* to, std::size_t dim, std::size_t segments, std::size_t& placed)
+  MotionLooks(const ClearanceModel& model, const ExactPairCheck& exact, MotionScratch& scratch,
+              const double* from, const double* to, std::size_t dim, std::size_t segments,
+              std::size_t& placed)
       : model_(model),
         exact_(exact),
+        scratch_(scratch),
         from_(from),
         to_(to),
         dim_(dim),
         segments_(segments),
-        balls_(model.balls),
-        q_(dim),
-        perStep_(model.pairs.size()),
         placed_(placed) {
-    Eigen::VectorXd stride(static_cast<Eigen::Index>(dim));
+    scratch.q.resize(dim);
+    scratch.stride.resize(dim);
     for (std::size_t j = 0; j < dim; ++j)
-      stride[static_cast<Eigen::Index>(j)] =
-          std::abs(to[j] - from[j]) / static_cast<double>(segments);
-    for (std::size_t p = 0; p < perStep_.size(); ++p)
-      perStep_[p] = model.pairs[p].levers.dot(stride);
+      scratch.stride[j] = std::abs(to[j] - from[j]) / static_cast<double>(segments);
+    const Eigen::Map<const Eigen::VectorXd> stride(scratch.stride.data(),
+                                                   static_cast<Eigen::Index>(dim));
+    // Per shape, the summed growth of its first k movers' speeds per step (their levers' growth
+    // times their stride), as shapeSpeeds sums the speeds.
+    const std::vector<std::vector<ShapeMover>>& movers = *model.movers;
+    scratch.growth.resize(movers.size());
+    for (std::size_t shape = 0; shape < movers.size(); ++shape) {
+      std::vector<double>& sums = scratch.growth[shape];
+      sums.resize(movers[shape].size() + 1);
+      sums[0] = 0;
+      for (std::size_t m = 0; m < movers[shape].size(); ++m) {
+        const ShapeMover& mover = movers[shape][m];
+        sums[m + 1] = sums[m] + (mover.prismatic ? 0.0
+                                                 : scratch.stride[mover.coordinate] *
+                                                       mover.multiplier * mover.growth.dot(stride));
+      }
+    }
+    scratch.perStep.resize(model.pairs.size());
+    scratch.perStepGrowth.resize(model.pairs.size());
+    for (std::size_t p = 0; p < model.pairs.size(); ++p) {
+      const ClearancePair& pair = model.pairs[p];
+      scratch.perStep[p] = pair.levers.dot(stride);
+      scratch.perStepGrowth[p] =
+          scratch.growth[pair.shape][pair.shapeMovers] +
+          (pair.selfPair ? scratch.growth[pair.other][pair.otherMovers] : 0.0);
+    }
+    scratch.used = 0;
   }
 
-  /// How much one step of the motion can bring pair p closer.
-  double perStep(std::size_t p) const { return perStep_[p]; }
+  /// How much one step of the motion can bring pair p closer, anywhere on the motion (its
+  /// levers).
+  double perStep(std::size_t p) const { return scratch_.perStep[p]; }
 
-  /// Places state i; writes each active pair's bound (0 where none proves it apart); with
-  /// `decide`, asks the exact checker about those pairs and returns true at a contact. `steps`:
-  /// how many steps of the motion the state's bounds are to cover, where an exact distance pays.
-  /// A pair without a bound at both ends of the stretch (`close`) goes to the exact checker
-  /// without one: its bound was not positive there, and a bound costs as much as the check on
-  /// the mesh Panda's pairs that sit millimetres apart.
-  template <class Close>
-  bool look(std::size_t i, const std::vector<std::uint32_t>& active, std::vector<double>& bounds,
-            bool decide, double steps, const Close& close) {
-    motionState(from_, to_, dim_, i, segments_, q_.data());
-    balls_.place(exact_, q_.data());
+  /// How much one step can bring pair p closer within `steps` steps of a state where its speed
+  /// (PlacedBalls::speed) is `speed`: the speed grows by at most perStepGrowth a step.
+  double perStepNear(std::size_t p, double speed, double steps) const {
+    return std::min(scratch_.perStep[p], speed + steps * scratch_.perStepGrowth[p]);
+  }
+
+  /// A new row: a bound per pair (0), then a speed per pair (infinite: not known), kept until
+  /// the next motion; its index.
+  std::size_t newBounds() {
+    if (scratch_.used == scratch_.bounds.size()) scratch_.bounds.emplace_back();
+    std::vector<double>& row = scratch_.bounds[scratch_.used];
+    row.assign(2 * model_.pairs.size(), 0.0);
+    std::fill(row.begin() + static_cast<std::ptrdiff_t>(model_.pairs.size()), row.end(),
+              std::numeric_limits<double>::infinity());
+    return scratch_.used++;
+  }
+  std::vector<double>& bounds(std::size_t row) { return scratch_.bounds[row]; }
+
+  /// Places state i; writes each active pair's bound into row `row` (0 where none proves it
+  /// apart); with `decide`, asks the exact checker about those pairs and returns true at a
+  /// contact. `steps`: how many steps of the motion the state's bounds are to cover, where an
+  /// exact distance pays. A pair without a bound at both ends of the stretch (`close`) goes to the
+  /// exact checker without one: its bound was not positive there, and a bound costs as much as
+  /// the check on the mesh Panda's pairs that sit millimetres apart.
+  template <class Active, class Close>
+  bool look(std::size_t i, const Active& active, std::size_t row, bool decide, double steps,
+            const Close& close) {
+    motionState(from_, to_, dim_, i, segments_, scratch_.q.data());
+    scratch_.balls.place(exact_, scratch_.q.data());
     ++placed_;
+    std::vector<double>& out = scratch_.bounds[row];
+    const std::size_t pairs = model_.pairs.size();
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
+      out[pairs + p] = scratch_.balls.speed(pair, *model_.movers, scratch_.stride);
       // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
-      double bound = pair.tableBound(q_.data()) - kMargin;
-      if (!(bound > 0)) bound = close(p) ? 0 : balls_.lowerBound(pair, model_.obstacles) - kMargin;
-      bounds[p] = bound > 0 ? bound : 0;
+      double bound = pair.tableBound(scratch_.q.data()) - kMargin;
+      if (!(bound > 0))
+        bound = close(p) ? 0 : scratch_.balls.lowerBound(pair, model_.obstacles) - kMargin;
+      out[p] = bound > 0 ? bound : 0;
       if (bound > 0) continue;
       if (pair.askDistance && exact_.distance && steps >= kDistanceSteps) {
         const double distance = exact_.distance(pair);
         if (distance > kDistanceFloor) {
-          bounds[p] = distance - kMargin;
+          out[p] = distance - kMargin;
           continue;
         }
       }
@@ -266,90 +343,113 @@ class MotionLooks {
  private:
   const ClearanceModel& model_;
   const ExactPairCheck& exact_;
+  MotionScratch& scratch_;
   const double *from_, *to_;
   std::size_t dim_, segments_;
-  PlacedBalls balls_;
-  std::vector<double> q_;
-  std::vector<double> perStep_;
   std::size_t& placed_;  // the states placed, counted into the caller's answer
+};
+
+/// Every pair, 0..n-1, as a range of indices.
+struct AllPairs {
+  std::uint32_t n;
+  struct Iterator {
+    std::uint32_t p;
+    std::uint32_t operator*() const { return p; }
+    Iterator& operator++() {
+      ++p;
+      return *this;
+    }
+    bool operator!=(const Iterator& other) const { return p != other.p; }
+  };
+  Iterator begin() const { return {0}; }
+  Iterator end() const { return {n}; }
 };
 
 }  // namespace
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
                                      const double* from, const double* to, std::size_t dim,
-                                     std::size_t segments, MotionEndBounds* carried) {
+                                     std::size_t segments, MotionScratch& scratch) {
   CertifiedMotion answer;
   if (segments == 0) return answer;
-  // The start's bounds, when the last motion ended here (a path's edges share their waypoints).
-  Bounds known;
-  if (carried != nullptr) {
-    if (carried->q.size() == dim && carried->bounds.size() == model.pairs.size() &&
-        std::equal(from, from + dim, carried->q.begin())) {
-      known = std::make_shared<const std::vector<double>>(std::move(carried->bounds));
-    }
-    carried->q.clear();
-  }
+  // The start's bounds are known when the last motion ended here (a path's edges share their
+  // waypoints).
+  const bool startKnown = scratch.endQ.size() == dim &&
+                          scratch.endBounds.size() == model.pairs.size() &&
+                          std::equal(from, from + dim, scratch.endQ.begin());
+  MotionLooks looks(model, exact, scratch, from, to, dim, segments, answer.statesPlaced);
+  std::size_t atFrom = 0;
   const std::size_t pairs = model.pairs.size();
-  MotionLooks looks(model, exact, from, to, dim, segments, answer.statesPlaced);
+  if (startKnown) {  // its bounds; its speeds were for the last motion's stride
+    atFrom = looks.newBounds();
+    std::copy(scratch.endBounds.begin(), scratch.endBounds.end(), looks.bounds(atFrom).begin());
+  }
+  scratch.forgetEnd();
   const auto never = [](std::uint32_t) { return false; };
   const double all = static_cast<double>(segments);
+  const AllPairs every{static_cast<std::uint32_t>(model.pairs.size())};
 
-  std::vector<std::uint32_t> every(pairs);
-  std::iota(every.begin(), every.end(), 0U);
-  auto atTo = std::make_shared<std::vector<double>>(pairs, 0.0);
-  if (looks.look(segments, every, *atTo, true, all, never)) {  // into an obstacle: found at once
+  const std::size_t atTo = looks.newBounds();
+  if (looks.look(segments, every, atTo, true, all, never)) {  // into an obstacle: found at once
     answer.collidingState = segments;
     return answer;
   }
-  if (carried != nullptr) {
-    carried->q.assign(to, to + dim);
-    carried->bounds = *atTo;
-  }
+  scratch.endQ.assign(to, to + dim);
+  scratch.endBounds.assign(looks.bounds(atTo).begin(),
+                           looks.bounds(atTo).begin() + static_cast<std::ptrdiff_t>(pairs));
   if (segments == 1) return answer;
   // The midpoint next, before `from` is placed for its bounds: a motion that collides (most of a
   // planner's extensions) is found after the looks of the dense check's order, and pays for
   // `from` only when it survives them.
   const std::size_t half = segments / 2;
-  auto atHalf = std::make_shared<std::vector<double>>(pairs, 0.0);
-  if (looks.look(half, every, *atHalf, true, all / 2, never)) {
+  const std::size_t atHalf = looks.newBounds();
+  if (looks.look(half, every, atHalf, true, all / 2, never)) {
     answer.collidingState = half;
     return answer;
   }
-  Bounds atFrom = known;
-  if (!atFrom) {
-    auto placed = std::make_shared<std::vector<double>>(pairs, 0.0);
-    looks.look(0, every, *placed, false, all / 2, never);
-    atFrom = std::move(placed);
+  if (!startKnown) {
+    atFrom = looks.newBounds();
+    looks.look(0, every, atFrom, false, all / 2, never);
   }
 
   // Breadth first, as the dense check's bisection order: a collision anywhere on the motion is met
   // after a few looks (depth first walked the first half's every unproven state before the
   // second half's midpoint, and doubled the looks of RRT-Connect's mostly colliding extensions).
-  std::deque<Stretch> queue;
-  queue.push_back({0, half, atFrom, atHalf, every});
-  queue.push_back({half, segments, atHalf, atTo, std::move(every)});
-  while (!queue.empty()) {
-    Stretch s = std::move(queue.front());
-    queue.pop_front();
+  // A stretch's active pairs are a range of scratch.active.
+  std::vector<MotionScratch::Stretch>& queue = scratch.stretches;
+  std::vector<std::uint32_t>& active = scratch.active;
+  queue.clear();
+  active.clear();
+  for (const std::uint32_t p : every) active.push_back(p);
+  queue.push_back({0, half, atFrom, atHalf, 0, active.size()});
+  queue.push_back({half, segments, atHalf, atTo, 0, active.size()});
+  for (std::size_t next = 0; next < queue.size(); ++next) {
+    const MotionScratch::Stretch s = queue[next];
     if (s.hi - s.lo < 2) continue;
-    std::vector<std::uint32_t> open;
     const double steps = static_cast<double>(s.hi - s.lo);
-    for (const std::uint32_t p : s.active) {
-      if (!((*s.atLo)[p] + (*s.atHi)[p] > steps * looks.perStep(p))) open.push_back(p);
+    const std::vector<double>& atLo = looks.bounds(s.atLo);
+    const std::vector<double>& atHi = looks.bounds(s.atHi);
+    const std::size_t openBegin = active.size();
+    for (std::size_t k = s.activeBegin; k < s.activeEnd; ++k) {
+      const std::uint32_t p = active[k];
+      const double speed = std::min(atLo[pairs + p], atHi[pairs + p]);
+      if (!(atLo[p] + atHi[p] > steps * looks.perStepNear(p, speed, steps))) active.push_back(p);
     }
-    if (open.empty()) continue;
+    const std::size_t openEnd = active.size();
+    if (openBegin == openEnd) continue;
     const std::size_t mid = s.lo + (s.hi - s.lo) / 2;
-    auto atMid = std::make_shared<std::vector<double>>(pairs, 0.0);
+    const std::size_t atMid = looks.newBounds();
+    // newBounds may have moved the rows: read the ends' bounds by row again.
     const auto closeAtBothEnds = [&](std::uint32_t p) {
-      return (*s.atLo)[p] == 0 && (*s.atHi)[p] == 0;
+      return looks.bounds(s.atLo)[p] == 0 && looks.bounds(s.atHi)[p] == 0;
     };
-    if (looks.look(mid, open, *atMid, true, steps / 2, closeAtBothEnds)) {
+    const std::span<const std::uint32_t> open(active.data() + openBegin, openEnd - openBegin);
+    if (looks.look(mid, open, atMid, true, steps / 2, closeAtBothEnds)) {
       answer.collidingState = mid;
       return answer;
     }
-    queue.push_back({s.lo, mid, s.atLo, atMid, open});
-    queue.push_back({mid, s.hi, atMid, s.atHi, std::move(open)});
+    queue.push_back({s.lo, mid, s.atLo, atMid, openBegin, openEnd});
+    queue.push_back({mid, s.hi, atMid, s.atHi, openBegin, openEnd});
   }
   return answer;
 }

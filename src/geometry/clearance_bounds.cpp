@@ -447,6 +447,7 @@ namespace {
 struct LeversAndReach {
   Eigen::VectorXd levers;
   double reach = 0;  ///< bound on any point's distance from relativeTo's origin
+  std::vector<ShapeMover> movers;
 };
 
 LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
@@ -466,6 +467,7 @@ LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::
   double reach = 0;
   for (const Ball& b : balls) reach = std::max(reach, (s.origin * b.centre).norm() + b.radius);
   Eigen::VectorXd levers = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(robot.dof()));
+  std::vector<ShapeMover> movers;
   for (int link = s.link; link != relativeTo;) {
     const int j = robot.links()[static_cast<std::size_t>(link)].parentJoint;
     if (j < 0) {
@@ -477,6 +479,9 @@ LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::
     const Joint& joint = joints[static_cast<std::size_t>(j)];
     const auto [coordinate, multiplier] = driver[static_cast<std::size_t>(j)];
     if (coordinate >= 0 && joint.movable()) {
+      // The levers so far are those of the joints below this one.
+      movers.push_back({j, static_cast<std::size_t>(coordinate), std::abs(multiplier),
+                        joint.type == JointType::Prismatic, levers});
       levers[coordinate] +=
           std::abs(multiplier) * (joint.type == JointType::Prismatic ? 1.0 : reach);
     }
@@ -496,7 +501,7 @@ LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::
     }
     link = joint.parent;
   }
-  return {levers, reach};
+  return {levers, reach, std::move(movers)};
 }
 
 }  // namespace
@@ -504,6 +509,11 @@ LeversAndReach leversAndReach(const Robot& robot, std::size_t shape, const std::
 Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
                             int relativeTo) {
   return leversAndReach(robot, shape, balls, relativeTo).levers;
+}
+
+std::vector<ShapeMover> shapeMovers(const Robot& robot, std::size_t shape,
+                                    const std::vector<Ball>& balls, int relativeTo) {
+  return leversAndReach(robot, shape, balls, relativeTo).movers;
 }
 
 double reachBound(const Robot& robot, double padding) {

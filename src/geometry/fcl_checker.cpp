@@ -171,6 +171,9 @@ struct FclChecker::Geometry {
   // and each shape's levers relative to the robot's root.
   std::shared_ptr<const std::vector<BallCover>> balls;
   std::vector<Eigen::VectorXd> levers;
+  // Each shape's movers relative to the root, their growth from its enclosing ball (whose
+  // points' distance from an axis PlacedBalls::speed measures).
+  std::shared_ptr<const std::vector<std::vector<ShapeMover>>> movers;
   // With self-collision: tables of the distance of self pairs of meshes that one or two
   // coordinates turn against each other (options.selfPairTables, or built for selfPairSlack).
   std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
@@ -212,7 +215,7 @@ struct FclChecker::Cloud {
 struct FclChecker::Scratch {
   KinematicsData kinematics;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> robotObjects;
-  std::optional<PlacedBalls> balls;  // with options.proveMotionsFree
+  std::optional<MotionScratch> motion;  // with options.proveMotionsFree: the balls, and more
   // The clearance certificate's questions to FCL on this scratch (exactPairCheck), about `world`
   // (exactPairs sets it): made once per scratch, not per check.
   ExactPairCheck pairs;
@@ -221,9 +224,8 @@ struct FclChecker::Scratch {
   // shapes it asks FCL about, each once per configuration (placedAt[s] == placing).
   std::size_t placing = 0;
   std::vector<std::size_t> placedAt;
-  // The last motion's end bounds (certifiedMotionCheck), for the world of that generation.
-  MotionEndBounds carried;
-  std::uint64_t carriedGeneration = 0;
+  // The world whose bounds `motion` keeps at its last motion's end.
+  std::uint64_t motionGeneration = 0;
 };
 
 struct FclChecker::Obstacles {
@@ -276,7 +278,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
         const std::lock_guard lock(objectsOfRobotGeometry_);
         for (const auto& g : geometry_->shapes)
           s->robotObjects.push_back(std::make_unique<fcl::CollisionObjectd>(g.collision));
-        if (options_.proveMotionsFree) s->balls.emplace(geometry_->balls);
+        if (options_.proveMotionsFree) s->motion.emplace(geometry_->balls);
         s->pairs = exactPairCheck(*s);
         s->placedAt.assign(geometry_->shapes.size(), 0);
         return s;
@@ -290,6 +292,7 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   auto geometry = std::make_shared<Geometry>();
   geometry->moves = shapesMovedByConfiguration(robot_);
   auto balls = std::make_shared<std::vector<BallCover>>();
+  auto movers = std::make_shared<std::vector<std::vector<ShapeMover>>>();
   bool meshes = false;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
     const Shape padded = paddedShape(robot_, s, options_);
@@ -301,8 +304,10 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     if (!options_.proveMotionsFree) continue;
     balls->push_back(coveringBallTree(padded));
     geometry->levers.push_back(shapeLevers(robot_, s, balls->back().balls, robot_.rootLink()));
+    movers->push_back(shapeMovers(robot_, s, {balls->back().whole}, robot_.rootLink()));
   }
   geometry->balls = std::move(balls);
+  geometry->movers = std::move(movers);
   if (options_.selfCollision && options_.proveMotionsFree) {
     if (options_.selfPairTables) {
       for (const SelfPairTable& table : *options_.selfPairTables) {
@@ -516,19 +521,28 @@ void FclChecker::buildClearance(Obstacles& world, const Scene& scene) const {
   const Geometry& geometry = *geometry_;
   ClearanceModel& model = world.clearance;
   model.balls = geometry.balls;
+  model.movers = geometry.movers;
   for (const Obstacle& o : scene.obstacles()) model.obstacles.emplace_back(o.shape, o.pose);
   const std::size_t obstacles = world.objects.size();
   for (const std::size_t s : geometry.moving) {
     for (std::size_t o = 0; o < obstacles; ++o) {
       if (!world.allowed.empty() && world.allowed[s * obstacles + o] != 0) continue;
-      model.pairs.push_back({s, o, false, geometry.levers[s],
-                             primitives(robot_.shapes()[s].shape, scene.obstacles()[o].shape)});
+      ClearancePair pair{s, o, false, geometry.levers[s],
+                         primitives(robot_.shapes()[s].shape, scene.obstacles()[o].shape)};
+      pair.shapeMovers = static_cast<std::uint32_t>((*geometry.movers)[s].size());
+      model.pairs.push_back(std::move(pair));
     }
   }
   model.selfTables = geometry.selfTables;
   for (const auto& [a, b] : world.movingSelfPairs) {
     ClearancePair pair{a, b, true, selfPairLevers(geometry, a, b),
                        primitives(robot_.shapes()[a].shape, robot_.shapes()[b].shape)};
+    // Their movers below the link both hang from, the first of each one's.
+    const int from = commonAncestor(robot_, robot_.shapes()[a].link, robot_.shapes()[b].link);
+    pair.shapeMovers = static_cast<std::uint32_t>(
+        shapeMovers(robot_, a, {(*geometry.balls)[a].whole}, from).size());
+    pair.otherMovers = static_cast<std::uint32_t>(
+        shapeMovers(robot_, b, {(*geometry.balls)[b].whole}, from).size());
     if (geometry.selfTables) {
       for (const SelfPairTable& t : *geometry.selfTables) {
         if ((t.shapeA == a && t.shapeB == b) || (t.shapeA == b && t.shapeB == a)) pair.table = &t;
@@ -643,7 +657,7 @@ bool FclChecker::boundsStateChecks() const {
 
 bool FclChecker::collides(const Obstacles& world, Scratch& scratch, const double* q) const {
   if (!world.statesProven) return collide(world, scratch, q, false).has_value();
-  return certifiedStateCheck(world.clearance, exactPairs(world, scratch), *scratch.balls, q);
+  return certifiedStateCheck(world.clearance, exactPairs(world, scratch), scratch.motion->balls, q);
 }
 
 // One read of the world and one scratch lease for the whole run: with two threads verifying a
@@ -677,12 +691,21 @@ const ExactPairCheck& FclChecker::exactPairs(const Obstacles& world, Scratch& sc
 
 ExactPairCheck FclChecker::exactPairCheck(Scratch& scratch) const {
   ExactPairCheck exact;
-  exact.place = [this, &scratch](const double* q, std::vector<Eigen::Isometry3d>& poses) {
+  exact.place = [this, &scratch](const double* q, std::vector<Eigen::Isometry3d>& poses,
+                                 std::vector<JointAxis>& axes) {
     forwardKinematics(robot_, q, scratch.kinematics, scratch.world->robotBase);
     ++scratch.placing;
     poses.resize(robot_.shapes().size());
     for (std::size_t s = 0; s < poses.size(); ++s)
       poses[s] = shapePose(robot_, scratch.kinematics, s);
+    const std::vector<Joint>& joints = robot_.joints();
+    axes.resize(joints.size());
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      if (!joints[j].movable()) continue;
+      const Eigen::Isometry3d& child =
+          scratch.kinematics.linkPoses[static_cast<std::size_t>(joints[j].child)];
+      axes[j] = {child.translation(), child.linear() * joints[j].axis};
+    }
   };
   // Robot shape `s` as FCL's object, placed on first use for the configuration last placed (most
   // shapes are never asked about: their bounds keep them apart).
@@ -724,13 +747,13 @@ CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const 
     return checkMotionStateByState(from, to, segments);
   if (world->fixedContact) return {segments, 1};  // every state collides; `to` is looked at first
   auto scratch = scratch_.lease();
-  if (scratch->carriedGeneration != world->generation) {
-    scratch->carried.q.clear();
-    scratch->carriedGeneration = world->generation;
+  if (scratch->motionGeneration != world->generation) {
+    scratch->motion->forgetEnd();
+    scratch->motionGeneration = world->generation;
   }
   const CertifiedMotion answer =
       certifiedMotionCheck(world->clearance, exactPairs(*world, *scratch), from, to, robot_.dof(),
-                           segments, &scratch->carried);
+                           segments, *scratch->motion);
   return {answer.collidingState, answer.statesPlaced};
 }
 

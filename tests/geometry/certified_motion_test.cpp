@@ -260,6 +260,22 @@ Robot slider() {
                {box(0, 0.3), box(1, 0), box(2, 0.2), box(3, 0.1)});
 }
 
+/// How far the farthest moving of `points` (in shape s's frame) moves, relative to link
+/// `relativeTo`, from configuration q0 to q1 (a and b: scratch kinematics).
+double farthestMove(const Robot& robot, std::size_t s, const std::vector<Eigen::Vector3d>& points,
+                    int relativeTo, const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                    KinematicsData& a, KinematicsData& b) {
+  forwardKinematics(robot, q0.data(), a);
+  forwardKinematics(robot, q1.data(), b);
+  const auto in = [&](const KinematicsData& k, const Eigen::Vector3d& p) {
+    const Eigen::Isometry3d frame = k.linkPoses[static_cast<std::size_t>(relativeTo)];
+    return Eigen::Vector3d(frame.inverse() * shapePose(robot, k, s) * p);
+  };
+  double moved = 0;
+  for (const Eigen::Vector3d& p : points) moved = std::max(moved, (in(b, p) - in(a, p)).norm());
+  return moved;
+}
+
 /// Between pairs of uniform configurations, no sampled point of any shape moves, relative to the
 /// root or to its own link, further than its levers allow.
 void expectLeversHold(const Robot& robot, Rng& rng, int samples) {
@@ -275,20 +291,95 @@ void expectLeversHold(const Robot& robot, Rng& rng, int samples) {
       const Eigen::VectorXd levers = shapeLevers(robot, s, balls, relativeTo);
       for (int i = 0; i < samples; ++i) {
         const Eigen::VectorXd q0 = starts.row(i).transpose(), q1 = ends.row(i).transpose();
-        forwardKinematics(robot, q0.data(), a);
-        forwardKinematics(robot, q1.data(), b);
-        const auto in = [&](const KinematicsData& k, const Eigen::Vector3d& p) {
-          const Eigen::Isometry3d frame = k.linkPoses[static_cast<std::size_t>(relativeTo)];
-          return Eigen::Vector3d(frame.inverse() * shapePose(robot, k, s) * p);
-        };
-        double moved = 0;
-        for (const Eigen::Vector3d& p : points)
-          moved = std::max(moved, (in(b, p) - in(a, p)).norm());
+        const double moved = farthestMove(robot, s, points, relativeTo, q0, q1, a, b);
         ASSERT_LE(moved, levers.dot((q1 - q0).cwiseAbs()) + 1e-9)
             << robot.name() << " shape " << s << " relative to link " << relativeTo;
       }
     }
   }
+}
+
+/// Near a configuration, no sampled point of a shape moves in a step, relative to the root or to
+/// an ancestor two joints up, further than its speed there (PlacedBalls::speed) grown by its
+/// movers' growth for each step away; the movers relative to an ancestor are the first of those
+/// relative to the root.
+void expectSpeedsHold(const Robot& robot, Rng& rng, int samples) {
+  const std::size_t dim = robot.dof();
+  const std::size_t shapes = robot.shapes().size();
+  auto covers = std::make_shared<std::vector<BallCover>>();
+  std::vector<std::vector<ShapeMover>> movers;
+  for (std::size_t s = 0; s < shapes; ++s) {
+    covers->push_back(coveringBallTree(robot.shapes()[s].shape));
+    movers.push_back(shapeMovers(robot, s, {covers->back().whole}, robot.rootLink()));
+  }
+  KinematicsData placed = makeKinematicsData(robot);
+  ExactPairCheck exact;  // as FclChecker places the robot
+  exact.place = [&](const double* q, std::vector<Eigen::Isometry3d>& poses,
+                    std::vector<JointAxis>& axes) {
+    forwardKinematics(robot, q, placed);
+    poses.resize(shapes);
+    for (std::size_t s = 0; s < shapes; ++s) poses[s] = shapePose(robot, placed, s);
+    axes.resize(robot.joints().size());
+    for (std::size_t j = 0; j < robot.joints().size(); ++j) {
+      const Joint& joint = robot.joints()[j];
+      const Eigen::Isometry3d& child = placed.linkPoses[static_cast<std::size_t>(joint.child)];
+      axes[j] = {child.translation(), child.linear() * joint.axis};
+    }
+  };
+  PlacedBalls balls(covers);
+  const auto parentLink = [&](int link) {
+    const int joint = robot.links()[static_cast<std::size_t>(link)].parentJoint;
+    return joint < 0 ? link : robot.joints()[static_cast<std::size_t>(joint)].parent;
+  };
+  constexpr int kSteps = 8;
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> length(0.5, 4.0);
+  KinematicsData a = makeKinematicsData(robot), b = makeKinematicsData(robot);
+  const std::vector<std::uint8_t> moves = shapesMovedByConfiguration(robot);
+  for (std::size_t s = 0; s < shapes; ++s) {
+    if (moves[s] == 0) continue;
+    const std::vector<Eigen::Vector3d> points = pointsOf(robot.shapes()[s].shape, 20, rng);
+    const int link = robot.shapes()[s].link;
+    for (const int relativeTo : {robot.rootLink(), parentLink(parentLink(link))}) {
+      const std::vector<ShapeMover> mine = shapeMovers(robot, s, {(*covers)[s].whole}, relativeTo);
+      ASSERT_LE(mine.size(), movers[s].size());
+      for (std::size_t m = 0; m < mine.size(); ++m) ASSERT_EQ(mine[m].joint, movers[s][m].joint);
+      ClearancePair pair;
+      pair.shape = s;
+      pair.shapeMovers = static_cast<std::uint32_t>(mine.size());
+      for (int i = 0; i < samples; ++i) {
+        const Eigen::VectorXd q0 = uniformConfigurations(robot.limits(), 1, rng).row(0).transpose();
+        Eigen::VectorXd direction(static_cast<Eigen::Index>(dim));
+        for (auto& v : direction) v = gauss(rng);
+        // Within the limits: the levers below count prismatic joints' ranges.
+        const Eigen::VectorXd end = (q0 + length(rng) * direction.normalized())
+                                        .cwiseMax(robot.limits().lower())
+                                        .cwiseMin(robot.limits().upper());
+        const Eigen::VectorXd step = (end - q0) / kSteps;
+        const Eigen::VectorXd absStep = step.cwiseAbs();
+        const std::vector<double> stride(absStep.data(), absStep.data() + dim);
+        balls.place(exact, q0.data());
+        const double speed = balls.speed(pair, movers, stride);
+        double growth = 0;
+        for (const ShapeMover& m : mine) {
+          if (!m.prismatic) growth += stride[m.coordinate] * m.multiplier * m.growth.dot(absStep);
+        }
+        for (int t = 1; t <= kSteps; ++t) {
+          const Eigen::VectorXd before = q0 + (t - 1) * step, after = q0 + t * step;
+          const double moved = farthestMove(robot, s, points, relativeTo, before, after, a, b);
+          ASSERT_LE(moved, speed + t * growth + 1e-9)
+              << robot.name() << " shape " << s << " relative to link " << relativeTo << ", step "
+              << t;
+        }
+      }
+    }
+  }
+}
+
+TEST(ShapeLevers, SpeedsAtAConfigurationBoundHowFarItsShapesMoveNearIt) {
+  Rng rng(13);
+  expectSpeedsHold(slider(), rng, 200);
+  for (const RobotEntry& entry : shippedRobots()) expectSpeedsHold(loadRobot(entry.name), rng, 10);
 }
 
 TEST(ShapeLevers, BoundHowFarEveryShapeMoves) {
@@ -401,8 +492,8 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
 }
 
 // A path's edges share their waypoints: a motion that starts where the last one ended reads the
-// bounds kept at that end (MotionEndBounds) instead of placing the robot there again. The same
-// verdicts as the dense check along a walk of free waypoints, and fewer states placed than the
+// bounds kept at that end (MotionScratch::endBounds) instead of placing the robot there again. The
+// same verdicts as the dense check along a walk of free waypoints, and fewer states placed than the
 // same walk with the kept bounds thrown away before each edge (an unrelated motion in between).
 TEST(CertifiedMotion, AMotionFromTheLastEndReadsItsBoundsWithTheSameVerdicts) {
   Rng rng(11);

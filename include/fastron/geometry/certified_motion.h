@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -35,6 +36,10 @@ struct ClearancePair {
   /// A self pair's table of distances (held by ClearanceModel::selfTables), or null: its bound
   /// is read before the balls'.
   const SelfPairTable* table = nullptr;
+  /// How many of the first movers of `shape` and of `other` (a self pair's; ClearanceModel::
+  /// movers) move the two relative to each other: the pair's speed at a configuration, which
+  /// `levers` bound over every configuration.
+  std::uint32_t shapeMovers = 0, otherMovers = 0;
 
   /// The bound of the pair's table at q (the caller takes its margin off), or -infinity when it
   /// has none.
@@ -52,12 +57,24 @@ struct ClearanceModel {
   /// The robot's self-pair tables (CheckerOptions::selfPairTables or selfPairSlack) that pairs
   /// point to, shared by every scene's model; null for none.
   std::shared_ptr<const std::vector<SelfPairTable>> selfTables;
+  /// Per robot shape, its movers relative to the root (shapeMovers with its balls), shared by
+  /// every scene's model.
+  std::shared_ptr<const std::vector<std::vector<ShapeMover>>> movers;
+};
+
+/// A joint's axis in the world at one configuration: through `origin`, along `direction` (unit).
+struct JointAxis {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
 };
 
 /// What the certificate asks of an exact checker, about the configuration it last placed.
 struct ExactPairCheck {
-  /// Places the robot at a configuration; writes each robot shape's world pose.
-  std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses)> place;
+  /// Places the robot at a configuration; writes each robot shape's world pose and each joint's
+  /// axis (robot.joints() order).
+  std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses,
+                     std::vector<JointAxis>& jointAxes)>
+      place;
   /// True when the pair touches at the configuration last placed, as the exact checker decides.
   std::function<bool(const ClearancePair& pair)> touches;
   /// Optional: the pair's exact distance at the configuration last placed. Asked instead of
@@ -85,6 +102,13 @@ class PlacedBalls {
   /// pair indexes them.
   double lowerBound(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles);
 
+  /// How far one step of `stride` (per configuration coordinate, non-negative) can bring the
+  /// pair's shapes closer at the configuration last placed: the sum over the pair's movers of
+  /// stride times multiplier times the distance of the shape's enclosing ball from the joint's
+  /// axis (1 for a prismatic joint). `movers` are the model's.
+  double speed(const ClearancePair& pair, const std::vector<std::vector<ShapeMover>>& movers,
+               const std::vector<double>& stride);
+
  private:
   struct Shape {
     std::size_t wholeStamp = 0;
@@ -93,6 +117,8 @@ class PlacedBalls {
     BallColumns centres;
     std::vector<std::size_t> childStamp;
     std::vector<BallColumns> children;
+    std::size_t speedStamp = 0;
+    std::vector<double> speeds;  // sums of the speeds of the first k movers, k = 0..movers
   };
 
   double obstacleBound(const ClearancePair& pair, const EnclosingVolume& obstacle, double floor);
@@ -101,9 +127,12 @@ class PlacedBalls {
   const Eigen::Vector3d& wholeCentre(std::size_t shape);
   const BallColumns& centres(std::size_t shape);
   const BallColumns& childCentres(std::size_t shape, std::size_t ball);
+  const std::vector<double>& shapeSpeeds(std::size_t shape, const std::vector<ShapeMover>& movers,
+                                         const std::vector<double>& stride);
 
   std::shared_ptr<const std::vector<BallCover>> covers_;
   std::vector<Eigen::Isometry3d> poses_;
+  std::vector<JointAxis> axes_;
   std::vector<Shape> shapes_;
   std::size_t now_ = 0;
   BallColumns near_;  // selfBound's balls of the other shape near the first
@@ -124,24 +153,45 @@ struct CertifiedMotion {
   std::size_t statesPlaced = 0;
 };
 
-/// The bounds a motion check found at its end, kept by the caller for the next motion that starts
-/// there (a path's next edge): certifiedMotionCheck reads them instead of placing that start
-/// again, and writes its own end's. Valid for one ClearanceModel: the caller empties `q` when
-/// the model changes.
-struct MotionEndBounds {
-  std::vector<double> q;       ///< the end; empty: none kept
-  std::vector<double> bounds;  ///< per pair of the model: a lower bound on its distance, or 0
+/// What certifiedMotionCheck keeps from one motion to the next, as a thread's scratch (made for a
+/// model's balls, ClearanceModel::balls): the balls placed, the bounds found at the last motion's
+/// end (a path's next edge starts there), and the bisection's buffers. Once warm, a check
+/// allocates nothing (each motion made its own balls and buffers before). Not safe to share
+/// between threads.
+struct MotionScratch {
+  explicit MotionScratch(std::shared_ptr<const std::vector<BallCover>> covers);
+  /// Forgets the last motion's end: the caller's model changed.
+  void forgetEnd();
+
+  PlacedBalls balls;
+  /// The last motion's end, when it was free, and a lower bound per pair of the model there (0
+  /// where none proves it apart); empty `endQ`: none kept.
+  std::vector<double> endQ, endBounds;
+
+  // The bisection's buffers, reused by every motion.
+  /// States lo < i < hi, between two looked at (rows atLo, atHi of `bounds`), that the pairs
+  /// active[activeBegin, activeEnd) are not yet proven apart over.
+  struct Stretch {
+    std::size_t lo, hi, atLo, atHi, activeBegin, activeEnd;
+  };
+  std::vector<Stretch> stretches;
+  std::vector<std::uint32_t> active;
+  /// Per state looked at, a bound per pair, then a speed per pair; `used` rows in use.
+  std::vector<std::vector<double>> bounds;
+  std::size_t used = 0;
+  std::vector<double> q, stride, perStep, perStepGrowth;
+  std::vector<std::vector<double>> growth;  ///< per robot shape, summed over its first movers
 };
 
 /// Checks the states from + (i / segments) (to - from), i = 1..segments (`to` itself for
 /// i = segments), as a dense check would, and answers as it: looks at `to` first, then bisects,
 /// proving stretches free pair by pair and asking `exact` only about pairs at states no bound
-/// proves apart. `from` is placed for its bounds, never checked (unless `carried` holds them: a
-/// start equal to its `q`, value for value); `carried`, when given, then keeps `to`'s bounds when
-/// `to` is free, and nothing when it collides. Every configuration between the two must be one
-/// that the levers hold for (prismatic joints within their limits).
+/// proves apart. `from` is placed for its bounds, never checked, unless the scratch kept them (a
+/// start equal to its `endQ`, value for value); the scratch then keeps `to`'s bounds when `to`
+/// is free, and nothing when it collides. Every configuration between the two must be one that
+/// the levers hold for (prismatic joints within their limits).
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
                                      const double* from, const double* to, std::size_t dim,
-                                     std::size_t segments, MotionEndBounds* carried = nullptr);
+                                     std::size_t segments, MotionScratch& scratch);
 
 }  // namespace fastron

@@ -94,6 +94,30 @@ class EnclosingVolume {
 Eigen::VectorXd shapeLevers(const Robot& robot, std::size_t shape, const std::vector<Ball>& balls,
                             int relativeTo);
 
+/// A joint that moves a robot shape relative to an ancestor link (shapeMovers): a part of the
+/// shape's speed at one configuration.
+struct ShapeMover {
+  int joint = -1;              ///< in robot.joints(); its axis passes through its child's origin
+  std::size_t coordinate = 0;  ///< the configuration coordinate that drives it
+  double multiplier = 1;       ///< |d joint value / d coordinate| (a mimic's multiplier)
+  bool prismatic = false;
+  /// Per configuration coordinate, how fast the joints between this one and the shape can move
+  /// the shape's points (their levers, as shapeLevers counts them): how fast a point's distance
+  /// from this joint's axis can change along a motion.
+  Eigen::VectorXd growth;
+};
+
+/// The joints that move robot shape `shape` relative to link `relativeTo` (an ancestor of its
+/// link, or the root link), from the shape's link upwards, with the growth of each from `balls`
+/// (the shape's, in its frame). At a configuration, a motion by delta moves a point x of the
+/// shape by at most the sum over movers m of |delta[m.coordinate]| * m.multiplier * (1 for a
+/// prismatic joint, else x's distance from m's axis), and along the motion that distance changes
+/// by at most m.growth . |delta|: the levers of shapeLevers, at a configuration. The movers
+/// relative to an ancestor are the first ones of those relative to the root. Throws as
+/// shapeLevers.
+std::vector<ShapeMover> shapeMovers(const Robot& robot, std::size_t shape,
+                                    const std::vector<Ball>& balls, int relativeTo);
+
 /// An upper bound, over every configuration, on the distance of any point of any robot shape
 /// grown by `padding` from the root link's origin: nothing farther from the robot's base can touch
 /// it (clouds are cropped so).
