@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -153,12 +154,17 @@ TEST(Soak, QueriesUnderUpdatesAndSceneChanges) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       }
     });
-    // Memory at every tenth of the run; the first tenth is the warm-up.
+    // Memory at every tenth of the run; the first tenth is the warm-up. The run also lasts until
+    // the updater has published two models (up to a minute): under the sanitizers the readers can
+    // finish their queries before the first update does, and then nothing was soaked.
     for (std::size_t tenth = 1; tenth <= 10; ++tenth) {
       while (total.load() < queries / 10 * tenth)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
       memory.push_back({residentKilobytes(), heapKilobytes()});
     }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+    while (proxy.backgroundHealth().steps < 2 && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
     done = true;
   }
   proxy.stopBackground();
