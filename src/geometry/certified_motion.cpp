@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <ranges>
 #include <span>
 #include <utility>
 
@@ -36,7 +37,8 @@ PlacedBalls::PlacedBalls(std::shared_ptr<const std::vector<BallCover>> covers)
 }
 
 void PlacedBalls::place(const ExactPairCheck& exact, const double* q) {
-  exact.place(q, poses_, axes_);
+  exact.place(q, poses_);
+  placedBy_ = &exact;
   ++now_;
 }
 
@@ -56,6 +58,10 @@ const std::vector<double>& PlacedBalls::shapeSpeeds(std::size_t shape,
                                                     const std::vector<double>& stride) {
   Shape& s = shapes_[shape];
   if (s.speedStamp == now_) return s.speeds;
+  if (axesStamp_ != now_) {
+    placedBy_->axes(axes_);
+    axesStamp_ = now_;
+  }
   const Eigen::Vector3d& centre = wholeCentre(shape);
   const double radius = (*covers_)[shape].whole.radius;
   s.speeds.resize(movers.size() + 1);
@@ -319,9 +325,12 @@ class MotionLooks {
     ++placed_;
     std::vector<double>& out = scratch_.bounds[row];
     const std::size_t pairs = model_.pairs.size();
+    // A row's speeds are read only by the stretches of two steps or more that it ends, at most
+    // `steps` + 1/2 long: none when `steps` is 1 (half of a motion's looks).
+    const bool speeds = steps > 1;
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
-      out[pairs + p] = scratch_.balls.speed(pair, *model_.movers, scratch_.stride);
+      if (speeds) out[pairs + p] = scratch_.balls.speed(pair, *model_.movers, scratch_.stride);
       // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
       double bound = pair.tableBound(scratch_.q.data()) - kMargin;
       if (!(bound > 0))
@@ -349,22 +358,6 @@ class MotionLooks {
   std::size_t& placed_;  // the states placed, counted into the caller's answer
 };
 
-/// Every pair, 0..n-1, as a range of indices.
-struct AllPairs {
-  std::uint32_t n;
-  struct Iterator {
-    std::uint32_t p;
-    std::uint32_t operator*() const { return p; }
-    Iterator& operator++() {
-      ++p;
-      return *this;
-    }
-    bool operator!=(const Iterator& other) const { return p != other.p; }
-  };
-  Iterator begin() const { return {0}; }
-  Iterator end() const { return {n}; }
-};
-
 }  // namespace
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
@@ -387,7 +380,7 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   scratch.forgetEnd();
   const auto never = [](std::uint32_t) { return false; };
   const double all = static_cast<double>(segments);
-  const AllPairs every{static_cast<std::uint32_t>(model.pairs.size())};
+  const auto every = std::views::iota(std::uint32_t{0}, static_cast<std::uint32_t>(pairs));
 
   const std::size_t atTo = looks.newBounds();
   if (looks.look(segments, every, atTo, true, all, never)) {  // into an obstacle: found at once

@@ -691,13 +691,14 @@ const ExactPairCheck& FclChecker::exactPairs(const Obstacles& world, Scratch& sc
 
 ExactPairCheck FclChecker::exactPairCheck(Scratch& scratch) const {
   ExactPairCheck exact;
-  exact.place = [this, &scratch](const double* q, std::vector<Eigen::Isometry3d>& poses,
-                                 std::vector<JointAxis>& axes) {
+  exact.place = [this, &scratch](const double* q, std::vector<Eigen::Isometry3d>& poses) {
     forwardKinematics(robot_, q, scratch.kinematics, scratch.world->robotBase);
     ++scratch.placing;
     poses.resize(robot_.shapes().size());
     for (std::size_t s = 0; s < poses.size(); ++s)
       poses[s] = shapePose(robot_, scratch.kinematics, s);
+  };
+  exact.axes = [this, &scratch](std::vector<JointAxis>& axes) {
     const std::vector<Joint>& joints = robot_.joints();
     axes.resize(joints.size());
     for (std::size_t j = 0; j < joints.size(); ++j) {

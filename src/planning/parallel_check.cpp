@@ -42,7 +42,10 @@ PathCheck checkByMotions(const CollisionChecker& checker, const JointPath& path,
   const std::size_t dim = checker.dof();
   const std::size_t edges = path.size() - 1;
   std::vector<std::uint8_t> waypointHit(path.size());
-  waypointHit[0] = checker.firstInCollision(path[0].data(), 1) == 0 ? 1 : 0;
+  const auto collides = [&](const Eigen::VectorXd& q) -> std::uint8_t {
+    return checker.inCollision(std::span<const double>(q.data(), dim)) ? 1 : 0;
+  };
+  waypointHit[0] = collides(path[0]);
   std::vector<std::uint8_t> edgeHit(edges);
   const auto checkEdge = [&](std::size_t e) {
     const std::size_t n = segmentCount(path[e], path[e + 1], resolution);
@@ -51,7 +54,7 @@ PathCheck checkByMotions(const CollisionChecker& checker, const JointPath& path,
     if (hit == 0) return;
     if (hit != n) {
       edgeHit[e] = 1;
-      waypointHit[e + 1] = checker.firstInCollision(path[e + 1].data(), 1) == 0 ? 1 : 0;
+      waypointHit[e + 1] = collides(path[e + 1]);
       return;
     }
     waypointHit[e + 1] = 1;

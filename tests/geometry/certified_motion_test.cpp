@@ -299,6 +299,25 @@ void expectLeversHold(const Robot& robot, Rng& rng, int samples) {
   }
 }
 
+/// A configuration in a uniformly random direction from `from`, a length drawn in [shortest,
+/// longest) away before it is held within the limits.
+Eigen::VectorXd motionEnd(const Eigen::VectorXd& from, const JointLimits& limits, double shortest,
+                          double longest, Rng& rng) {
+  std::normal_distribution<double> gauss;
+  Eigen::VectorXd direction(from.size());
+  for (auto& v : direction) v = gauss(rng);
+  const double length = std::uniform_real_distribution<double>(shortest, longest)(rng);
+  return (from + length * direction.normalized()).cwiseMax(limits.lower()).cwiseMin(limits.upper());
+}
+
+/// Whether a dense check of the motion's `n` states (from excluded) finds one colliding.
+bool denseMotionCollides(const FclChecker& dense, const Eigen::VectorXd& from,
+                         const Eigen::VectorXd& to, std::size_t n) {
+  std::vector<double> all;
+  motionStates(from.data(), to.data(), dense.dof(), n, all);
+  return dense.firstInCollision(all.data(), n) < n;
+}
+
 /// Near a configuration, no sampled point of a shape moves in a step, relative to the root or to
 /// an ancestor two joints up, further than its speed there (PlacedBalls::speed) grown by its
 /// movers' growth for each step away; the movers relative to an ancestor are the first of those
@@ -314,11 +333,12 @@ void expectSpeedsHold(const Robot& robot, Rng& rng, int samples) {
   }
   KinematicsData placed = makeKinematicsData(robot);
   ExactPairCheck exact;  // as FclChecker places the robot
-  exact.place = [&](const double* q, std::vector<Eigen::Isometry3d>& poses,
-                    std::vector<JointAxis>& axes) {
+  exact.place = [&](const double* q, std::vector<Eigen::Isometry3d>& poses) {
     forwardKinematics(robot, q, placed);
     poses.resize(shapes);
     for (std::size_t s = 0; s < shapes; ++s) poses[s] = shapePose(robot, placed, s);
+  };
+  exact.axes = [&](std::vector<JointAxis>& axes) {
     axes.resize(robot.joints().size());
     for (std::size_t j = 0; j < robot.joints().size(); ++j) {
       const Joint& joint = robot.joints()[j];
@@ -332,8 +352,6 @@ void expectSpeedsHold(const Robot& robot, Rng& rng, int samples) {
     return joint < 0 ? link : robot.joints()[static_cast<std::size_t>(joint)].parent;
   };
   constexpr int kSteps = 8;
-  std::normal_distribution<double> gauss;
-  std::uniform_real_distribution<double> length(0.5, 4.0);
   KinematicsData a = makeKinematicsData(robot), b = makeKinematicsData(robot);
   const std::vector<std::uint8_t> moves = shapesMovedByConfiguration(robot);
   for (std::size_t s = 0; s < shapes; ++s) {
@@ -349,12 +367,8 @@ void expectSpeedsHold(const Robot& robot, Rng& rng, int samples) {
       pair.shapeMovers = static_cast<std::uint32_t>(mine.size());
       for (int i = 0; i < samples; ++i) {
         const Eigen::VectorXd q0 = uniformConfigurations(robot.limits(), 1, rng).row(0).transpose();
-        Eigen::VectorXd direction(static_cast<Eigen::Index>(dim));
-        for (auto& v : direction) v = gauss(rng);
         // Within the limits: the levers below count prismatic joints' ranges.
-        const Eigen::VectorXd end = (q0 + length(rng) * direction.normalized())
-                                        .cwiseMax(robot.limits().lower())
-                                        .cwiseMin(robot.limits().upper());
+        const Eigen::VectorXd end = motionEnd(q0, robot.limits(), 0.5, 4.0, rng);
         const Eigen::VectorXd step = (end - q0) / kSteps;
         const Eigen::VectorXd absStep = step.cwiseAbs();
         const std::vector<double> stride(absStep.data(), absStep.data() + dim);
@@ -443,7 +457,6 @@ Scene clutterWithFreeRoom(const Robot& robot, Rng& rng, int boxes = 8) {
 // (300 per robot; 100 under the sanitizers).
 TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
   Rng rng(5);
-  std::normal_distribution<double> gauss;
   for (const RobotEntry& entry : shippedRobots()) {
     const Robot robot = loadRobot(entry.name);
     const JointLimits limits = robot.limits();
@@ -458,16 +471,9 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
       ASSERT_LT(draws, 100000) << entry.name << ": no free configuration among the clutter";
       const Eigen::VectorXd from = uniformConfigurations(limits, 1, rng).row(0).transpose();
       if (dense.inCollision(std::span<const double>(from.data(), dim))) continue;
-      Eigen::VectorXd direction(dim);
-      for (auto& v : direction) v = gauss(rng);
-      const double length = std::uniform_real_distribution<double>(0.05, 2.0)(rng);
-      const Eigen::VectorXd to = (from + length * direction.normalized())
-                                     .cwiseMax(limits.lower())
-                                     .cwiseMin(limits.upper());
+      const Eigen::VectorXd to = motionEnd(from, limits, 0.05, 2.0, rng);
       const std::size_t n = segmentCount(from.data(), to.data(), dim, 0.03);
-      std::vector<double> all;
-      motionStates(from.data(), to.data(), dim, n, all);
-      const bool denseHit = dense.firstInCollision(all.data(), n) < n;
+      const bool denseHit = denseMotionCollides(dense, from, to, n);
       const CollisionChecker::MotionCheck answer =
           certified.motionCollision(from.data(), to.data(), n);
       ASSERT_EQ(answer.collidingState != 0, denseHit)
@@ -497,7 +503,6 @@ TEST(CertifiedMotion, AnswersAsTheDenseCheckOnEveryShippedRobot) {
 // same walk with the kept bounds thrown away before each edge (an unrelated motion in between).
 TEST(CertifiedMotion, AMotionFromTheLastEndReadsItsBoundsWithTheSameVerdicts) {
   Rng rng(11);
-  std::normal_distribution<double> gauss;
   for (const RobotEntry& entry : shippedRobots()) {
     const Robot robot = loadRobot(entry.name);
     const JointLimits limits = robot.limits();
@@ -518,16 +523,9 @@ TEST(CertifiedMotion, AMotionFromTheLastEndReadsItsBoundsWithTheSameVerdicts) {
     Eigen::VectorXd from = freeConfiguration();
     std::size_t chainedLooked = 0, freshLooked = 0, edges = 0;
     for (std::size_t m = 0; m < kMotions / 2; ++m) {
-      Eigen::VectorXd direction(dim);
-      for (auto& v : direction) v = gauss(rng);
-      const double length = std::uniform_real_distribution<double>(0.05, 0.6)(rng);
-      const Eigen::VectorXd to = (from + length * direction.normalized())
-                                     .cwiseMax(limits.lower())
-                                     .cwiseMin(limits.upper());
+      const Eigen::VectorXd to = motionEnd(from, limits, 0.05, 0.6, rng);
       const std::size_t n = segmentCount(from.data(), to.data(), dim, 0.03);
-      std::vector<double> all;
-      motionStates(from.data(), to.data(), dim, n, all);
-      const bool denseHit = dense.firstInCollision(all.data(), n) < n;
+      const bool denseHit = denseMotionCollides(dense, from, to, n);
       const auto a = chained.motionCollision(from.data(), to.data(), n);
       fresh.motionCollision(from.data(), aside.data(), 1);  // keeps another end
       const auto b = fresh.motionCollision(from.data(), to.data(), n);

@@ -70,11 +70,11 @@ struct JointAxis {
 
 /// What the certificate asks of an exact checker, about the configuration it last placed.
 struct ExactPairCheck {
-  /// Places the robot at a configuration; writes each robot shape's world pose and each joint's
-  /// axis (robot.joints() order).
-  std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses,
-                     std::vector<JointAxis>& jointAxes)>
-      place;
+  /// Places the robot at a configuration; writes each robot shape's world pose.
+  std::function<void(const double* q, std::vector<Eigen::Isometry3d>& shapePoses)> place;
+  /// Writes each joint's axis (robot.joints() order) at the configuration last placed: asked by
+  /// a motion's speeds alone (PlacedBalls::speed), not by a state's check.
+  std::function<void(std::vector<JointAxis>& jointAxes)> axes;
   /// True when the pair touches at the configuration last placed, as the exact checker decides.
   std::function<bool(const ClearancePair& pair)> touches;
   /// Optional: the pair's exact distance at the configuration last placed. Asked instead of
@@ -105,7 +105,8 @@ class PlacedBalls {
   /// How far one step of `stride` (per configuration coordinate, non-negative) can bring the
   /// pair's shapes closer at the configuration last placed: the sum over the pair's movers of
   /// stride times multiplier times the distance of the shape's enclosing ball from the joint's
-  /// axis (1 for a prismatic joint). `movers` are the model's.
+  /// axis (1 for a prismatic joint). `movers` are the model's. Asks the placing check for the
+  /// joints' axes once per configuration.
   double speed(const ClearancePair& pair, const std::vector<std::vector<ShapeMover>>& movers,
                const std::vector<double>& stride);
 
@@ -135,6 +136,8 @@ class PlacedBalls {
   std::vector<JointAxis> axes_;
   std::vector<Shape> shapes_;
   std::size_t now_ = 0;
+  const ExactPairCheck* placedBy_ = nullptr;  // the check of the last place(), for its axes
+  std::size_t axesStamp_ = 0;
   BallColumns near_;  // selfBound's balls of the other shape near the first
   std::vector<std::size_t> nearIndex_;
 };
