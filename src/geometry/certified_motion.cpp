@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
-#include <ranges>
 #include <span>
 #include <utility>
 
@@ -358,6 +357,23 @@ class MotionLooks {
   std::size_t& placed_;  // the states placed, counted into the caller's answer
 };
 
+/// Every pair, 0..n-1, as a range of indices (std::views::iota does not compile with clang 14
+/// and libstdc++ 12, the sanitizer build's pair).
+struct AllPairs {
+  std::uint32_t n;
+  struct Iterator {
+    std::uint32_t p;
+    std::uint32_t operator*() const { return p; }
+    Iterator& operator++() {
+      ++p;
+      return *this;
+    }
+    bool operator!=(const Iterator& other) const { return p != other.p; }
+  };
+  Iterator begin() const { return {0}; }
+  Iterator end() const { return {n}; }
+};
+
 }  // namespace
 
 CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPairCheck& exact,
@@ -380,7 +396,7 @@ CertifiedMotion certifiedMotionCheck(const ClearanceModel& model, const ExactPai
   scratch.forgetEnd();
   const auto never = [](std::uint32_t) { return false; };
   const double all = static_cast<double>(segments);
-  const auto every = std::views::iota(std::uint32_t{0}, static_cast<std::uint32_t>(pairs));
+  const AllPairs every{static_cast<std::uint32_t>(pairs)};
 
   const std::size_t atTo = looks.newBounds();
   if (looks.look(segments, every, atTo, true, all, never)) {  // into an obstacle: found at once
