@@ -410,9 +410,7 @@ void bindCollisionChecker(py::module_& m) {
           "bool (on the calling thread, GIL released).")
       .def_property_readonly(
           "proves_motions_free",
-          [](const CollisionChecker& checker) {
-            return checker.motionProofs() != CollisionChecker::MotionProofs::None;
-          },
+          [](const CollisionChecker& checker) { return checker.provesMotionsFree(); },
           "True when motion_collision skips the states it proves free.")
       .def(
           "motion_collision",

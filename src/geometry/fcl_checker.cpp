@@ -293,10 +293,8 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
   geometry->moves = shapesMovedByConfiguration(robot_);
   auto balls = std::make_shared<std::vector<BallCover>>();
   auto movers = std::make_shared<std::vector<std::vector<ShapeMover>>>();
-  bool meshes = false;
   for (std::size_t s = 0; s < robot_.shapes().size(); ++s) {
     const Shape padded = paddedShape(robot_, s, options_);
-    meshes = meshes || std::holds_alternative<Mesh>(padded);
     geometry->shapes.push_back(geometriesOf(padded));
     geometry->volumes.emplace_back(padded, Eigen::Isometry3d::Identity());
     geometry->meshes.push_back(std::holds_alternative<Mesh>(padded) ? 1 : 0);
@@ -320,9 +318,6 @@ FclChecker::FclChecker(Robot robot, const Scene& scene, CheckerOptions options)
     }
   }
   geometry->reach = reachBound(robot_, options_.padding);
-  proofs_ = !options_.proveMotionsFree ? MotionProofs::None
-            : meshes                   ? MotionProofs::Verification
-                                       : MotionProofs::Everywhere;
   for (std::size_t k = 0; k < robot_.dof(); ++k) {
     const Joint& joint = robot_.joints()[static_cast<std::size_t>(robot_.actuatedJoints()[k])];
     if (joint.type == JointType::Prismatic)
@@ -744,7 +739,7 @@ ExactPairCheck FclChecker::exactPairCheck(Scratch& scratch) const {
 CollisionChecker::MotionCheck FclChecker::checkMotion(const double* from, const double* to,
                                                       std::size_t segments) const {
   const std::shared_ptr<const Obstacles> world = obstacles_.get();
-  if (proofs_ == MotionProofs::None || !leversHold(from, to) || !world->clouds.empty())
+  if (!options_.proveMotionsFree || !leversHold(from, to) || !world->clouds.empty())
     return checkMotionStateByState(from, to, segments);
   if (world->fixedContact) return {segments, 1};  // every state collides; `to` is looked at first
   auto scratch = scratch_.lease();

@@ -119,8 +119,7 @@ bool ResolutionMotionValidator::checkMotion(const ompl::base::State* s1,
   const double* b = valuesOf(s2);
   const std::size_t n = segmentCount(a, b, dim, resolution_);
   if (const auto* checker = std::get_if<std::shared_ptr<const CollisionChecker>>(&source_);
-      checker != nullptr &&
-      (*checker)->motionProofs() == CollisionChecker::MotionProofs::Everywhere) {
+      checker != nullptr && (*checker)->provesMotionsFree()) {
     const std::optional<bool> endCollides = ends_.find(b);
     bool valid = false;
     if (!endCollides || !*endCollides) {  // the whole motion at once (`b` looked at again)

@@ -30,13 +30,14 @@ constexpr std::chrono::microseconds kParallelWork{250};
 // enough that a checker's batch path (one world read, one scratch lease) pays.
 constexpr std::size_t kChunk = 8;
 
-/// checkPathParallel for a checker that proves motions free (motionProofs): the first waypoint,
-/// then each edge as one motion (its states between the waypoints, its end included), edges
-/// handed out one at a time. The motion check decides its end waypoint as well: a checker that
-/// proves motions free looks at the end first (certifiedMotionCheck), so checking the waypoints
-/// in a batch before placed each of them once more (the mesh Panda's paths: BM_VerifyPath,
-/// docs/planning.md). An edge whose end collides has its interior states checked one by one, as
-/// motionCollision stops at that end; an edge whose interior collides has its end checked alone.
+/// checkPathParallel for a checker that proves motions free (provesMotionsFree): the first
+/// waypoint, then each edge as one motion (its states between the waypoints, its end included),
+/// edges handed out one at a time. The motion check decides its end waypoint as well: a checker
+/// that proves motions free looks at the end first (certifiedMotionCheck), so checking the
+/// waypoints in a batch before placed each of them once more (the mesh Panda's paths:
+/// BM_VerifyPath, docs/planning.md). An edge whose end collides has its interior states checked one
+/// by one, as motionCollision stops at that end; an edge whose interior collides has its end
+/// checked alone.
 PathCheck checkByMotions(const CollisionChecker& checker, const JointPath& path, double resolution,
                          unsigned threads) {
   const std::size_t dim = checker.dof();
@@ -94,17 +95,10 @@ PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& pa
   }
   const std::size_t dim = checker.dof();
   checkWaypointSizes(path, dim);
-  // Whole edges where the proofs pay: always for a checker whose proofs pay even in planners,
-  // else when the path has two edges per thread at least (a short path's few edges left a core
-  // idle that the states' hand-out kept busy: the mesh Panda's MotionBenchMaker samples verified
-  // 1.5 times slower by edges on two cores).
-  const unsigned cores = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
-  using Proofs = CollisionChecker::MotionProofs;
-  if (checker.motionProofs() == Proofs::Everywhere ||
-      (checker.motionProofs() == Proofs::Verification &&
-       path.size() - 1 >= 2 * static_cast<std::size_t>(cores))) {
-    return checkByMotions(checker, path, resolution, threads);
-  }
+  // Whole edges wherever the checker proves motions free, short paths too: a short path's few
+  // edges leave a core idle that the states' hand-out would keep busy, but since the looks got
+  // cheaper (2026-12-01) the mesh Panda's MotionBenchMaker paths verify as fast by edges.
+  if (checker.provesMotionsFree()) return checkByMotions(checker, path, resolution, threads);
   const std::size_t edges = path.size() - 1;
   // Interior states of each edge in bisection order (motionStates' rows 1..n-1: row 0 is the
   // edge's end, a waypoint checked as such).

@@ -50,17 +50,13 @@ class CollisionChecker {
   /// Looks at the straight motion from `from` to `to` (dof() values each) as a check at
   /// `segments` equal steps does: the states motionState(from, to, i, segments) for
   /// i = 1..segments (`to` itself last; `from` is not looked at). A checker that can prove states
-  /// free without checking each (motionProofs) looks at fewer; the answer is the same.
+  /// free without checking each (provesMotionsFree) looks at fewer; the answer is the same.
   /// Counts one call per configuration looked at. Throws InvalidArgument on a non-finite value.
   MotionCheck motionCollision(const double* from, const double* to, std::size_t segments) const;
-  /// Where motionCollision skips states it proves free (FclChecker's clearance bounds), so that
-  /// a caller should hand it whole motions rather than their states one by one.
-  enum class MotionProofs {
-    None,          ///< it looks at every state (the default)
-    Verification,  ///< they pay on paths mostly free, as verification's
-    Everywhere,    ///< they pay where most motions collide too, as a planner's extensions
-  };
-  virtual MotionProofs motionProofs() const { return MotionProofs::None; }
+  /// True when motionCollision skips states it proves free (FclChecker's clearance bounds), so
+  /// that a caller should hand it whole motions rather than their states one by one: planners'
+  /// edges and verification's alike. False (the default): it looks at every state.
+  virtual bool provesMotionsFree() const { return false; }
 
   /// True when the answers come, at least in part, from a learned model (ModelChecker,
   /// HybridChecker, an AnyOfChecker holding one). Planners check such a source's edges at

@@ -23,7 +23,7 @@ class RecordingChecker final : public CollisionChecker {
 
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
-  MotionProofs motionProofs() const override { return inner_->motionProofs(); }
+  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
 
   /// Every answer recorded so far; the record is emptied.
   Dataset take();
@@ -61,7 +61,7 @@ class CountedChecker final : public CollisionChecker {
   std::string name() const override { return inner_->name(); }
   std::size_t dof() const override { return inner_->dof(); }
   bool answersFromAModel() const override { return inner_->answersFromAModel(); }
-  MotionProofs motionProofs() const override { return inner_->motionProofs(); }
+  bool provesMotionsFree() const override { return inner_->provesMotionsFree(); }
 
  protected:
   bool check(const double* q) const override;

@@ -41,12 +41,8 @@ class FclChecker final : public SceneChecker {
   const CheckerOptions& options() const override { return options_; }
   /// With options.proveMotionsFree, a motion's check skips the states that clearance bounds
   /// prove free (certified_motion.h) and asks FCL only about the pairs of shapes no bound keeps
-  /// apart: Everywhere for a robot without meshes, Verification for one with meshes, whose ball
-  /// covers keep few pairs apart (the mesh Panda's SRDF leaves links millimetres apart enabled),
-  /// so that where most motions collide the bounds cost more than they save (FCL planned the mesh
-  /// Panda's cage problems 1.2 times slower so, the gripper-arm's box problems 1.3 times faster,
-  /// means of one run each: docs/planning.md).
-  MotionProofs motionProofs() const override { return proofs_; }
+  /// apart, for robots of meshes too: planners' edges and verification's (docs/planning.md).
+  bool provesMotionsFree() const override { return options_.proveMotionsFree; }
   /// True when a configuration's check in the current scene bounds every pair from balls first
   /// and asks FCL only about the pairs they do not keep apart (certifiedStateCheck): with
   /// options.proveMotionsFree, no point clouds and at most 256 robot shape-obstacle pairs.
@@ -134,7 +130,6 @@ class FclChecker final : public SceneChecker {
   // shared geometries (a thread's scratch, a scene's fixed shapes) are made under this lock.
   mutable std::mutex objectsOfRobotGeometry_;
   mutable ScratchPool<Scratch> scratch_;
-  MotionProofs proofs_ = MotionProofs::None;
 };
 
 }  // namespace fastron

@@ -83,7 +83,7 @@ class CollisionValidityChecker final : public ompl::base::StateValidityChecker {
 /// Checks a straight-line motion at a fixed resolution (see motionStates): with a model, all the
 /// states of the edge are evaluated as one batch that stops at the first predicted collision;
 /// with a checker, through CollisionChecker::firstInCollision in the same order, or as one
-/// motionCollision when the checker's proofs pay everywhere (CollisionChecker::motionProofs). It
+/// motionCollision when the checker proves motions free (CollisionChecker::provesMotionsFree). It
 /// remembers the
 /// answers about motions' end states (StateAnswers) and does not ask the source about the same
 /// end state twice: a planner's validator lives for one query, during which the source's answer

@@ -15,10 +15,10 @@ namespace FASTRON_API fastron {
 /// points, and so on across the whole path, so that a colliding stretch is found after a few
 /// checks wherever it lies. An edge stops being checked at its first collision. `checker` must be
 /// safe to call from many threads (every CollisionChecker of Fastron is). A checker that proves
-/// motions free gets the waypoints in one batch and then whole edges (motionCollision), one edge
-/// at a time per thread, when its proofs pay everywhere (CollisionChecker::motionProofs), or in
-/// verification and the path has two edges per thread at least. Throws InvalidArgument on
-/// waypoints of the wrong dimension, and rethrows the first exception a check throws.
+/// motions free (CollisionChecker::provesMotionsFree) gets the first waypoint and then whole edges
+/// (motionCollision, each deciding its end waypoint), one edge at a time per thread. Throws
+/// InvalidArgument on waypoints of the wrong dimension, and rethrows the first exception a check
+/// throws.
 PathCheck checkPathParallel(const CollisionChecker& checker, const JointPath& path,
                             double resolution, unsigned threads = 0);
 
