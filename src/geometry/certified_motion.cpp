@@ -37,28 +37,28 @@ PlacedBalls::PlacedBalls(std::shared_ptr<const std::vector<BallCover>> covers)
 
 void PlacedBalls::place(const ExactPairCheck& exact, const double* q) {
   exact.place(q, poses_);
-  placedBy_ = &exact;
   ++now_;
 }
 
-double PlacedBalls::speed(const ClearancePair& pair,
+double PlacedBalls::speed(const ExactPairCheck& exact, const ClearancePair& pair,
                           const std::vector<std::vector<ShapeMover>>& movers,
                           const std::vector<double>& stride) {
-  double sum = shapeSpeeds(pair.shape, movers[pair.shape], stride)[pair.shapeMovers];
-  if (pair.selfPair) sum += shapeSpeeds(pair.other, movers[pair.other], stride)[pair.otherMovers];
+  double sum = shapeSpeeds(exact, pair.shape, movers[pair.shape], stride)[pair.shapeMovers];
+  if (pair.selfPair)
+    sum += shapeSpeeds(exact, pair.other, movers[pair.other], stride)[pair.otherMovers];
   return sum;
 }
 
 /// Per k, the summed speed of the shape's first k movers: a joint moves the shape's enclosing
 /// ball's points at most by their distance from its axis per unit (revolute), or by 1
 /// (prismatic), times its multiplier.
-const std::vector<double>& PlacedBalls::shapeSpeeds(std::size_t shape,
+const std::vector<double>& PlacedBalls::shapeSpeeds(const ExactPairCheck& exact, std::size_t shape,
                                                     const std::vector<ShapeMover>& movers,
                                                     const std::vector<double>& stride) {
   Shape& s = shapes_[shape];
   if (s.speedStamp == now_) return s.speeds;
   if (axesStamp_ != now_) {
-    placedBy_->axes(axes_);
+    exact.axes(axes_);
     axesStamp_ = now_;
   }
   const Eigen::Vector3d& centre = wholeCentre(shape);
@@ -325,11 +325,13 @@ class MotionLooks {
     std::vector<double>& out = scratch_.bounds[row];
     const std::size_t pairs = model_.pairs.size();
     // A row's speeds are read only by the stretches of two steps or more that it ends, at most
-    // `steps` + 1/2 long: none when `steps` is 1 (half of a motion's looks).
+    // `steps` + 1/2 long: none when `steps` is 1 (half of a motion's looks). A speed not computed
+    // stays infinite (newBounds), so a stretch that did read it would take its other end's.
     const bool speeds = steps > 1;
     for (const std::uint32_t p : active) {
       const ClearancePair& pair = model_.pairs[p];
-      if (speeds) out[pairs + p] = scratch_.balls.speed(pair, *model_.movers, scratch_.stride);
+      if (speeds)
+        out[pairs + p] = scratch_.balls.speed(exact_, pair, *model_.movers, scratch_.stride);
       // A table's bound is a lookup: read it first, and the balls' only where it proves nothing.
       double bound = pair.tableBound(scratch_.q.data()) - kMargin;
       if (!(bound > 0))

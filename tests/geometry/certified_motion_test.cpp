@@ -373,7 +373,7 @@ void expectSpeedsHold(const Robot& robot, Rng& rng, int samples) {
         const Eigen::VectorXd absStep = step.cwiseAbs();
         const std::vector<double> stride(absStep.data(), absStep.data() + dim);
         balls.place(exact, q0.data());
-        const double speed = balls.speed(pair, movers, stride);
+        const double speed = balls.speed(exact, pair, movers, stride);
         double growth = 0;
         for (const ShapeMover& m : mine) {
           if (!m.prismatic) growth += stride[m.coordinate] * m.multiplier * m.growth.dot(absStep);

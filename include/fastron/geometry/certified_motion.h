@@ -105,9 +105,10 @@ class PlacedBalls {
   /// How far one step of `stride` (per configuration coordinate, non-negative) can bring the
   /// pair's shapes closer at the configuration last placed: the sum over the pair's movers of
   /// stride times multiplier times the distance of the shape's enclosing ball from the joint's
-  /// axis (1 for a prismatic joint). `movers` are the model's. Asks the placing check for the
-  /// joints' axes once per configuration.
-  double speed(const ClearancePair& pair, const std::vector<std::vector<ShapeMover>>& movers,
+  /// axis (1 for a prismatic joint). `movers` are the model's; `exact` is the check that placed
+  /// the configuration, asked for the joints' axes once per configuration.
+  double speed(const ExactPairCheck& exact, const ClearancePair& pair,
+               const std::vector<std::vector<ShapeMover>>& movers,
                const std::vector<double>& stride);
 
  private:
@@ -128,7 +129,8 @@ class PlacedBalls {
   const Eigen::Vector3d& wholeCentre(std::size_t shape);
   const BallColumns& centres(std::size_t shape);
   const BallColumns& childCentres(std::size_t shape, std::size_t ball);
-  const std::vector<double>& shapeSpeeds(std::size_t shape, const std::vector<ShapeMover>& movers,
+  const std::vector<double>& shapeSpeeds(const ExactPairCheck& exact, std::size_t shape,
+                                         const std::vector<ShapeMover>& movers,
                                          const std::vector<double>& stride);
 
   std::shared_ptr<const std::vector<BallCover>> covers_;
@@ -136,9 +138,8 @@ class PlacedBalls {
   std::vector<JointAxis> axes_;
   std::vector<Shape> shapes_;
   std::size_t now_ = 0;
-  const ExactPairCheck* placedBy_ = nullptr;  // the check of the last place(), for its axes
-  std::size_t axesStamp_ = 0;
-  BallColumns near_;  // selfBound's balls of the other shape near the first
+  std::size_t axesStamp_ = 0;  // the placement axes_ are of
+  BallColumns near_;           // selfBound's balls of the other shape near the first
   std::vector<std::size_t> nearIndex_;
 };
 
