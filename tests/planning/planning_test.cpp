@@ -1467,6 +1467,29 @@ TEST_F(Planning, AnApproximateCheckerWrongAboutAnEndStillPlans) {
       pathIsFree(fromModel.path, 0.01, [](const Eigen::VectorXd& q) { return inWall(q.data()); }));
 }
 
+TEST_F(Planning, APlansTimeCountsItsSearchForSubstituteEnds) {
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 0.5, .verify = {.substituteShare = 0.1}};
+  // The exact checker's first three answers take 20 ms each: the ends' checks and the first state
+  // of a straight motion to a substitute, all asked while substitutes are searched.
+  auto answered = std::make_shared<std::atomic<int>>(0);
+  const auto slowAtFirst =
+      std::make_shared<const FunctionChecker>("slow at first", 2, [answered](const double* q) {
+        if (answered->fetch_add(1) < 3) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        return inWall(q);
+      });
+  const auto nearStart = std::make_shared<const FunctionChecker>(
+      "near-start", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
+  const VerifiedPlan plan = planVerified(nearStart, slowAtFirst, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  ASSERT_TRUE(plan.substituteEnds);
+  ASSERT_FALSE(plan.attempts.empty());
+  EXPECT_EQ(plan.attempts.front().source, "near-start");
+  EXPECT_GE(plan.attempts.front().time, std::chrono::milliseconds(60));
+  EXPECT_GE(plan.planTime, std::chrono::milliseconds(60));
+}
+
 TEST_F(Planning, BaxterPathsAreFreeUnderFclAtATenTimesFinerResolution) {
   // Planning checks states 0.01 rad apart (Euclidean) with Baxter padded by 3 cm. Between two
   // checked states no point of the arm is farther than 2 cm from where it was at one of them
