@@ -44,24 +44,29 @@ bool motionFree(const CollisionSource& source, const Eigen::VectorXd& a, const E
 /// balls of growing radius (0.05 to 1.6 joint units) around it, within the limits, that both
 /// checkers find free and that the exact checker can reach from `end` in a straight line (so the
 /// stretch from the true end needs no repair: an exact plan of it out of a grasp took 30-330 ms
-/// on the mesh Panda); std::nullopt when there is none.
+/// on the mesh Panda); std::nullopt when there is none. `approximateUse` counts the approximate
+/// checker's answers and their time.
 std::optional<Eigen::VectorXd> substituteFor(const Eigen::VectorXd& end,
                                              const CollisionSource& approximate,
                                              const CollisionSource& exact,
-                                             const JointLimits& limits, double resolution) {
-  if (freeUnder(approximate, end)) return end;
+                                             const JointLimits& limits, double resolution,
+                                             SourceUseCounter& approximateUse) {
+  const auto dim = static_cast<std::size_t>(end.size());
+  const auto freeUnderApproximate = [&](const Eigen::VectorXd& q) {
+    return firstCollision(approximate, q.data(), 1, dim, approximateUse) == 1;
+  };
+  if (freeUnderApproximate(end)) return end;
   Rng rng(1);  // fixed: the same query gets the same substitute
   std::normal_distribution<double> gauss;
   std::uniform_real_distribution<double> unit;
-  const auto dim = end.size();
   for (double radius = 0.05; radius <= 1.6; radius *= 2) {
     for (int attempt = 0; attempt < 64; ++attempt) {
-      Eigen::VectorXd direction(dim);
+      Eigen::VectorXd direction(end.size());
       for (auto& v : direction) v = gauss(rng);
       const double r = radius * std::pow(unit(rng), 1.0 / static_cast<double>(dim));
       const Eigen::VectorXd q =
           (end + r * direction.normalized()).cwiseMax(limits.lower()).cwiseMin(limits.upper());
-      if (freeUnder(approximate, q) && motionFree(exact, end, q, resolution)) return q;
+      if (freeUnderApproximate(q) && motionFree(exact, end, q, resolution)) return q;
     }
   }
   return std::nullopt;
@@ -332,14 +337,18 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
     // The approximate checker is wrong about an end (a conservative model often is where the
     // robot touches an obstacle on purpose, as in a grasp). Plan on it between free
     // configurations near the ends that the exact checker reaches from them in a straight line.
-    const auto startNear = substituteFor(start, approximate, exact, limits, options.resolution);
-    const auto goalNear = substituteFor(goal, approximate, exact, limits, options.resolution);
+    // The approximate source's answers in the search for substitutes, and in the first plan
+    // when a second replaces it, are the plan's too.
+    SourceUseCounter asked;
+    const auto startNear =
+        substituteFor(start, approximate, exact, limits, options.resolution, asked);
+    const auto goalNear =
+        substituteFor(goal, approximate, exact, limits, options.resolution, asked);
     if (startNear && goalNear) {
-      const auto asked = plan.checks;
       approximateOptions.timeLimit = std::min(approximateOptions.timeLimit,
                                               options.timeLimit * options.verify.substituteShare);
+      asked.add(plan.checks, plan.checkTime);
       plan = planMotion(approximate, limits, *startNear, *goalNear, approximateOptions);
-      plan.checks += asked;
       if (plan.solved()) {
         if (!startNear->isApprox(start)) plan.path.insert(plan.path.begin(), start);
         if (!goalNear->isApprox(goal)) plan.path.push_back(goal);
@@ -349,6 +358,8 @@ ApproximatePlan planApproximately(const CollisionSource& approximate,
     // The search for substitutes (the exact checker's straight motions among them) is part of
     // the plan's time.
     plan.time = Clock::now() - began;
+    plan.checks += asked.total().answered;
+    plan.checkTime += asked.total().time;
   }
   return result;
 }

@@ -1490,6 +1490,23 @@ TEST_F(Planning, APlansTimeCountsItsSearchForSubstituteEnds) {
   EXPECT_GE(plan.planTime, std::chrono::milliseconds(60));
 }
 
+TEST_F(Planning, APlansChecksCountTheApproximateAnswersOfItsSearchForSubstituteEnds) {
+  // Every answer of the approximate checker is asked within the one attempt on it: the first
+  // plan (refused at the start), the search for substitute ends and the plan between them.
+  const JointLimits limits = JointLimits::unitBox(2);
+  const PlannerOptions options{
+      .resolution = 0.01, .timeLimit = 0.5, .verify = {.substituteShare = 0.1}};
+  const auto exact = std::make_shared<const FunctionChecker>("wall", 2, inWall);
+  const auto nearStart = std::make_shared<const FunctionChecker>(
+      "near-start", 2, [](const double* q) { return q[0] < -0.7 || inWall(q); });
+  const VerifiedPlan plan = planVerified(nearStart, exact, limits, kStart, kGoal, options);
+  ASSERT_TRUE(plan.solved()) << plan.failure;
+  ASSERT_TRUE(plan.substituteEnds);
+  ASSERT_EQ(plan.attempts.size(), 1u);
+  EXPECT_EQ(plan.attempts.front().checks, nearStart->callCount());
+  EXPECT_GT(plan.attempts.front().checkTime, std::chrono::nanoseconds(0));
+}
+
 TEST_F(Planning, BaxterPathsAreFreeUnderFclAtATenTimesFinerResolution) {
   // Planning checks states 0.01 rad apart (Euclidean) with Baxter padded by 3 cm. Between two
   // checked states no point of the arm is farther than 2 cm from where it was at one of them
