@@ -16,6 +16,19 @@
 namespace fastron::cli {
 namespace {
 
+/// An actuated joint's kind as its URDF names it (a continuous joint's values are wrapped into
+/// the one turn its limits show).
+const char* jointKind(JointType type) {
+  switch (type) {
+    case JointType::Prismatic:
+      return "prismatic";
+    case JointType::Continuous:
+      return "continuous";
+    default:
+      return "revolute";
+  }
+}
+
 void describeRobot(const Robot& robot, const std::string& description,
                    const std::filesystem::path& urdf, const std::filesystem::path& srdf,
                    const std::vector<std::pair<std::string, double>>& held) {
@@ -29,10 +42,9 @@ void describeRobot(const Robot& robot, const std::string& description,
   std::cout << "  actuated joints (" << robot.dof() << "):\n";
   for (std::size_t j = 0; j < robot.dof(); ++j) {
     const auto& joint = robot.joints()[static_cast<std::size_t>(robot.actuatedJoints()[j])];
-    std::cout << "    " << std::left << std::setw(22) << joint.name << std::setw(11)
-              << (joint.type == JointType::Prismatic ? "prismatic" : "revolute") << "["
-              << limits.lower()[static_cast<Eigen::Index>(j)] << ", "
-              << limits.upper()[static_cast<Eigen::Index>(j)] << "]\n";
+    std::cout << "    " << std::left << std::setw(22) << joint.name << std::setw(12)
+              << jointKind(joint.type) << "[" << limits.lower()[static_cast<Eigen::Index>(j)]
+              << ", " << limits.upper()[static_cast<Eigen::Index>(j)] << "]\n";
   }
   for (const auto& [joint, value] : held)
     std::cout << "  held: " << joint << " = " << value << '\n';
