@@ -36,8 +36,7 @@ RobotDescription robotDescriptionFromOptions(const RobotOptions& options) {
   UrdfOptions urdf;
   for (const auto& p : options.packagePaths) urdf.searchPaths.emplace_back(p);
   RobotDescription description = loadRobotDescription(options.robot, urdf, options.srdf);
-  for (const std::string& w : description.srdf.warnings)
-    std::cerr << "fastron: warning: " << w << '\n';
+  for (const std::string& w : description.warnings) std::cerr << "fastron: warning: " << w << '\n';
   Robot& robot = description.robot;
   if (!options.joints.empty()) robot.setActuatedJoints(options.joints);
   if (!options.group.empty()) robot.setActuatedJoints(description.srdf.group(options.group).joints);

@@ -143,7 +143,7 @@ void bindRobots(py::module_& m) {
         const RobotDescription d = description(nameOrPath, srdf, packagePaths, group);
         py::dict groups;
         for (const SrdfGroup& g : d.srdf.groups) groups[py::str(g.name)] = g.joints;
-        return py::make_tuple(d.robot, groups, d.srdf.warnings);
+        return py::make_tuple(d.robot, groups, d.warnings);
       },
       py::arg("name_or_path"), py::kw_only(), py::arg("srdf") = py::none(),
       py::arg("package_paths") = std::vector<std::filesystem::path>{},

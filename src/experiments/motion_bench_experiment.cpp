@@ -444,7 +444,7 @@ PlanRows runMotionBench(const MotionBenchOptions& o, const Progress& progress) {
   }
   const RobotDescription description =
       loadRobotDescription(o.robot, UrdfOptions{.searchPaths = o.packagePaths}, o.srdf);
-  results.warnings = description.srdf.warnings;
+  results.warnings = description.warnings;
   if (o.selfModel && !o.selfCollision) {
     throw InvalidArgument("motion-bench: a self-collision model needs self-collision checked");
   }

@@ -92,27 +92,42 @@ Robot loadShipped(const RobotEntry& entry, const UrdfOptions& options) {
   return robot;
 }
 
+/// One warning per joint of `robot` that its URDF `urdf` made fixed (Joint::heldMultiDof).
+std::vector<std::string> heldJointWarnings(const Robot& robot, const std::filesystem::path& urdf) {
+  std::vector<std::string> warnings;
+  for (const Joint& joint : robot.joints()) {
+    if (joint.heldMultiDof.empty()) continue;
+    warnings.push_back(urdf.string() + ": joint '" + joint.name + "' is " + joint.heldMultiDof +
+                       ": held at its origin (Fastron plans joints of one coordinate; a "
+                       "scene's multi_dof_joint_state places the robot's root)");
+  }
+  return warnings;
+}
+
 }  // namespace
 
 RobotDescription loadRobotDescription(const std::string& nameOrPath, const UrdfOptions& options,
                                       const std::filesystem::path& srdf) {
-  const auto withSrdf = [&](RobotDescription description) {
+  const auto described = [&](RobotDescription description, const std::filesystem::path& urdf) {
     if (!srdf.empty()) applySrdf(srdf, description);
+    description.warnings = heldJointWarnings(description.robot, urdf);
+    description.warnings.insert(description.warnings.end(), description.srdf.warnings.begin(),
+                                description.srdf.warnings.end());
     return description;
   };
   const std::filesystem::path asPath(nameOrPath);
   if (asPath.extension() == ".urdf" || std::filesystem::is_regular_file(asPath)) {
     if (!std::filesystem::is_regular_file(asPath))
       throw FileNotFound(nameOrPath + ": URDF file not found");
-    return withSrdf({loadUrdf(asPath, options), {}});
+    return described({loadUrdf(asPath, options), {}, {}}, asPath);
   }
   std::string names;
   for (const RobotEntry& entry : shippedRobots()) {
     names += (names.empty() ? "" : ", ") + entry.name;
     if (entry.name != nameOrPath) continue;
-    RobotDescription description{loadShipped(entry, options), {}};
+    RobotDescription description{loadShipped(entry, options), {}, {}};
     if (!entry.srdf.empty()) applySrdf(entry.srdf, description);
-    return withSrdf(std::move(description));
+    return described(std::move(description), entry.urdf);
   }
   throw FileError("'" + nameOrPath + "' is neither a shipped robot (" + names +
                   ") nor a URDF file");

@@ -125,10 +125,6 @@ std::map<std::string, std::size_t> validateXml(const TiXmlElement* robot,
     const std::string where = at(source, joint) + ": joint '" + (name ? name : "") + "'";
     const char* type = joint->Attribute("type");
     const std::string t = type ? type : "";
-    if (t == "floating" || t == "planar") {
-      throw FileError(where + ": " + t +
-                      " joints are not supported (use revolute, continuous, prismatic or fixed)");
-    }
     if (const TiXmlElement* origin = joint->FirstChildElement("origin")) {
       requireFinite(origin, "xyz", 3, at(source, origin));
       requireFinite(origin, "rpy", 3, at(source, origin));
@@ -279,8 +275,9 @@ Shape collisionShape(const urdf::Geometry& geometry, const UrdfOptions& options,
   throw FileError(where + ": unknown collision geometry");
 }
 
-/// A urdfdom joint as ours; throws FileError naming `source` and the joint for a type we do not
-/// model (floating, planar) or a revolute or prismatic joint without limits.
+/// A urdfdom joint as ours (a floating or planar joint fixed at its origin, Joint::heldMultiDof);
+/// throws FileError naming `source` and the joint for a revolute or prismatic joint without
+/// limits.
 Joint toJoint(const std::string& name, const urdf::Joint& j,
               const std::map<std::string, int>& linkIndex, const std::string& source) {
   Joint joint;
@@ -301,6 +298,14 @@ Joint toJoint(const std::string& name, const urdf::Joint& j,
       break;
     case urdf::Joint::FIXED:
       joint.type = JointType::Fixed;
+      break;
+    case urdf::Joint::FLOATING:
+      joint.type = JointType::Fixed;
+      joint.heldMultiDof = "floating";
+      break;
+    case urdf::Joint::PLANAR:
+      joint.type = JointType::Fixed;
+      joint.heldMultiDof = "planar";
       break;
     default:
       throw FileError(source + ": joint '" + name + "': unsupported joint type");

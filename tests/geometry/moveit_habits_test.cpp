@@ -275,6 +275,43 @@ TEST(RequestRobot, SceneFilesGiveTheRobotState) {
               HasSubstr("s.yaml:3: robot_state.joint_state: one position per name is needed"));
 }
 
+// A mobile base written into the URDF, as a planar joint (or a floating one): MoveIt plans an
+// arm's group with it where the robot state puts it, so it is read as fixed at its origin, and
+// the description says so.
+class MultiDofJoints : public test::TempDir {};
+
+TEST_F(MultiDofJoints, AreHeldAtTheirOriginWithAWarning) {
+  for (const std::string type : {"planar", "floating"}) {
+    std::string urdf = kTrolleyUrdf;
+    const std::string base = R"(<link name="odom"/>
+  <joint name="base_motion" type=")" +
+                             type + R"("><parent link="odom"/><child link="base_link"/>
+    <origin xyz="1 2 0" rpy="0 0 1.5707963267948966"/></joint>
+  )";
+    urdf.insert(urdf.find("<link name=\"base_link\""), base);
+    const RobotDescription description =
+        loadRobotDescription(write("trolley-" + type + ".urdf", urdf).string());
+    const Robot& robot = description.robot;
+    EXPECT_EQ(robot.dof(), 6u) << type;  // the trolley's own joints, none more
+    const Joint& joint = robot.joints()[static_cast<std::size_t>(robot.jointIndex("base_motion"))];
+    EXPECT_EQ(joint.type, JointType::Fixed);
+    EXPECT_EQ(joint.heldMultiDof, type);
+    ASSERT_EQ(description.warnings.size(), 1u);
+    EXPECT_THAT(description.warnings[0],
+                HasSubstr("trolley-" + type + ".urdf: joint 'base_motion' is " + type +
+                          ": held at its origin"));
+    // The base at the joint's origin, and the torso on it as on the trolley alone (turned a
+    // quarter about z, moved to (1, 2, 0)).
+    const KinematicsData home = kinematicsAtZero(robot);
+    EXPECT_LT((linkOrigin(robot, home, "base_link") - Eigen::Vector3d(1, 2, 0)).norm(), 1e-12);
+    EXPECT_LT((linkOrigin(robot, home, "torso") - Eigen::Vector3d(1, 2, 0.45)).norm(), 1e-12);
+    EXPECT_THAT(test::messageOf<InvalidArgument>([&] {
+                  Robot(robot).setActuatedJoints({"base_motion", "shoulder"});
+                }),
+                HasSubstr("base_motion"));
+  }
+}
+
 // The validation robots (scripts/make_validation_robots.py): their SRDFs name the catalogue's
 // joints as a group, their mimics drive the gripper, and the links their SRDFs name that the URDF
 // lacks are warnings.

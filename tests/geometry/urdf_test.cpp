@@ -224,11 +224,6 @@ TEST_F(Urdf, RefusesWhatUrdfdomWouldDropOrAccept) {
       error(urdf("", R"(<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
     <limit lower="2" upper="1" effort="1" velocity="1"/></joint>)")),
       HasSubstr("t.urdf:8: joint 'j': lower limit 2.000000 is above the upper limit 1.000000"));
-  EXPECT_THAT(
-      error(urdf(
-          "",
-          R"(<joint name="j" type="floating"><parent link="base"/><child link="arm"/></joint>)")),
-      HasSubstr("floating joints are not supported"));
 }
 
 TEST_F(Urdf, MalformedFilesNameTheProblem) {

@@ -33,6 +33,10 @@ struct Joint {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           ///< unit, in the child frame
   double lower = 0, upper = 0;  ///< position limits; a continuous joint gets [-pi, pi]
   std::optional<Mimic> mimic;   ///< set when the joint follows another: never actuated
+  /// "floating" or "planar" for a URDF joint of several coordinates, read as fixed at its origin:
+  /// Fastron plans no such joint, and an arm's planning group leaves it (a mobile base's) where
+  /// the robot state puts it, by default its origin. Empty for every other joint.
+  std::string heldMultiDof;
 
   bool movable() const { return type != JointType::Fixed; }
 };

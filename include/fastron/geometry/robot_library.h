@@ -40,6 +40,9 @@ struct RobotDescription {
   /// The catalogue's SRDF and then the given one, merged: a later group replaces one of the same
   /// name; the warnings of both (entries naming links the URDF lacks, skipped).
   Srdf srdf;
+  /// What was read and set aside, for the caller to show: the URDF's floating and planar joints
+  /// (held at their origin), then srdf.warnings.
+  std::vector<std::string> warnings;
 };
 
 /// A shipped robot by name (its catalogue joints actuated, its allowed pairs and SRDF applied;

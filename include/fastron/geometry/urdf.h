@@ -21,11 +21,12 @@ struct UrdfOptions {
   bool mergeCapsules = true;
 };
 
-/// Reads a URDF: revolute, continuous, prismatic and fixed joints, limits, mimic joints (which
-/// follow their joint and are never actuated), and collision geometry (box, cylinder, sphere,
-/// mesh). Throws FileError naming the file, and the line and element where
-/// it can: malformed XML, unknown geometry (urdfdom would silently drop it), zero or negative
-/// sizes, non-finite numbers, lower limit above upper, unsupported joint types, missing meshes.
+/// Reads a URDF: revolute, continuous, prismatic and fixed joints, floating and planar joints
+/// (fixed at their origin, Joint::heldMultiDof), limits, mimic joints (which follow their joint
+/// and are never actuated), and collision geometry (box, cylinder, sphere, mesh). Throws
+/// FileError naming the file, and the line and element where it can: malformed XML, unknown
+/// geometry (urdfdom would silently drop it), zero or negative sizes, non-finite numbers, lower
+/// limit above upper, unknown joint types, missing meshes.
 Robot loadUrdf(const std::filesystem::path& file, const UrdfOptions& options = {});
 
 /// The same from a string; `source` names it in messages and relative paths start from
