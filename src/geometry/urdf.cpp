@@ -122,7 +122,6 @@ std::map<std::string, std::size_t> validateXml(const TiXmlElement* robot,
   for (const TiXmlElement* joint = robot->FirstChildElement("joint"); joint;
        joint = joint->NextSiblingElement("joint")) {
     const char* name = joint->Attribute("name");
-    const std::string where = at(source, joint) + ": joint '" + (name ? name : "") + "'";
     const char* type = joint->Attribute("type");
     const std::string t = type ? type : "";
     if (const TiXmlElement* origin = joint->FirstChildElement("origin")) {
