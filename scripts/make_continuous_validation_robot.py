@@ -35,7 +35,8 @@ def box(x, y, z, xyz):
 
 
 def links():
-    """Each link's collision shapes: a cylinder along it and a sphere at its joint."""
+    """Each link's collision shapes: a cylinder along it and, on the arm's six links between the
+    shoulder and the bracelet, a sphere at its joint; a box per finger."""
     shapes = {
         "base_link": [cylinder(0.06, 0.15, "0 0 0.075", ALONG_Z)],
         "shoulder_link": [cylinder(0.055, 0.13, "0 0 -0.065", ALONG_Z), sphere(0.055)],

@@ -300,11 +300,12 @@ TEST_F(MultiDofJoints, AreHeldAtTheirOriginWithAWarning) {
     EXPECT_THAT(description.warnings[0],
                 HasSubstr("trolley-" + type + ".urdf: joint 'base_motion' is " + type +
                           ": held at its origin"));
-    // The base at the joint's origin, and the torso on it as on the trolley alone (turned a
-    // quarter about z, moved to (1, 2, 0)).
+    // The base at the joint's origin, and the arm on it as on the trolley alone, turned a quarter
+    // about z and moved to (1, 2, 0): the shoulder, 0.1 m along the trolley's x, lies along y.
     const KinematicsData home = kinematicsAtZero(robot);
     EXPECT_LT((linkOrigin(robot, home, "base_link") - Eigen::Vector3d(1, 2, 0)).norm(), 1e-12);
     EXPECT_LT((linkOrigin(robot, home, "torso") - Eigen::Vector3d(1, 2, 0.45)).norm(), 1e-12);
+    EXPECT_LT((linkOrigin(robot, home, "upper_arm") - Eigen::Vector3d(1, 2.1, 0.65)).norm(), 1e-12);
     EXPECT_THAT(test::messageOf<InvalidArgument>([&] {
                   Robot(robot).setActuatedJoints({"base_motion", "shoulder"});
                 }),
