@@ -393,12 +393,13 @@ def test_the_planners_range_is_halved_on_a_schedule_unless_told_to_stay():
     open_square = fastron.FunctionChecker(lambda q: False, 2, "open")
     easy = fastron.plan(open_square, start, goal, limits=square, simplify_time=0)
     assert easy.solved and easy.range == pytest.approx(ompls)
-    # A goal walled in by a ring: no path, so the range goes down the schedule.
+    # A goal walled in by a ring: no path, so the range goes down the schedule (to 1/8 of
+    # OMPL's), and the goal's tree, in a pocket, grows at 1/16.
     ring = fastron.FunctionChecker(
         lambda q: bool(0.1 < np.hypot(q[0] - 0.8, q[1] + 0.8) < 0.2), 2, "ring")
     walled = fastron.plan(ring, start, goal, limits=square, time_limit=0.3)
     assert not walled.solved
-    assert any(walled.range == pytest.approx(ompls / 2**k) for k in range(4)), walled.range
+    assert any(walled.range == pytest.approx(ompls / 2**k) for k in range(5)), walled.range
     stays = fastron.plan(ring, start, goal, limits=square, time_limit=0.3, range=0.3,
                          range_stage=0)
     assert stays.range == pytest.approx(0.3)

@@ -138,13 +138,6 @@ void seedPlanners(std::uint64_t seed, std::uint64_t query) {
 
 namespace {
 
-/// OMPL's RRT-Connect, which can say whether one of its trees still holds only its root.
-class RrtConnectSeeingItsTrees : public og::RRTConnect {
- public:
-  using og::RRTConnect::RRTConnect;
-  bool aTreeHoldsOnlyItsRoot() const { return tStart_->size() <= 1 || tGoal_->size() <= 1; }
-};
-
 /// The range of an RRT, RRT-Connect or RRT* planner; 0 for another.
 double rangeOf(const ob::Planner& planner) {
   if (const auto* p = dynamic_cast<const og::RRTConnect*>(&planner)) return p->getRange();
@@ -169,7 +162,7 @@ ob::PlannerPtr makePlanner(const ob::SpaceInformationPtr& si, const PlannerOptio
       return planner;
     }
     case PlannerType::RrtConnect: {
-      auto planner = std::make_shared<RrtConnectSeeingItsTrees>(si);
+      auto planner = std::make_shared<RrtConnectTrees>(si);
       if (options.range > 0) planner->setRange(options.range);
       return planner;
     }
@@ -243,10 +236,23 @@ ob::ProblemDefinitionPtr makeProblemDefinition(const ob::SpaceInformationPtr& si
 RangeSchedule::RangeSchedule(ob::Planner& planner, const PlannerOptions& options)
     : planner_(options.rangeStage == 0 || options.rangeHalvings == 0
                    ? nullptr
-                   : dynamic_cast<og::RRTConnect*>(&planner)),
+                   : dynamic_cast<RrtConnectTrees*>(&planner)),
       stage_(options.rangeStage),
       halvings_(options.rangeHalvings),
       longest_(planner_ != nullptr ? planner_->getRange() : 0) {}
+
+void RangeSchedule::endRound() {
+  const std::size_t start = planner_->startTreeSize(), goal = planner_->goalTreeSize();
+  const bool startSmaller = start < goal;
+  const std::size_t smaller = std::min(start, goal), larger = std::max(start, goal);
+  const std::size_t gained = startSmaller ? start - startAtRound_ : goal - goalAtRound_;
+  if (smaller * kPocketSizeRatio < larger && gained * kPocketIterationsPerNode < roundIterations_) {
+    pocket_ = startSmaller ? PocketTree::Start : PocketTree::Goal;
+  }
+  startAtRound_ = start;
+  goalAtRound_ = goal;
+  roundIterations_ = 0;
+}
 
 ob::PlannerStatus RangeSchedule::solve(ob::Planner& planner,
                                        const ob::PlannerTerminationCondition& stop) {
@@ -257,14 +263,24 @@ ob::PlannerStatus RangeSchedule::solve(ob::Planner& planner,
   for (;;) {
     std::size_t iterations = 0;
     bool stageOver = false;
-    // Evaluated once per iteration, after `stop` (which may count iterations itself).
+    // Evaluated once per iteration, after `stop` (which may count iterations itself), before the
+    // iteration: the `iterations`-th of this solve() grows the start tree when odd.
     const ob::PlannerStatus status = planner.solve(ob::plannerOrTerminationCondition(
         stop, ob::PlannerTerminationCondition([&] {
           stageOver = ++iterations > (stage_ << std::min(rounds_, kMaxRounds));
+          if (pocket_ != PocketTree::None && !stageOver) {
+            const PocketTree grows = iterations % 2 == 1 ? PocketTree::Start : PocketTree::Goal;
+            const unsigned step = grows == pocket_ ? halvings_ + 1 : step_;
+            planner_->setRange(std::ldexp(longest_, -static_cast<int>(step)));
+          }
           return stageOver;
         })));
     if (!stageOver || status == ob::PlannerStatus::EXACT_SOLUTION) return status;
-    if (step_ == halvings_) ++rounds_;
+    roundIterations_ += iterations - 1;  // the last evaluation ended the stage
+    if (step_ == halvings_) {
+      ++rounds_;
+      if (pocket_ == PocketTree::None) endRound();
+    }
     step_ = step_ == halvings_ ? 0 : step_ + 1;
     planner_->setRange(std::ldexp(longest_, -static_cast<int>(step_)));
   }
@@ -280,7 +296,9 @@ std::string describeRange(const PlannerOptions& options, const std::string& unit
   if (options.rangeStage == 0 || options.rangeHalvings == 0) return text.str();
   text << ", halved after " << options.rangeStage << " iterations without a path down to 1/"
        << (1U << options.rangeHalvings)
-       << " of it, then again from it, each round twice as long as the one before";
+       << " of it, then again from it, each round twice as long as the one before; a tree in a "
+          "pocket grows at 1/"
+       << (1U << (options.rangeHalvings + 1)) << " of it";
   return text.str();
 }
 
@@ -377,13 +395,14 @@ PlanResult planMotion(const CollisionSource& source, const JointLimits& limits,
   // Only on a model: an exact checker's pocket may have a narrow way out that a few hundred
   // random directions miss, and a plan on a hybrid is the last before the exact checker.
   const auto* rrtConnect = options.enclosedAfter > 0 && onAModel
-                               ? dynamic_cast<const RrtConnectSeeingItsTrees*>(planner.get())
+                               ? dynamic_cast<const RrtConnectTrees*>(planner.get())
                                : nullptr;
   if (rrtConnect != nullptr) {
     // Evaluated once per iteration of RRT-Connect's loop.
     stop = ob::plannerOrTerminationCondition(
         stop, ob::PlannerTerminationCondition([&iterations, rrtConnect, &options] {
-          return ++iterations > options.enclosedAfter && rrtConnect->aTreeHoldsOnlyItsRoot();
+          return ++iterations > options.enclosedAfter &&
+                 std::min(rrtConnect->startTreeSize(), rrtConnect->goalTreeSize()) <= 1;
         }));
   }
   const ob::PlannerStatus status = schedule.solve(*planner, stop);

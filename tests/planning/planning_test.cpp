@@ -922,10 +922,64 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
   EXPECT_EQ(describeRange(stays, "rad"), "0.3 rad");
   EXPECT_EQ(describeRange(automatic, "rad"),
             "OMPL's default, halved after 100 iterations without a path down to 1/8 of it, then "
-            "again from it, each round twice as long as the one before");
+            "again from it, each round twice as long as the one before; a tree in a pocket "
+            "grows at 1/16 of it");
   PlannerOptions tooMany = automatic;
   tooMany.rangeHalvings = kMaxRangeHalvings + 1;
   EXPECT_THAT(messageOf<InvalidArgument>([&] { validate(tooMany); }), HasSubstr("rangeHalvings"));
+}
+
+// A tree in a pocket: in the unit box of four joints (OMPL's range there 0.8, the schedule's
+// shortest 0.1), the goal in a free ball of radius 0.08 walled in by a shell out to 0.4. Every
+// extension from the goal at a range of the schedule crosses the shell, so its tree gains
+// nothing in the first round (400 iterations) while the start tree fills the box: the schedule
+// finds the goal tree in a pocket, and from then on the goal tree grows at half the shortest
+// range (0.05, inside the ball) while the start tree keeps the schedule. In open space no tree
+// is in a pocket.
+TEST_F(Planning, ATreeInAPocketGrowsAtHalfTheShortestRange) {
+  const JointLimits box = JointLimits::unitBox(4);
+  const double ompls = 0.2 * std::sqrt(16.0);
+  const Eigen::VectorXd start = vec({-0.6, 0.6, -0.6, 0.6});
+  const Eigen::VectorXd goal = vec({0.6, -0.6, 0.6, -0.6});
+  const auto pocket = std::make_shared<FunctionChecker>("pocket", 4, [&goal](const double* q) {
+    const double r = (Eigen::Map<const Eigen::Vector4d>(q) - goal).norm();
+    return r > 0.08 && r < 0.4;
+  });
+  const auto open =
+      std::make_shared<FunctionChecker>("open", 4, [](const double*) { return false; });
+  const PlannerOptions options{.resolution = 0.01, .timeLimit = 2, .simplifyTime = 0};
+  // The schedule and its trees after `total` iterations (none finds a path: the pocket has no
+  // way out).
+  struct Run {
+    PocketTree pocket;
+    std::size_t startNodes, goalNodes;
+  };
+  const auto runFor = [&](const std::shared_ptr<const CollisionChecker>& checker,
+                          std::size_t total) {
+    seedPlanners(3, 0);
+    const auto si = makeSpaceInformation(CollisionSource(checker), box, options.resolution);
+    const auto planner = makePlanner(si, options);
+    planner->setProblemDefinition(makeProblemDefinition(si, start, goal, options.type));
+    planner->setup();
+    EXPECT_DOUBLE_EQ(planner->as<RrtConnectTrees>()->getRange(), ompls);
+    RangeSchedule schedule(*planner, options);
+    std::size_t iterations = 0;
+    schedule.solve(*planner,
+                   ompl::base::PlannerTerminationCondition([&] { return ++iterations > total; }));
+    const auto* trees = planner->as<RrtConnectTrees>();
+    return Run{schedule.pocket(), trees->startTreeSize(), trees->goalTreeSize()};
+  };
+  const Run firstRound = runFor(pocket, 390);
+  EXPECT_EQ(firstRound.pocket, PocketTree::None) << "judged at a round's end only";
+  EXPECT_EQ(firstRound.goalNodes, 1u);
+  EXPECT_GT(firstRound.startNodes, RangeSchedule::kPocketSizeRatio);
+
+  const Run later = runFor(pocket, 2000);
+  EXPECT_EQ(later.pocket, PocketTree::Goal);
+  // At the schedule's ranges, a node in the ball needs a sample inside it: 1 in 80000.
+  EXPECT_GE(later.goalNodes, 4u) << "the goal tree grows inside its ball";
+
+  EXPECT_EQ(runFor(open, 2000).pocket, PocketTree::None);
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the

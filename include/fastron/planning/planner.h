@@ -132,28 +132,63 @@ struct PlannerOptions {
   VerifyRepairOptions verify;
 };
 
+/// OMPL's RRT-Connect as makePlanner makes it, with its two trees' sizes in view (RangeSchedule,
+/// and planMotion's rule for an end a model encloses).
+class RrtConnectTrees : public ompl::geometric::RRTConnect {
+ public:
+  using ompl::geometric::RRTConnect::RRTConnect;
+  /// Nodes of the tree grown from the start, and from the goal (0 before the first solve()).
+  std::size_t startTreeSize() const { return tStart_ ? tStart_->size() : 0; }
+  std::size_t goalTreeSize() const { return tGoal_ ? tGoal_->size() : 0; }
+};
+
+/// A tree of RRT-Connect in a pocket (RangeSchedule::pocket).
+enum class PocketTree : std::uint8_t { None, Start, Goal };
+
 /// RRT-Connect's range schedule (planMotion's): its range R (PlannerOptions::range or OMPL's
 /// default), then R/2, ..., R/2^rangeHalvings, each for rangeStage iterations without a path,
 /// then R again, each round of ranges twice as long per range as the one before. The trees grown
 /// so far stay (a second solve() goes on from them, their edges checked already), so a stage adds
 /// to the search of the ones before. Every range gets the same share of the iterations: Baxter's
 /// two arms need the shortest, one of the Panda's bookshelf problems the longest
-/// (docs/log/2026-11-29-the-planners-range.md). For another planner, or rangeStage 0, the range
-/// stays. Set up the planner before constructing it (its range is read then).
+/// (docs/log/2026-11-29-the-planners-range.md).
+///
+/// A tree in a pocket: when a round ends with one tree holding under 1/kPocketSizeRatio of the
+/// other's nodes and having gained under one node per kPocketIterationsPerNode of the round's
+/// iterations, its end is enclosed (every extension from it collides, at every range of the
+/// schedule: Baxter's two arms reaching into a shelf). From then on that tree grows at half the
+/// shortest range, R/2^(rangeHalvings+1), while the other keeps the schedule (whose long edges
+/// are what reaches into some pockets: one range for both trees lost the mobile arm's box
+/// problems). RRT-Connect grows its two trees in turn, the start tree first in every solve(), and
+/// the range is set before each of its iterations (docs/log/2026-12-02-a-tree-in-a-pocket.md).
+///
+/// For another planner than makePlanner's RRT-Connect, or rangeStage 0, the range stays. Set up
+/// the planner before constructing it (its range is read then).
 class RangeSchedule {
  public:
   RangeSchedule(ompl::base::Planner& planner, const PlannerOptions& options);
   /// planner.solve(stop), on the schedule: `stop` is also evaluated once per iteration.
   ompl::base::PlannerStatus solve(ompl::base::Planner& planner,
                                   const ompl::base::PlannerTerminationCondition& stop);
+  /// The tree found in a pocket so far, if any.
+  PocketTree pocket() const { return pocket_; }
+
+  static constexpr std::size_t kPocketSizeRatio = 16;
+  static constexpr std::size_t kPocketIterationsPerNode = 500;
 
  private:
-  ompl::geometric::RRTConnect* planner_;  ///< null: the range stays
+  /// At the end of a round: finds a tree in a pocket.
+  void endRound();
+
+  RrtConnectTrees* planner_;  ///< null: the range stays
   std::size_t stage_;
   unsigned halvings_;
   double longest_;
   unsigned step_ = 0;    ///< the range is longest_ / 2^step_
   unsigned rounds_ = 0;  ///< rounds of every range done: a stage is rangeStage 2^rounds_
+  PocketTree pocket_ = PocketTree::None;
+  std::size_t roundIterations_ = 0;                 ///< iterations of the round so far
+  std::size_t startAtRound_ = 0, goalAtRound_ = 0;  ///< the trees' sizes as the round began
 };
 
 /// For reports: "1.5 UNIT" or "OMPL's default", then the schedule (", halved after 100
