@@ -15,7 +15,7 @@ namespace {
 struct ProblemsCommandOptions {
   RobotOptions robot;
   std::string family = "cage", output, tipLink, from;
-  double sensed = 0, radius = 0;
+  double sensed = 0, radius = 0, solvable = 0;
   std::size_t count = 10, samples = experiments::ProblemOptions{}.samplesPerAttempt;
   std::uint64_t seed = 1;
   bool noSelfCollision = false;
@@ -56,6 +56,7 @@ int runProblems(const ProblemsCommandOptions& o) {
   options.selfCollision = !o.noSelfCollision;
   options.tipLink = o.tipLink;
   options.samplesPerAttempt = o.samples;
+  options.solvableWithin = o.solvable;
   const auto start = std::chrono::steady_clock::now();
   const auto problems = experiments::generateProblems(robot, options);
   experiments::writeProblems(o.output, robot, problems, group);
@@ -105,6 +106,10 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
       "--tip-link", o->tipLink,
       "link whose origin reaches the object (default: of the child of the last actuated joint "
       "and the links fixed to it, the farthest from it, e.g. panda_grasptarget)");
+  cmd->add_option("--solvable", o->solvable,
+                  "keep a problem only when RRT-Connect on FCL plans it within this many seconds "
+                  "(otherwise the structure is placed anew; default 0: no plan)")
+      ->check(numberAbove(0, true));
   cmd->add_flag("--no-self-collision", o->noSelfCollision,
                 "start and goal need not be free of the robot's collisions with itself");
   cmd->add_option("--sensed", o->sensed,
@@ -113,7 +118,7 @@ void addProblemsCommand(CLI::App& app, int& exitCode) {
       ->check(numberAbove(0));
   cmd->add_option("--radius", o->radius,
                   "with --sensed: the radius of each point's ball (default: the spacing)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberAbove(0, true));
   cmd->add_option("--from", o->from,
                   "with --sensed: convert the problems of this folder (e.g. a MotionBenchMaker "
                   "family) instead of generating new ones; the robot options are not needed")

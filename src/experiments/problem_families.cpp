@@ -12,6 +12,7 @@
 #include "fastron/geometry/kinematics.h"
 #include "fastron/geometry/moveit_writer.h"
 #include "fastron/geometry/scene_checkers.h"
+#include "fastron/planning/planner.h"
 
 namespace fastron::experiments {
 namespace {
@@ -215,6 +216,10 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
                           std::to_string(options.reach));
   }
   if (options.samplesPerAttempt == 0) throw InvalidArgument("samplesPerAttempt must be positive");
+  if (!(options.solvableWithin >= 0) || !std::isfinite(options.solvableWithin)) {
+    throw InvalidArgument("solvableWithin must be a non-negative number of seconds, got " +
+                          std::to_string(options.solvableWithin));
+  }
   const int tip = options.tipLink.empty() ? defaultTip(robot) : robot.linkIndex(options.tipLink);
   Rng rng(options.seed);
   std::vector<GeneratedProblem> problems;
@@ -224,6 +229,18 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
   std::vector<double> lifts{0.0};
   constexpr std::size_t kLiftsTried = 6;
   constexpr int kPlacementsPerLift = 4;
+  // Whether RRT-Connect on `exact` finds a path for the problem within options.solvableWithin.
+  const auto hasPath = [&](const std::shared_ptr<const SceneChecker>& exact,
+                           const GeneratedProblem& problem) {
+    seedPlanners(options.seed, problems.size());
+    const auto asVector = [](const std::vector<double>& v) {
+      return Eigen::VectorXd(
+          Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
+    };
+    return planMotion(exact, robot.limits(), asVector(problem.start), asVector(problem.goal),
+                      {.timeLimit = options.solvableWithin, .simplifyTime = 0})
+        .solved();
+  };
   const auto tryPlacements = [&](double lift, int placements, GeneratedProblem& problem) {
     for (int placement = 0; placement < placements; ++placement) {
       Eigen::Vector3d target;
@@ -245,7 +262,7 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
           findConfiguration(robot, tip, checker, options.samplesPerAttempt, rng, ready,
                             problem.start)) {
         takeTurnsNearestStart(robot, problem.start, problem.goal);
-        return true;
+        if (options.solvableWithin == 0 || hasPath(exact, problem)) return true;
       }
     }
     return false;
@@ -261,10 +278,11 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
       }
     }
     if (!found) {
-      throw Error("no free start and goal for problem " + std::to_string(problems.size() + 1) +
-                  " of family '" + std::string(toString(options.family)) + "' in " +
-                  std::to_string(kPlacements) + " placements: can robot '" + robot.name() +
-                  "' reach into it with link '" +
+      throw Error("no free start and goal" +
+                  std::string(options.solvableWithin > 0 ? " joined by a path" : "") +
+                  " for problem " + std::to_string(problems.size() + 1) + " of family '" +
+                  std::string(toString(options.family)) + "' in " + std::to_string(kPlacements) +
+                  " placements: can robot '" + robot.name() + "' reach into it with link '" +
                   robot.links()[static_cast<std::size_t>(tip)].name + "'?");
     }
     problems.push_back(std::move(problem));
