@@ -865,9 +865,11 @@ TEST_F(Planning, TheOptimisticHybridPlansWithHalfThePlannersRange) {
 }
 
 // The range schedule: OMPL's default while RRT-Connect finds its path in the first rangeStage
-// iterations (an open square); without a path (a goal walled in by a ring) halved after every
-// rangeStage iterations down to the first range over 2^rangeHalvings, then the first again, each
-// round of ranges twice as long. rangeStage 0 keeps the range.
+// iterations (an open square); without a path (a wall across the whole square between start
+// and goal, each tree free to fill its half, so neither is in a pocket: see
+// ATreeInAPocketGrowsAtHalfTheShortestRange) halved after every rangeStage iterations down to the
+// first range over 2^rangeHalvings, then the first again, each round of ranges twice as long.
+// rangeStage 0 keeps the range.
 TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
   const JointLimits square = JointLimits::unitBox(2);
   const double ompls = 0.2 * std::sqrt(8.0);  // a fifth of the square's diagonal
@@ -878,11 +880,9 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
   ASSERT_TRUE(easy.solved());
   EXPECT_NEAR(easy.range, ompls, 1e-12);
 
-  const auto ring = std::make_shared<FunctionChecker>("ring", 2, [](const double* q) {
-    const double r = std::hypot(q[0] - 0.8, q[1] + 0.8);
-    return r > 0.1 && r < 0.2;
-  });
-  const auto si = makeSpaceInformation(CollisionSource(ring), square, 0.01);
+  const auto across = std::make_shared<FunctionChecker>(
+      "across", 2, [](const double* q) { return std::abs(q[0]) < 0.05; });
+  const auto si = makeSpaceInformation(CollisionSource(across), square, 0.01);
   // The range after `total` iterations, counted by the planner's own stop condition.
   const auto rangeAfter = [&](const PlannerOptions& options, std::size_t total) {
     const auto planner = makePlanner(si, options);
@@ -917,7 +917,7 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
   PlannerOptions stays = given;
   stays.rangeStage = 0;
   EXPECT_DOUBLE_EQ(rangeAfter(stays, 1450), 0.3);
-  EXPECT_DOUBLE_EQ(planMotion(ring, square, kStart, kGoal, stays).range, 0.3);
+  EXPECT_DOUBLE_EQ(planMotion(across, square, kStart, kGoal, stays).range, 0.3);
 
   EXPECT_EQ(describeRange(stays, "rad"), "0.3 rad");
   EXPECT_EQ(describeRange(automatic, "rad"),
