@@ -233,11 +233,10 @@ std::vector<GeneratedProblem> generateProblems(const Robot& robot, const Problem
   const auto hasPath = [&](const std::shared_ptr<const SceneChecker>& exact,
                            const GeneratedProblem& problem) {
     seedPlanners(options.seed, problems.size());
-    const auto asVector = [](const std::vector<double>& v) {
-      return Eigen::VectorXd(
-          Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
-    };
-    return planMotion(exact, robot.limits(), asVector(problem.start), asVector(problem.goal),
+    const auto dim = static_cast<Eigen::Index>(robot.dof());
+    return planMotion(exact, robot.limits(),
+                      Eigen::Map<const Eigen::VectorXd>(problem.start.data(), dim),
+                      Eigen::Map<const Eigen::VectorXd>(problem.goal.data(), dim),
                       {.timeLimit = options.solvableWithin, .simplifyTime = 0})
         .solved();
   };

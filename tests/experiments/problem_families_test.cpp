@@ -62,10 +62,7 @@ TEST(ProblemFamilies, SolvableFamiliesKeepOnlyProblemsWithAPath) {
   solvable.solvableWithin = 1;
   const std::vector<GeneratedProblem> kept = generateProblems(arm, solvable);
   ASSERT_EQ(kept.size(), 5u);
-  const auto asVector = [](const std::vector<double>& v) {
-    return Eigen::VectorXd(
-        Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
-  };
+  const auto dim = static_cast<Eigen::Index>(arm.dof());
   for (std::size_t i = 0; i < kept.size(); ++i) {
     seedPlanners(solvable.seed, i);
     const auto fcl =
@@ -73,9 +70,10 @@ TEST(ProblemFamilies, SolvableFamiliesKeepOnlyProblemsWithAPath) {
     PlannerOptions options;
     options.timeLimit = 30;
     options.simplifyTime = 0;
-    EXPECT_TRUE(
-        planMotion(fcl, arm.limits(), asVector(kept[i].start), asVector(kept[i].goal), options)
-            .solved())
+    EXPECT_TRUE(planMotion(fcl, arm.limits(),
+                           Eigen::Map<const Eigen::VectorXd>(kept[i].start.data(), dim),
+                           Eigen::Map<const Eigen::VectorXd>(kept[i].goal.data(), dim), options)
+                    .solved())
         << "problem " << i + 1;
   }
   ProblemOptions negative = solvable;

@@ -934,8 +934,8 @@ TEST_F(Planning, TheRangeIsHalvedAfterEachStageWithoutAPathAndGoesRound) {
 // extension from the goal at a range of the schedule crosses the shell, so its tree gains
 // nothing in the first round (400 iterations) while the start tree fills the box: the schedule
 // finds the goal tree in a pocket, and from then on the goal tree grows at half the shortest
-// range (0.05, inside the ball) while the start tree keeps the schedule. In open space no tree
-// is in a pocket.
+// range (0.05, inside the ball) while the start tree keeps the schedule. Across a wall that
+// parts the box (no path either, but each tree free to fill its side) no tree is in a pocket.
 TEST_F(Planning, ATreeInAPocketGrowsAtHalfTheShortestRange) {
   const JointLimits box = JointLimits::unitBox(4);
   const double ompls = 0.2 * std::sqrt(16.0);
@@ -945,11 +945,11 @@ TEST_F(Planning, ATreeInAPocketGrowsAtHalfTheShortestRange) {
     const double r = (Eigen::Map<const Eigen::Vector4d>(q) - goal).norm();
     return r > 0.08 && r < 0.4;
   });
-  const auto open =
-      std::make_shared<FunctionChecker>("open", 4, [](const double*) { return false; });
+  const auto across = std::make_shared<FunctionChecker>(
+      "across", 4, [](const double* q) { return std::abs(q[0]) < 0.05; });
   const PlannerOptions options{.resolution = 0.01, .timeLimit = 2, .simplifyTime = 0};
-  // The schedule and its trees after `total` iterations (none finds a path: the pocket has no
-  // way out).
+  // The schedule and its trees after `total` iterations (none finds a path: neither world has
+  // one).
   struct Run {
     PocketTree pocket;
     std::size_t startNodes, goalNodes;
@@ -979,7 +979,10 @@ TEST_F(Planning, ATreeInAPocketGrowsAtHalfTheShortestRange) {
   // At the schedule's ranges, a node in the ball needs a sample inside it: 1 in 80000.
   EXPECT_GE(later.goalNodes, 4u) << "the goal tree grows inside its ball";
 
-  EXPECT_EQ(runFor(open, 2000).pocket, PocketTree::None);
+  const Run parted = runFor(across, 2000);
+  EXPECT_EQ(parted.pocket, PocketTree::None);
+  EXPECT_GT(parted.goalNodes * RangeSchedule::kPocketSizeRatio, parted.startNodes)
+      << "both trees grow";
 }
 
 // A model whose goal sits in a pocket it closed all round (a ring of "collides" 0.2 from the

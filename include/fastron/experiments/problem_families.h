@@ -43,10 +43,9 @@ struct ProblemOptions {
   /// same self-collision setting, its planners seeded from `seed` and the problem's number) finds
   /// a path within this many seconds; otherwise the structure is placed anew. Start and goal free
   /// do not make a problem solvable: two of ten gripper-arm cage problems of seed 7 went unsolved
-  /// by every method in 5 s (by FCL in 30 s with two planner seeds), and each costs a benchmark its
-  /// whole time limit per method. 0: no
-  /// plan (the families of earlier runs, unchanged). A plan that ends near the limit can make two
-  /// runs keep different problems.
+  /// by every method in 5 s (by FCL in 30 s with two planner seeds), and each costs a benchmark
+  /// its whole time limit per method. 0: no plan (the families of earlier runs, unchanged). A plan
+  /// that ends near the limit can make two runs keep different problems.
   double solvableWithin = 0;
 };
 
