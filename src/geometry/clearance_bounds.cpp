@@ -174,6 +174,18 @@ std::vector<Ball> groupBalls(const std::vector<Triangle>& triangles,
   return balls;
 }
 
+/// A point of the mesh near `centre`: the centroid of the group's triangle piece nearest it (a
+/// ball of radius 0, inside the shape's surface).
+Ball pointNear(const std::vector<Eigen::Vector3d>& centroids, const std::vector<int>& group,
+               const Eigen::Vector3d& centre) {
+  Ball best{centroids[static_cast<std::size_t>(group.front())], 0};
+  for (const int t : group) {
+    const Eigen::Vector3d& c = centroids[static_cast<std::size_t>(t)];
+    if ((c - centre).squaredNorm() < (best.centre - centre).squaredNorm()) best.centre = c;
+  }
+  return best;
+}
+
 /// The mesh's cover: its triangles cut to at most a twelfth of its size, grouped into maxBalls
 /// balls, and each group into up to maxChildren finer ones.
 BallCover meshCover(const TriangleMesh& mesh, std::size_t maxBalls, std::size_t maxChildren) {
@@ -190,13 +202,67 @@ BallCover meshCover(const TriangleMesh& mesh, std::size_t maxBalls, std::size_t 
   BallCover cover;
   std::vector<std::vector<int>> groups, subgroups;
   cover.balls = groupBalls(triangles, centroids, std::move(all), maxBalls, groups);
-  if (maxChildren > 1) {
-    for (std::vector<int>& group : groups) {
-      cover.children.push_back(
-          groupBalls(triangles, centroids, std::move(group), maxChildren, subgroups));
-    }
+  if (maxChildren <= 1) {
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      cover.inside.push_back(pointNear(centroids, groups[g], cover.balls[g].centre));
+    return cover;
+  }
+  for (std::vector<int>& group : groups) {
+    cover.children.push_back(
+        groupBalls(triangles, centroids, std::move(group), maxChildren, subgroups));
+    for (std::size_t g = 0; g < subgroups.size(); ++g)
+      cover.inside.push_back(pointNear(centroids, subgroups[g], cover.children.back()[g].centre));
   }
   return cover;
+}
+
+/// Balls inside a solid primitive of the robot: the sphere itself; balls of the radius along a
+/// capsule's segment or a cylinder's axis; balls of the smallest half-side along a box's longest
+/// side, and its corners (balls of radius 0).
+std::vector<Ball> solidInside(const Shape& shape) {
+  static constexpr std::size_t kMaxBalls = 12;
+  // Balls of `radius` centred from -half to half along `axis`, so that neighbours overlap.
+  const auto along = [](std::vector<Ball>& out, const Eigen::Vector3d& axis, double half,
+                        double radius) {
+    const std::size_t n =
+        half > 0 && radius > 0
+            ? std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(2 * half / radius)) + 1, 2,
+                                      kMaxBalls)
+            : 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = n == 1 ? 0.0 : -half + 2 * half * static_cast<double>(i) / (n - 1.0);
+      out.push_back({t * axis, radius});
+    }
+  };
+  std::vector<Ball> out;
+  std::visit(
+      Overloaded{
+          [&](const Box& b) {
+            const Eigen::Vector3d half = b.size / 2;
+            const double radius = half.minCoeff();
+            Eigen::Index longest = 0;
+            half.maxCoeff(&longest);
+            along(out, Eigen::Vector3d::Unit(longest), half[longest] - radius, radius);
+            for (int corner = 0; corner < 8; ++corner) {
+              out.push_back({Eigen::Vector3d((corner & 1) != 0 ? half.x() : -half.x(),
+                                             (corner & 2) != 0 ? half.y() : -half.y(),
+                                             (corner & 4) != 0 ? half.z() : -half.z()),
+                             0.0});
+            }
+          },
+          [&](const Sphere& s) {
+            out.push_back({Eigen::Vector3d::Zero(), s.radius});
+          },
+          [&](const Cylinder& c) {
+            const double radius = std::min(c.radius, c.length / 2);
+            along(out, Eigen::Vector3d::UnitZ(), c.length / 2 - radius, radius);
+          },
+          [&](const Capsule& c) { along(out, Eigen::Vector3d::UnitZ(), c.length / 2, c.radius); },
+          [](const Mesh&) {},
+          [](const PointCloud&) {},
+      },
+      shape);
+  return out;
 }
 
 }  // namespace
@@ -208,6 +274,7 @@ BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls, std::size_t
     cover = meshCover(*mesh->mesh, maxBalls, maxChildren);
   } else {
     cover.balls = coveringBalls(shape, maxBalls);
+    cover.inside = solidInside(shape);
   }
   // About the middle of the box around the balls.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -280,6 +347,7 @@ EnclosingVolume::EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& po
                    halfLength_ = c.length / 2;
                  },
                  [&](const Mesh& m) {
+                   encloses_ = true;
                    Eigen::Vector3d lo = m.mesh->vertices.front(), hi = lo;
                    for (const auto& v : m.mesh->vertices) {
                      lo = lo.cwiseMin(v);
@@ -289,6 +357,7 @@ EnclosingVolume::EnclosingVolume(const Shape& shape, const Eigen::Isometry3d& po
                    toLocal_ = Eigen::Translation3d(-(lo + hi) / 2) * toLocal_;
                  },
                  [&](const PointCloud& c) {
+                   encloses_ = true;
                    if (c.cloud->points.empty()) {
                      kind_ = Kind::Nothing;
                      return;
@@ -380,11 +449,13 @@ constexpr std::size_t kBlock = 32;
 
 /// The smallest of gap(i) over the balls of `columns`, i in blocks of kBlock: `gap` writes the
 /// figures of balls [from, from + n) to out[0..n).
+/// Stops after the first block whose smallest is below `enough`.
 template <class Gap>
-double smallestOver(const BallColumns& columns, const Gap& gap) {
+double smallestOver(const BallColumns& columns, const Gap& gap,
+                    double enough = -std::numeric_limits<double>::infinity()) {
   double best = std::numeric_limits<double>::infinity();
   std::array<double, kBlock> out;  // written before it is read
-  for (std::size_t from = 0; from < columns.size(); from += kBlock) {
+  for (std::size_t from = 0; from < columns.size() && !(best < enough); from += kBlock) {
     const std::size_t n = std::min(kBlock, columns.size() - from);
     gap(from, n, out.data());
     for (std::size_t i = 0; i < n; ++i) best = std::min(best, out[i]);
@@ -406,26 +477,75 @@ double smallestGap(const BallColumns& columns, const Eigen::Vector3d& point, dou
   });
 }
 
-double EnclosingVolume::smallestGap(const BallColumns& columns) const {
+template <class Figure>
+double EnclosingVolume::smallestInFrame(const BallColumns& columns, const Figure& figure,
+                                        double enough) const {
   const Eigen::Matrix3d& rotation = toLocal_.linear();
   const Eigen::Vector3d& shift = toLocal_.translation();
   const double r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2);
   const double r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2);
   const double r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
   const double t0 = shift.x(), t1 = shift.y(), t2 = shift.z();
-  // One loop per kind of volume, its distance inlined, so that each runs in vector lanes.
-  return withLocalDistance([&](const auto& distance) {
-    return smallestOver(columns, [&](std::size_t from, std::size_t n, double* out) {
-      const double *x = columns.x.data() + from, *y = columns.y.data() + from,
-                   *z = columns.z.data() + from, *r = columns.radius.data() + from;
-      for (std::size_t i = 0; i < n; ++i) {
-        out[i] = distance(r00 * x[i] + r01 * y[i] + r02 * z[i] + t0,
+  return smallestOver(
+      columns,
+      [&](std::size_t from, std::size_t n, double* out) {
+        const double *x = columns.x.data() + from, *y = columns.y.data() + from,
+                     *z = columns.z.data() + from, *r = columns.radius.data() + from;
+        for (std::size_t i = 0; i < n; ++i) {
+          out[i] = figure(r00 * x[i] + r01 * y[i] + r02 * z[i] + t0,
                           r10 * x[i] + r11 * y[i] + r12 * z[i] + t1,
                           r20 * x[i] + r21 * y[i] + r22 * z[i] + t2) -
-                 r[i];
-      }
-    });
+                   r[i];
+        }
+      },
+      enough);
+}
+
+double EnclosingVolume::smallestGap(const BallColumns& columns) const {
+  // One loop per kind of volume, its distance inlined, so that each runs in vector lanes.
+  return withLocalDistance([&](const auto& distance) {
+    return smallestInFrame(columns, distance, -std::numeric_limits<double>::infinity());
   });
+}
+
+bool EnclosingVolume::reachedBy(const BallColumns& columns, double depth) const {
+  if (encloses_ || kind_ == Kind::Nothing) return false;
+  // One loop per kind of volume, its signed distance (negative inside) inlined, so that each
+  // runs in vector lanes; a block that reaches deep enough ends the search.
+  const auto reached = [&](const auto& signedDistance) {
+    return smallestInFrame(columns, signedDistance, -depth) < -depth;
+  };
+  const double hx = halfExtents_.x(), hy = halfExtents_.y(), hz = halfExtents_.z();
+  const double radius = radius_, halfLength = halfLength_;
+  switch (kind_) {
+    case Kind::Box:
+      return reached([=](double px, double py, double pz) {
+        const double qx = std::abs(px) - hx, qy = std::abs(py) - hy, qz = std::abs(pz) - hz;
+        const double ox = std::max(qx, 0.0), oy = std::max(qy, 0.0), oz = std::max(qz, 0.0);
+        return std::sqrt(ox * ox + oy * oy + oz * oz) +
+               std::min(std::max(qx, std::max(qy, qz)), 0.0);
+      });
+    case Kind::Sphere:
+      return reached([=](double px, double py, double pz) {
+        return std::sqrt(px * px + py * py + pz * pz) - radius;
+      });
+    case Kind::Cylinder:
+      return reached([=](double px, double py, double pz) {
+        const double radial = std::sqrt(px * px + py * py) - radius;
+        const double axial = std::abs(pz) - halfLength;
+        const double outRadial = std::max(radial, 0.0), outAxial = std::max(axial, 0.0);
+        return std::sqrt(outRadial * outRadial + outAxial * outAxial) +
+               std::min(std::max(radial, axial), 0.0);
+      });
+    case Kind::Capsule:
+      return reached([=](double px, double py, double pz) {
+        const double dz = pz - std::clamp(pz, -halfLength, halfLength);
+        return std::sqrt(px * px + py * py + dz * dz) - radius;
+      });
+    case Kind::Nothing:
+      break;
+  }
+  return false;
 }
 
 int commonAncestor(const Robot& robot, int linkA, int linkB) {

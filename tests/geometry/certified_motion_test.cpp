@@ -161,6 +161,132 @@ TEST(CoveringBalls, ATubeOfMeshIsCutIntoSlicesOnItsAxis) {
   }
 }
 
+/// Whether p lies on one of the mesh's triangles (within 1e-9 m of its plane, inside its edges).
+bool onTriangles(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Eigen::Vector3d u = mesh.vertices[static_cast<std::size_t>(t[1])] - a;
+    const Eigen::Vector3d v = mesh.vertices[static_cast<std::size_t>(t[2])] - a;
+    const Eigen::Vector3d n = u.cross(v);
+    if (std::abs(n.normalized().dot(p - a)) > 1e-9) continue;
+    // Barycentric coordinates of p in (a, u, v).
+    const double su = (p - a).cross(v).dot(n) / n.squaredNorm();
+    const double sv = u.cross(p - a).dot(n) / n.squaredNorm();
+    if (su >= -1e-9 && sv >= -1e-9 && su + sv <= 1 + 1e-9) return true;
+  }
+  return false;
+}
+
+// The cover's dual: balls inside each shape. A solid primitive's lie in its solid; a mesh's are
+// points of its triangles, one per finest ball of its cover.
+TEST(InsideBalls, LieInsideTheirShape) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{0, 0, 0}, {0.4, 0, 0}, {0, 0.1, 0}, {0, 0, 0.05}, {0.4, 0.1, 0.05}};
+  mesh->triangles = {{0, 1, 2}, {0, 1, 3}, {1, 2, 4}, {0, 2, 3}, {1, 3, 4}};
+  const std::vector<Shape> shapes{
+      Box{{0.6, 0.1, 0.02}}, Sphere{0.07},    Cylinder{0.05, 0.4}, Cylinder{0.3, 0.02},
+      Capsule{0.04, 0.3},    Capsule{0.1, 0}, Mesh{mesh},          tubeMesh()};
+  Rng rng(17);
+  std::uniform_real_distribution<double> sym(-1, 1);
+  for (const Shape& shape : shapes) {
+    const BallCover cover = coveringBallTree(shape, 12, 8);
+    ASSERT_FALSE(cover.inside.empty()) << describe(shape);
+    if (const auto* m = std::get_if<Mesh>(&shape)) {
+      std::size_t finest = 0;
+      for (const auto& children : cover.children) finest += children.size();
+      EXPECT_EQ(cover.inside.size(), finest) << describe(shape);
+      for (const Ball& b : cover.inside) {
+        EXPECT_EQ(b.radius, 0) << describe(shape);
+        EXPECT_TRUE(onTriangles(*m->mesh, b.centre)) << describe(shape) << b.centre.transpose();
+      }
+      continue;
+    }
+    const EnclosingVolume solid(shape, Eigen::Isometry3d::Identity());
+    for (const Ball& b : cover.inside) {
+      EXPECT_LE(solid.distanceFrom(b.centre), 1e-12) << describe(shape);
+      for (int i = 0; i < 200; ++i) {
+        const Eigen::Vector3d u(sym(rng), sym(rng), sym(rng));
+        if (u.norm() > 1) continue;
+        EXPECT_LE(solid.distanceFrom(b.centre + b.radius * u), 1e-12) << describe(shape);
+      }
+    }
+  }
+  // A box's corners are among its balls: a corner in an obstacle is a touch.
+  const BallCover box = coveringBallTree(Box{{0.6, 0.1, 0.02}});
+  EXPECT_EQ(std::count_if(box.inside.begin(), box.inside.end(),
+                          [](const Ball& b) {
+                            return b.radius == 0 && std::abs(b.centre.x()) == 0.3 &&
+                                   std::abs(b.centre.y()) == 0.05 && std::abs(b.centre.z()) == 0.01;
+                          }),
+            8);
+}
+
+TEST(EnclosingVolume, ABallReachesInWhereItOverlapsTheSolidByMoreThanTheDepth) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh->triangles = {{0, 1, 2}};
+  auto cloud = std::make_shared<CloudPoints>();
+  cloud->points = {{0, 0, 0}, {0.2, 0, 0}};
+  const Eigen::Isometry3d pose = Eigen::Translation3d(0.3, -0.2, 0.5) *
+                                 Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  constexpr double kDepth = 1e-4;
+  const auto one = [](const Eigen::Vector3d& centre, double radius) {
+    BallColumns columns;
+    columns.push(centre, radius);
+    return columns;
+  };
+  Rng rng(19);
+  std::uniform_real_distribution<double> sym(-1, 1), radius(0, 0.2);
+  for (const Shape& shape : std::vector<Shape>{Box{{0.4, 0.2, 0.1}}, Sphere{0.3},
+                                               Cylinder{0.2, 0.6}, Capsule{0.1, 0.5}}) {
+    const EnclosingVolume volume(shape, pose);
+    int reached = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Eigen::Vector3d centre = pose * Eigen::Vector3d(sym(rng), sym(rng), sym(rng)) / 2;
+      const double r = radius(rng);
+      const double outside = volume.distanceFrom(centre);
+      const bool reaches = volume.reachedBy(one(centre, r), kDepth);
+      reached += reaches ? 1 : 0;
+      // Outside, it reaches in where it overlaps the solid by more than the depth (distances
+      // from primitives are exact: DistancesAreExactForPrimitivesAndBelowForMeshes); inside, a
+      // ball larger than the depth always does.
+      if (outside > 0) {
+        EXPECT_EQ(reaches, outside - r < -kDepth) << describe(shape) << " " << outside - r;
+      } else if (r > kDepth) {
+        EXPECT_TRUE(reaches) << describe(shape);
+      }
+    }
+    EXPECT_GT(reached, 150) << describe(shape);
+  }
+  // Points (balls of radius 0) just inside a face: twice the depth in reaches, half of it does
+  // not.
+  const Box box{{0.4, 0.2, 0.1}};
+  const EnclosingVolume boxVolume(box, pose);
+  EXPECT_TRUE(boxVolume.reachedBy(one(pose * Eigen::Vector3d(0.2 - 2 * kDepth, 0, 0), 0), kDepth));
+  EXPECT_FALSE(boxVolume.reachedBy(one(pose * Eigen::Vector3d(0.2 - kDepth / 2, 0, 0), 0), kDepth));
+  EXPECT_FALSE(boxVolume.reachedBy(one(pose * Eigen::Vector3d(0.2 - 2 * kDepth, 0.1, 0), 0),
+                                   kDepth));  // on an edge: no deeper than the other face
+  const EnclosingVolume sphere(Sphere{0.3}, pose);
+  EXPECT_TRUE(sphere.reachedBy(one(pose * Eigen::Vector3d(0, 0.3 - 2 * kDepth, 0), 0), kDepth));
+  EXPECT_FALSE(sphere.reachedBy(one(pose * Eigen::Vector3d(0, 0.3 - kDepth / 2, 0), 0), kDepth));
+  const EnclosingVolume cylinder(Cylinder{0.2, 0.6}, pose);
+  EXPECT_TRUE(cylinder.reachedBy(one(pose * Eigen::Vector3d(0, 0, 0.3 - 2 * kDepth), 0), kDepth));
+  EXPECT_FALSE(cylinder.reachedBy(one(pose * Eigen::Vector3d(0, 0, 0.3 - kDepth / 2), 0), kDepth));
+  EXPECT_TRUE(cylinder.reachedBy(one(pose * Eigen::Vector3d(0.2 - 2 * kDepth, 0, 0), 0), kDepth));
+  const EnclosingVolume capsule(Capsule{0.1, 0.5}, pose);
+  EXPECT_TRUE(capsule.reachedBy(one(pose * Eigen::Vector3d(0, 0, 0.35 - 2 * kDepth), 0), kDepth));
+  EXPECT_FALSE(capsule.reachedBy(one(pose * Eigen::Vector3d(0, 0, 0.35 - kDepth / 2), 0), kDepth));
+  // Of many balls, one reaching in is enough, in any block of the columns; none, none.
+  BallColumns many;
+  for (int i = 0; i < 75; ++i) many.push(pose * Eigen::Vector3d(2 + i, 0, 0), 0.1);
+  EXPECT_FALSE(boxVolume.reachedBy(many, kDepth));
+  many.push(pose * Eigen::Vector3d(0, 0, 0), 0);
+  EXPECT_TRUE(boxVolume.reachedBy(many, kDepth));
+  // A volume around its obstacle proves nothing: a mesh's box, a cloud's.
+  EXPECT_FALSE(EnclosingVolume(Mesh{mesh}, pose).reachedBy(many, kDepth));
+  EXPECT_FALSE(EnclosingVolume(PointCloud{cloud, 0.05}, pose).reachedBy(many, kDepth));
+}
+
 TEST(EnclosingVolume, DistancesAreExactForPrimitivesAndBelowForMeshes) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
@@ -602,6 +728,69 @@ TEST(CertifiedState, AnswersAsEveryPairCheckedOnEveryShippedRobot) {
       EXPECT_EQ(bounded.firstInCollision(states.data(), n),
                 everyPair.firstInCollision(states.data(), n))
           << entry.name;
+    }
+  }
+}
+
+/// A robot of one shape that moves freely: three prismatic joints, then two turns.
+Robot freeShape(const Shape& shape) {
+  std::vector<Joint> joints{
+      joint("x", JointType::Prismatic, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), -1, 1),
+      joint("y", JointType::Prismatic, 1, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY(), -1, 1),
+      joint("z", JointType::Prismatic, 2, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), -1, 1),
+      joint("yaw", JointType::Revolute, 3, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), -3,
+            3),
+      joint("pitch", JointType::Revolute, 4, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitY(), -3,
+            3)};
+  return Robot("free " + describe(shape), {{"base"}, {"x"}, {"y"}, {"z"}, {"yaw"}, {"pitch"}},
+               std::move(joints), {{5, Eigen::Isometry3d::Identity(), shape}});
+}
+
+// What lets a configuration's check skip FCL where a robot shape is in an obstacle: a ball inside
+// the shape that reaches into the obstacle means FCL finds the pair touching, for every kind of
+// robot shape against every kind of obstacle the proof reads, at thousands of placements about
+// the obstacle; and the proof finds most of FCL's touches.
+TEST(CertifiedState, ABallInsideAShapeThatReachesIntoAnObstacleIsATouchFclFinds) {
+  const std::vector<Shape> robotShapes{Box{{0.3, 0.1, 0.05}}, Sphere{0.08}, Cylinder{0.05, 0.3},
+                                       Capsule{0.04, 0.25}, tubeMesh()};
+  const std::vector<Shape> obstacles{Box{{0.4, 0.3, 0.05}}, Sphere{0.15}, Cylinder{0.1, 0.5},
+                                     Capsule{0.05, 0.4}};
+  const Eigen::Isometry3d pose = Eigen::Translation3d(0.05, -0.02, 0.03) *
+                                 Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized());
+  Rng rng(23);
+  const std::size_t samples = kMotions * 4;
+  for (const Shape& shape : robotShapes) {
+    const Robot robot = freeShape(shape);
+    const BallCover cover = coveringBallTree(shape);
+    BallColumns inside;
+    for (const Shape& obstacleShape : obstacles) {
+      Scene scene;
+      scene.add({"obstacle", obstacleShape, pose, std::nullopt});
+      const FclChecker fcl(robot, scene, {.proveMotionsFree = false});
+      const EnclosingVolume obstacle(obstacleShape, pose);
+      KinematicsData kinematics = makeKinematicsData(robot);
+      // Placements within 25 cm of the obstacle's centre, so that many touch it.
+      Eigen::VectorXd lower = robot.limits().lower(), upper = robot.limits().upper();
+      lower.head<3>().setConstant(-0.25);
+      upper.head<3>().setConstant(0.25);
+      const JointLimits near(lower, upper);
+      const Configurations qs = uniformConfigurations(near, samples, rng);
+      std::size_t touching = 0, proven = 0;
+      for (Eigen::Index i = 0; i < qs.rows(); ++i) {
+        const Eigen::VectorXd q = qs.row(i).transpose();
+        forwardKinematics(robot, q.data(), kinematics);
+        inside.place(shapePose(robot, kinematics, 0), cover.inside);
+        const bool proof = obstacle.reachedBy(inside, 1e-4);
+        const bool touches = fcl.inCollision(std::span<const double>(q.data(), 5));
+        if (proof) {
+          ASSERT_TRUE(touches) << describe(shape) << " in " << describe(obstacleShape) << " at "
+                               << q.transpose();
+        }
+        touching += touches ? 1 : 0;
+        proven += proof ? 1 : 0;
+      }
+      EXPECT_GT(touching, samples / 10) << describe(shape) << " in " << describe(obstacleShape);
+      EXPECT_GT(proven, touching / 3) << describe(shape) << " in " << describe(obstacleShape);
     }
   }
 }

@@ -102,6 +102,15 @@ class PlacedBalls {
   /// pair indexes them.
   double lowerBound(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles);
 
+  /// True when a ball inside the pair's robot shape (BallCover::inside) reaches into its
+  /// obstacle at the configuration last placed, deeper than the exact checker's tolerance: the
+  /// pair touches, as the exact checker would find, without asking it. False for self pairs and
+  /// obstacles known only by a volume around them (meshes, clouds).
+  bool touchProven(const ClearancePair& pair, const std::vector<EnclosingVolume>& obstacles);
+
+  /// A buffer of pairs for the caller (certifiedStateCheck's pairs left to the exact checker).
+  std::vector<const ClearancePair*>& openPairs() { return open_; }
+
   /// How far one step of `stride` (per configuration coordinate, non-negative) can bring the
   /// pair's shapes closer at the configuration last placed: the sum over the pair's movers of
   /// stride times multiplier times the distance of the shape's enclosing ball from the joint's
@@ -121,6 +130,8 @@ class PlacedBalls {
     std::vector<BallColumns> children;
     std::size_t speedStamp = 0;
     std::vector<double> speeds;  // sums of the speeds of the first k movers, k = 0..movers
+    std::size_t insideStamp = 0;
+    BallColumns inside;
   };
 
   double obstacleBound(const ClearancePair& pair, const EnclosingVolume& obstacle, double floor);
@@ -141,6 +152,7 @@ class PlacedBalls {
   std::size_t axesStamp_ = 0;  // the placement axes_ are of
   BallColumns near_;           // selfBound's balls of the other shape near the first
   std::vector<std::size_t> nearIndex_;
+  std::vector<const ClearancePair*> open_;
 };
 
 /// True when a pair of `model` touches at q, as a check of every pair with `exact` decides, that

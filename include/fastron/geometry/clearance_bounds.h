@@ -35,9 +35,15 @@ struct BallCover {
   Ball whole;  ///< encloses every ball
   std::vector<Ball> balls;
   std::vector<std::vector<Ball>> children;  ///< empty, or one list per ball
+  /// Balls inside the shape, the cover's dual: one that reaches into an obstacle proves the pair
+  /// touching (EnclosingVolume::reachedBy). A mesh's are points of its triangles (radius 0), one
+  /// near the middle of each of its finest balls; a solid primitive's are balls inside it (a box's
+  /// corners among them).
+  std::vector<Ball> inside;
 };
 
-/// coveringBalls, and for a mesh up to `maxChildren` children per ball (none when it is below 2).
+/// coveringBalls, and for a mesh up to `maxChildren` children per ball (none when it is below 2),
+/// and the balls inside the shape.
 BallCover coveringBallTree(const Shape& shape, std::size_t maxBalls = 12,
                            std::size_t maxChildren = 8);
 
@@ -69,18 +75,28 @@ class EnclosingVolume {
   /// ball (to rounding), one loop per kind of volume that runs in the machine's vector lanes
   /// (most of a motion proof's time on robots of primitives went to these bounds).
   double smallestGap(const BallColumns& columns) const;
+  /// True when one ball of `columns` (world) reaches more than `depth` into the obstacle: the
+  /// obstacle and any shape that contains the ball touch. Always false for a volume that only
+  /// encloses its obstacle (a mesh's box, a cloud's).
+  bool reachedBy(const BallColumns& columns, double depth) const;
 
  private:
   /// use(distance), `distance(x, y, z)` being the volume's distance from a point in its own frame:
   /// the one formula per kind that distanceFrom and smallestGap share.
   template <class Use>
   double withLocalDistance(const Use& use) const;
+  /// The smallest of figure(x, y, z) - radius over the balls of `columns`, (x, y, z) a ball's
+  /// centre in the volume's frame, in blocks that run in vector lanes; it stops after a block
+  /// whose smallest is below `enough`.
+  template <class Figure>
+  double smallestInFrame(const BallColumns& columns, const Figure& figure, double enough) const;
 
   enum class Kind { Box, Sphere, Cylinder, Capsule, Nothing };
   Kind kind_ = Kind::Box;
   Eigen::Isometry3d toLocal_ = Eigen::Isometry3d::Identity();  ///< world to the volume's frame
   Eigen::Vector3d halfExtents_ = Eigen::Vector3d::Zero();      ///< a box's
   double radius_ = 0, halfLength_ = 0;  ///< a sphere's, cylinder's or capsule's
+  bool encloses_ = false;               ///< the volume is larger than the obstacle
 };
 
 /// Levers of robot shape `shape` (covered by `balls`, in the shape's frame): for each
